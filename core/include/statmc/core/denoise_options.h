@@ -1,0 +1,19 @@
+// The parameters of the StatMC filter (method.md §5), with the paper's defaults.
+#pragma once
+
+#include <string>
+
+namespace statmc {
+
+struct DenoiseOptions {
+    int radius = 20;             ///< disk radius in pixels, ≥ 0
+    double alpha = 0.005;        ///< significance level of the t-test, in (0, 1)
+    float sigma_spatial = 10.f;  ///< Gaussian spatial falloff in pixels, > 0
+    float sigma_albedo = 0.02f;  ///< albedo guide falloff, > 0 (used only with an albedo guide)
+    float sigma_normal = 0.1f;   ///< normal guide falloff, > 0 (used only with a normal guide)
+
+    /// Empty when valid, else a message naming the offending parameter.
+    std::string validate() const;
+};
+
+}  // namespace statmc

@@ -1,0 +1,57 @@
+// Per-pixel estimators ready for the membership test, built from any of the three kinds
+// of statistics a renderer can give.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "statmc/core/plane.h"
+#include "statmc/core/statistics_view.h"
+
+namespace statmc {
+
+/// What the filter needs of each pixel: the value it averages (the untransformed mean),
+/// the quantity it tests (test_mean) with the variance of that estimate, and the sample
+/// count that sets the degrees of freedom. All planes are dense and channel-major.
+///
+/// A pixel is *testable* when count ≥ 2 and its test mean and variance are finite with
+/// variance ≥ 0. An untestable pixel keeps its own value and is nobody's member; a
+/// non-finite value is stored as 0 (the rule §2 applies to samples).
+struct EstimatorImage {
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    std::vector<float> count;
+    std::vector<float> value;
+    std::vector<float> test_mean;
+    std::vector<float> test_variance;
+
+    EstimatorImage() = default;
+    EstimatorImage(int width, int height, int channels);
+
+    std::size_t pixels() const { return std::size_t(width) * height; }
+    std::size_t index(int c, int x, int y) const
+    {
+        return std::size_t(c) * pixels() + std::size_t(y) * width + x;
+    }
+    ConstPlane value_plane(int c) const { return {value.data() + c * pixels(), 1, width}; }
+    bool testable(int x, int y) const;
+};
+
+/// Which samples the test compares.
+enum class TestDomain {
+    BoxCox,         ///< Box-Cox (λ = ½) with Johnson's skewness correction: StatMC proper
+    Untransformed,  ///< the plain means, as a variance AOV or Moon et al.'s test allows
+};
+
+/// Full statistics (mode 1) or mean + variance + count (mode 2, TestDomain::Untransformed).
+/// Throws std::invalid_argument when the view lacks the planes the domain needs.
+EstimatorImage estimators_from_statistics(const StatisticsView& stats, TestDomain domain);
+
+/// K ≥ 2 independent renders of one frame (mode 3): per pixel the mean of the K images is
+/// the value, their sample variance over K the variance of that mean, and n = K.
+/// `passes[k][c]` is channel c of render k. Non-finite or negative pixels count as 0.
+EstimatorImage estimators_from_passes(const std::vector<std::vector<ConstPlane>>& passes,
+                                      int width, int height);
+
+}  // namespace statmc

@@ -1,0 +1,50 @@
+// The StatMC filter (method.md §5): average each pixel with the neighbours whose
+// estimators a t-test cannot tell apart from it.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "statmc/core/denoise_options.h"
+#include "statmc/core/estimator_image.h"
+#include "statmc/core/plane.h"
+
+namespace statmc {
+
+/// Optional feature buffers that sharpen the weights; an absent guide has null planes.
+struct Guides {
+    std::array<ConstPlane, 3> albedo{};
+    std::array<ConstPlane, 3> normal{};
+
+    bool has_albedo() const { return albedo[0] && albedo[1] && albedo[2]; }
+    bool has_normal() const { return normal[0] && normal[1] && normal[2]; }
+};
+
+/// Per-pixel diagnostics the filter can write as it goes; null planes are skipped.
+struct FilterDiagnostics {
+    Plane members;     ///< neighbours that passed the test, the centre included
+    Plane weight_sum;  ///< Σ W_ij, the centre's weight 1 included
+};
+
+/// Instruction sets the filter kernel is built for.
+enum class SimdLevel { Auto, Scalar, Avx2 };
+
+/// The best level this CPU runs (Avx2 needs AVX2 and FMA).
+SimdLevel detected_simd_level();
+const char* simd_level_name(SimdLevel level);
+
+/// Filters `est` into `out` (one plane per channel). Bitwise identical for any thread
+/// count. Throws std::invalid_argument on invalid options, a channel count other than
+/// 1..4, too few output planes, or an unavailable SIMD level.
+/// nthreads: 0 = all, 1 = the calling thread only.
+void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
+            const std::vector<Plane>& out, const FilterDiagnostics& diagnostics = {},
+            int nthreads = 0, SimdLevel level = SimdLevel::Auto);
+
+/// A plain, unoptimised double-precision implementation of method.md §5, the yardstick
+/// that the fast filter is tested and benchmarked against. Single-threaded.
+void filter_reference(const EstimatorImage& est, const Guides& guides,
+                      const DenoiseOptions& options, const std::vector<Plane>& out,
+                      const FilterDiagnostics& diagnostics = {});
+
+}  // namespace statmc

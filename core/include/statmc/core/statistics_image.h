@@ -1,0 +1,68 @@
+// An image of per-pixel accumulators: what a renderer adds samples to, tile by tile,
+// and what merges exactly across tiles, passes and machines.
+#pragma once
+
+#include <cstddef>
+#include <stdexcept>
+#include <vector>
+
+#include "statmc/core/pixel_moments.h"
+#include "statmc/core/statistics_view.h"
+
+namespace statmc {
+
+/// Dense float planes of statistics (count, mean, variance, Box-Cox mean, variance, M3/n),
+/// the exported form of a StatisticsImage; view() exposes them to the rest of core.
+struct StatisticsPlanes {
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    std::vector<float> count;
+    std::vector<float> mean, variance, bc_mean, bc_variance, bc_moment3;  // channel-major
+
+    StatisticsView view() const;
+};
+
+template <int C>
+class StatisticsImage {
+public:
+    using Pixel = PixelMoments<C, double>;
+
+    StatisticsImage(int width, int height)
+        : width_(width), height_(height), pixels_(std::size_t(width) * height)
+    {
+        if (width <= 0 || height <= 0)
+            throw std::invalid_argument("StatisticsImage: empty resolution");
+    }
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    Pixel& at(int x, int y) { return pixels_[std::size_t(y) * width_ + x]; }
+    const Pixel& at(int x, int y) const { return pixels_[std::size_t(y) * width_ + x]; }
+
+    void add(int x, int y, const float* sample) { at(x, y).add(sample); }
+
+    /// Folds in the statistics of the same frame from another tile set, pass or machine.
+    void merge(const StatisticsImage& other)
+    {
+        if (other.width_ != width_ || other.height_ != height_)
+            throw std::invalid_argument("StatisticsImage::merge: resolutions differ");
+        for (std::size_t i = 0; i < pixels_.size(); ++i)
+            pixels_[i].merge(other.pixels_[i]);
+    }
+
+    StatisticsPlanes planes() const;
+    /// Rebuilds accumulators from stored planes (M2 = s²(n − 1), M3 = n·m3).
+    static StatisticsImage from_view(const StatisticsView& view);
+
+private:
+    int width_;
+    int height_;
+    std::vector<Pixel> pixels_;
+};
+
+extern template class StatisticsImage<1>;
+extern template class StatisticsImage<3>;
+extern template class StatisticsImage<4>;
+
+}  // namespace statmc

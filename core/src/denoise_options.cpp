@@ -1,0 +1,26 @@
+#include "statmc/core/denoise_options.h"
+
+#include <cmath>
+
+namespace statmc {
+
+namespace {
+bool positive(float v) { return std::isfinite(v) && v > 0; }
+}  // namespace
+
+std::string DenoiseOptions::validate() const
+{
+    if (radius < 0 || radius > 1000)
+        return "radius must be in [0, 1000], got " + std::to_string(radius);
+    if (!(alpha > 0 && alpha < 1))
+        return "alpha must be in (0, 1), got " + std::to_string(alpha);
+    if (!positive(sigma_spatial))
+        return "sigma_s must be > 0, got " + std::to_string(sigma_spatial);
+    if (!positive(sigma_albedo))
+        return "sigma_albedo must be > 0, got " + std::to_string(sigma_albedo);
+    if (!positive(sigma_normal))
+        return "sigma_normal must be > 0, got " + std::to_string(sigma_normal);
+    return {};
+}
+
+}  // namespace statmc

@@ -1,0 +1,154 @@
+#include "statmc/core/estimator_image.h"
+
+#include <cfloat>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "statmc/core/box_cox.h"
+
+namespace statmc {
+
+namespace {
+
+constexpr float kUntestable = std::numeric_limits<float>::quiet_NaN();
+
+void require_channels(int channels)
+{
+    if (channels < 1 || channels > 4)
+        throw std::invalid_argument("statistics must have 1 to 4 channels, got " +
+                                    std::to_string(channels));
+}
+
+// Marks pixel (x, y) untestable in every channel, so that no test involving it passes.
+void mark_untestable(EstimatorImage& est, int x, int y)
+{
+    for (int c = 0; c < est.channels; ++c) {
+        est.test_mean[est.index(c, x, y)] = 0;
+        est.test_variance[est.index(c, x, y)] = kUntestable;
+    }
+}
+
+}  // namespace
+
+EstimatorImage::EstimatorImage(int w, int h, int c) : width(w), height(h), channels(c)
+{
+    require_channels(c);
+    if (w <= 0 || h <= 0)
+        throw std::invalid_argument("empty resolution");
+    count.assign(pixels(), 0.f);
+    value.assign(pixels() * c, 0.f);
+    test_mean.assign(pixels() * c, 0.f);
+    test_variance.assign(pixels() * c, kUntestable);
+}
+
+bool EstimatorImage::testable(int x, int y) const
+{
+    if (!(count[index(0, x, y)] >= 2))
+        return false;
+    for (int c = 0; c < channels; ++c) {
+        const float m = test_mean[index(c, x, y)];
+        const float v = test_variance[index(c, x, y)];
+        if (!std::isfinite(m) || !std::isfinite(v) || v < 0)
+            return false;
+    }
+    return true;
+}
+
+EstimatorImage estimators_from_statistics(const StatisticsView& stats, TestDomain domain)
+{
+    require_channels(stats.channels);
+    if (!stats.count)
+        throw std::invalid_argument("statistics lack a sample count plane");
+    for (int c = 0; c < stats.channels; ++c) {
+        if (!stats.mean[c])
+            throw std::invalid_argument("statistics lack a mean plane");
+        if (domain == TestDomain::Untransformed && !stats.variance[c])
+            throw std::invalid_argument("statistics lack a variance plane");
+    }
+    if (domain == TestDomain::BoxCox && !stats.has_box_cox())
+        throw std::invalid_argument("statistics lack the Box-Cox planes");
+
+    EstimatorImage est(stats.width, stats.height, stats.channels);
+    for (int y = 0; y < stats.height; ++y)
+        for (int x = 0; x < stats.width; ++x) {
+            const float n = stats.count(x, y);
+            est.count[est.index(0, x, y)] = n;
+            bool finite_value = true;
+            for (int c = 0; c < stats.channels; ++c) {
+                const float f = stats.mean[c](x, y);
+                finite_value = finite_value && std::isfinite(f);
+                est.value[est.index(c, x, y)] = std::isfinite(f) ? f : 0.f;
+                float mu, v;
+                if (domain == TestDomain::BoxCox) {
+                    const float s2 = stats.bc_variance[c](x, y);
+                    const float m3 = stats.bc_moment3[c](x, y);
+                    // Johnson's (1978) first-order skewness correction of the mean.
+                    const float skew = s2 > FLT_EPSILON ? m3 / (6.f * s2 * n) : 0.f;
+                    mu = stats.bc_mean[c](x, y) + skew;
+                    v = s2 / n;
+                } else {
+                    mu = f;
+                    const float var = stats.variance[c](x, y);
+                    v = stats.variance_of_mean ? var : var / n;
+                }
+                est.test_mean[est.index(c, x, y)] = mu;
+                est.test_variance[est.index(c, x, y)] = v;
+            }
+            if (!finite_value || !est.testable(x, y))
+                mark_untestable(est, x, y);
+        }
+    return est;
+}
+
+EstimatorImage estimators_from_passes(const std::vector<std::vector<ConstPlane>>& passes,
+                                      int width, int height)
+{
+    const int k = int(passes.size());
+    if (k < 2)
+        throw std::invalid_argument("need at least 2 passes, got " + std::to_string(k));
+    const int channels = int(passes[0].size());
+    require_channels(channels);
+    for (const auto& pass : passes)
+        if (int(pass.size()) != channels)
+            throw std::invalid_argument("passes differ in their channel count");
+
+    EstimatorImage est(width, height, channels);
+    std::vector<float> sample(channels);
+    std::vector<double> sum(channels), sum_sq(channels);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            std::fill(sum.begin(), sum.end(), 0.0);
+            for (const auto& pass : passes) {
+                for (int c = 0; c < channels; ++c)
+                    sample[c] = pass[c](x, y);
+                const bool usable = sample_is_usable(sample.data(), channels);
+                for (int c = 0; c < channels; ++c)
+                    sum[c] += usable ? sample[c] : 0.f;
+            }
+            // Second pass over the K values: exact variance without cancellation.
+            std::fill(sum_sq.begin(), sum_sq.end(), 0.0);
+            for (const auto& pass : passes) {
+                for (int c = 0; c < channels; ++c)
+                    sample[c] = pass[c](x, y);
+                const bool usable = sample_is_usable(sample.data(), channels);
+                for (int c = 0; c < channels; ++c) {
+                    const double d = (usable ? sample[c] : 0.0) - sum[c] / k;
+                    sum_sq[c] += d * d;
+                }
+            }
+            est.count[est.index(0, x, y)] = float(k);
+            for (int c = 0; c < channels; ++c) {
+                const float mean = float(sum[c] / k);
+                est.value[est.index(c, x, y)] = mean;
+                est.test_mean[est.index(c, x, y)] = mean;
+                est.test_variance[est.index(c, x, y)] = float(sum_sq[c] / (k - 1) / k);
+            }
+            if (!est.testable(x, y))
+                mark_untestable(est, x, y);
+        }
+    return est;
+}
+
+}  // namespace statmc

@@ -1,0 +1,98 @@
+#include "statmc/core/filter.h"
+
+#include <stdexcept>
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
+
+#include "filter_layout.h"
+
+namespace statmc {
+
+SimdLevel detected_simd_level()
+{
+    static const SimdLevel level = [] {
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")
+            ? SimdLevel::Avx2 : SimdLevel::Scalar;
+    }();
+    return level;
+}
+
+const char* simd_level_name(SimdLevel level)
+{
+    switch (level) {
+    case SimdLevel::Auto: return "auto";
+    case SimdLevel::Scalar: return "scalar";
+    case SimdLevel::Avx2: return "avx2";
+    }
+    return "?";
+}
+
+namespace detail {
+int kernel_width(SimdLevel level) { return level == SimdLevel::Avx2 ? 8 : 1; }
+}  // namespace detail
+
+namespace {
+
+void check_arguments(const EstimatorImage& est, const DenoiseOptions& options,
+                     const std::vector<Plane>& out)
+{
+    if (const std::string why = options.validate(); !why.empty())
+        throw std::invalid_argument(why);
+    if (est.channels < 1 || est.channels > 4)
+        throw std::invalid_argument("the filter takes 1 to 4 channels");
+    if (est.width <= 0 || est.height <= 0)
+        throw std::invalid_argument("the image is empty");
+    if (int(out.size()) < est.channels)
+        throw std::invalid_argument("fewer output planes than channels");
+    for (int c = 0; c < est.channels; ++c)
+        if (!out[c])
+            throw std::invalid_argument("null output plane");
+}
+
+template <class Body>
+void run_with_threads(int nthreads, Body&& body)
+{
+    if (nthreads <= 0) {
+        body();
+        return;
+    }
+    tbb::task_arena arena(nthreads);
+    arena.execute(body);
+}
+
+}  // namespace
+
+void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
+            const std::vector<Plane>& out, const FilterDiagnostics& diagnostics, int nthreads,
+            SimdLevel level)
+{
+    check_arguments(est, options, out);
+    if (level == SimdLevel::Auto)
+        level = detected_simd_level();
+    if (level == SimdLevel::Avx2 && detected_simd_level() != SimdLevel::Avx2)
+        throw std::invalid_argument("this CPU lacks AVX2/FMA");
+    const detail::FilterRowsFn rows =
+        level == SimdLevel::Avx2 ? detail::filter_rows_avx2() : detail::filter_rows_scalar();
+    const int lanes = detail::kernel_width(level);
+
+    run_with_threads(nthreads, [&] {
+        const detail::FilterLayout layout = detail::make_filter_layout(est, guides, options, nthreads);
+        const int chunks = (est.width + lanes - 1) / lanes;
+        // Tiles of a few rows by 64 columns keep the window's planes in L2. Each pixel
+        // is computed alone, so the tiling cannot change the result.
+        const int chunk_grain = std::max(1, 64 / lanes);
+        tbb::parallel_for(
+            tbb::blocked_range2d<int>(0, est.height, 4, 0, chunks, chunk_grain),
+            [&](const tbb::blocked_range2d<int>& r) {
+                rows(layout, out, diagnostics, r.rows().begin(), r.rows().end(),
+                     r.cols().begin(), r.cols().end());
+            },
+            tbb::simple_partitioner());
+    });
+}
+
+}  // namespace statmc

@@ -1,0 +1,7 @@
+// The AVX2 + FMA build of the filter kernel; this file alone is compiled with -mavx2 -mfma.
+#include "filter_kernel.h"
+#include "simd_avx2.h"
+
+namespace statmc::detail {
+FilterRowsFn filter_rows_avx2() { return &filter_rows<simd::Avx2>; }
+}  // namespace statmc::detail

@@ -1,0 +1,153 @@
+// The filter's inner loop, written once over a SIMD type V (simd_scalar.h, simd_avx2.h).
+// Lanes are consecutive output pixels of one row; every tap is two unaligned loads per
+// tested channel, so the window walk is pure streaming arithmetic.
+//
+// Everything here has internal linkage on purpose: the header is compiled once per
+// instruction set, and shared inline symbols could let the linker mix the two builds.
+#pragma once
+
+#include <algorithm>
+
+#include "filter_layout.h"
+
+namespace statmc::detail {
+namespace {
+
+template <class V, int NC>
+struct Centre {
+    typename V::F mean[NC], threshold[NC];
+};
+
+/// Lanes' membership of the neighbour at offset `off`: all channels pass
+/// (μ̃_i − μ̃_j)² − T_j ≤ T_i. This is the fast form of method.md §4,
+/// (μ̃_i − μ̃_j)² ≤ γ_i²v_i + γ_j²v_j, kept in difference form: expanding it into
+/// D_i + D_j ≤ 2μ̃_iμ̃_j cancels catastrophically in float once v ≪ μ̃² (high spp).
+template <class V, int NC>
+inline typename V::M members(const FilterLayout& L, const Centre<V, NC>& ctr, std::ptrdiff_t off)
+{
+    typename V::M m{};
+    for (int c = 0; c < NC; ++c) {
+        const auto d = V::sub(ctr.mean[c], V::load(L.mean[c] + off));
+        const auto pass = V::le(V::fmsub(d, d, V::load(L.threshold[c] + off)), ctr.threshold[c]);
+        m = c == 0 ? pass : V::both(m, pass);
+    }
+    return m;
+}
+
+template <class V, int NC, int NG, bool kDiagnostics>
+void filter_chunk(const FilterLayout& L, const std::vector<Plane>& out,
+                  const FilterDiagnostics& diag, int y, int x0)
+{
+    using F = typename V::F;
+    const std::ptrdiff_t centre = std::ptrdiff_t(y) * L.stride + x0;
+    Centre<V, NC> ctr;
+    F acc[NC];
+    for (int c = 0; c < NC; ++c) {
+        ctr.mean[c] = V::load(L.mean[c] + centre);
+        ctr.threshold[c] = V::load(L.threshold[c] + centre);
+        acc[c] = V::load(L.value[c] + centre);  // the centre, weight 1
+    }
+    F guide[NG > 0 ? NG : 1];
+    for (int g = 0; g < NG; ++g)
+        guide[g] = V::load(L.guide[g] + centre);
+    F weight_sum = V::set1(1.f);
+    F member_count = V::set1(1.f);
+
+    auto tap = [&](int dx, int dy) {
+        const std::ptrdiff_t off = centre + std::ptrdiff_t(dy) * L.stride + dx;
+        const auto m = members<V, NC>(L, ctr, off);
+        F w;
+        if constexpr (NG == 0) {
+            w = V::set1(L.spatial(dx, dy));
+        } else {
+            F arg = V::set1(L.spatial_log(dx, dy));
+            for (int g = 0; g < NG; ++g) {
+                const F d = V::sub(guide[g], V::load(L.guide[g] + off));
+                arg = V::fnmadd(V::mul(V::set1(L.guide_scale[g]), d), d, arg);
+            }
+            w = V::exp(arg);
+        }
+        w = V::select(m, w);
+        for (int c = 0; c < NC; ++c)
+            acc[c] = V::fmadd(w, V::load(L.value[c] + off), acc[c]);
+        weight_sum = V::add(weight_sum, w);
+        if constexpr (kDiagnostics)
+            member_count = V::add(member_count, V::select(m, V::set1(1.f)));
+    };
+
+    for (int dy = -L.pad_y; dy <= L.pad_y; ++dy) {
+        const int hw = L.half_width[dy + L.pad_y];
+        if (dy != 0) {
+            for (int dx = -hw; dx <= hw; ++dx)
+                tap(dx, dy);
+        } else {  // the centre is already in
+            for (int dx = -hw; dx < 0; ++dx)
+                tap(dx, 0);
+            for (int dx = 1; dx <= hw; ++dx)
+                tap(dx, 0);
+        }
+    }
+
+    float lanes[NC][V::kWidth], wsum[V::kWidth], count[V::kWidth];
+    for (int c = 0; c < NC; ++c)
+        V::store(lanes[c], V::div(acc[c], weight_sum));
+    V::store(wsum, weight_sum);
+    V::store(count, member_count);
+    const int n = std::min(V::kWidth, L.width - x0);
+    for (int k = 0; k < n; ++k) {
+        for (int c = 0; c < NC; ++c)
+            out[c](x0 + k, y) = lanes[c][k];
+        if constexpr (kDiagnostics) {
+            if (diag.members)
+                diag.members(x0 + k, y) = count[k];
+            if (diag.weight_sum)
+                diag.weight_sum(x0 + k, y) = wsum[k];
+        }
+    }
+}
+
+template <class V, int NC, int NG, bool kDiagnostics>
+void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
+                      const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
+{
+    for (int y = y0; y < y1; ++y)
+        for (int k = chunk0; k < chunk1; ++k)
+            filter_chunk<V, NC, NG, kDiagnostics>(L, out, diag, y, k * V::kWidth);
+}
+
+template <class V, int NC, int NG>
+void filter_rows_diag(const FilterLayout& L, const std::vector<Plane>& out,
+                      const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
+{
+    if (diag.members || diag.weight_sum)
+        filter_rows_impl<V, NC, NG, true>(L, out, diag, y0, y1, chunk0, chunk1);
+    else
+        filter_rows_impl<V, NC, NG, false>(L, out, diag, y0, y1, chunk0, chunk1);
+}
+
+template <class V, int NC>
+void filter_rows_guides(const FilterLayout& L, const std::vector<Plane>& out,
+                        const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
+{
+    switch (L.guide_count) {
+    case 0: return filter_rows_diag<V, NC, 0>(L, out, diag, y0, y1, chunk0, chunk1);
+    case 3: return filter_rows_diag<V, NC, 3>(L, out, diag, y0, y1, chunk0, chunk1);
+    default: return filter_rows_diag<V, NC, 6>(L, out, diag, y0, y1, chunk0, chunk1);
+    }
+}
+
+/// Entry point: dispatches on the channel count and guide count at run time, once per call.
+template <class V>
+void filter_rows(const FilterLayout& L, const std::vector<Plane>& out,
+                 const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
+{
+    switch (L.channels) {
+    case 1: return filter_rows_guides<V, 1>(L, out, diag, y0, y1, chunk0, chunk1);
+    case 2: return filter_rows_guides<V, 2>(L, out, diag, y0, y1, chunk0, chunk1);
+    case 3: return filter_rows_guides<V, 3>(L, out, diag, y0, y1, chunk0, chunk1);
+    default: return filter_rows_guides<V, 4>(L, out, diag, y0, y1, chunk0, chunk1);
+    }
+}
+
+}  // namespace
+}  // namespace statmc::detail

@@ -1,0 +1,54 @@
+// The padded planes and window tables the filter kernel reads: built once per call by
+// filter.cpp, shared read-only by every thread and instruction set.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "statmc/core/filter.h"
+
+namespace statmc::detail {
+
+/// Padding around the image makes every window read in bounds: padded pixels have
+/// threshold −∞ (never members), test mean 0 and value 0.
+struct FilterLayout {
+    int width = 0, height = 0, channels = 0;
+    int pad_x = 0, pad_y = 0;     // the window never reaches further than the image
+    std::ptrdiff_t stride = 0;    // floats per padded row
+    std::size_t plane_size = 0;   // floats per padded plane
+    std::vector<float> storage;   // all padded planes, back to back
+
+    // Pointers to pixel (0, 0) inside the padding.
+    const float* mean[4] = {};       // μ̃, the tested quantity
+    const float* threshold[4] = {};  // T = γ²(df = 2n − 2)·v, or −∞ when untestable
+    const float* value[4] = {};      // F, what is averaged
+    int guide_count = 0;             // 0, 3 (albedo or normal) or 6 (both)
+    const float* guide[6] = {};
+    float guide_scale[6] = {};       // 1/(2σ²) for each guide plane
+
+    // The disk: for row offset dy ∈ [−pad_y, pad_y], |dx| ≤ half_width[dy + pad_y];
+    // spatial weight and its logarithm at (dx, dy) are at [(dy + pad_y)*(2*pad_x+1) + dx + pad_x].
+    std::vector<int> half_width;
+    std::vector<float> spatial_weight;
+    std::vector<float> spatial_log_weight;
+
+    float spatial(int dx, int dy) const { return spatial_weight[table_index(dx, dy)]; }
+    float spatial_log(int dx, int dy) const { return spatial_log_weight[table_index(dx, dy)]; }
+    std::size_t table_index(int dx, int dy) const
+    {
+        return std::size_t(dy + pad_y) * (2 * pad_x + 1) + (dx + pad_x);
+    }
+};
+
+FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
+                                const DenoiseOptions& options, int nthreads);
+
+/// Filters output rows [y0, y1), chunks of kernel-width columns [chunk0, chunk1).
+using FilterRowsFn = void (*)(const FilterLayout& layout, const std::vector<Plane>& out,
+                              const FilterDiagnostics& diagnostics, int y0, int y1,
+                              int chunk0, int chunk1);
+FilterRowsFn filter_rows_scalar();
+FilterRowsFn filter_rows_avx2();
+int kernel_width(SimdLevel level);
+
+}  // namespace statmc::detail

@@ -1,0 +1,85 @@
+// method.md §5 written as plainly as possible, in double precision: the yardstick for
+// the optimised filter in tests and benchmarks.
+#include <cmath>
+#include <stdexcept>
+
+#include "statmc/core/critical_values.h"
+#include "statmc/core/filter.h"
+
+namespace statmc {
+
+namespace {
+
+double squared_distance(const std::array<ConstPlane, 3>& guide, int xi, int yi, int xj, int yj)
+{
+    double d2 = 0;
+    for (const ConstPlane& p : guide) {
+        const double a = std::isfinite(p(xi, yi)) ? p(xi, yi) : 0.0;
+        const double b = std::isfinite(p(xj, yj)) ? p(xj, yj) : 0.0;
+        d2 += (a - b) * (a - b);
+    }
+    return d2;
+}
+
+}  // namespace
+
+void filter_reference(const EstimatorImage& est, const Guides& guides,
+                      const DenoiseOptions& options, const std::vector<Plane>& out,
+                      const FilterDiagnostics& diagnostics)
+{
+    if (const std::string why = options.validate(); !why.empty())
+        throw std::invalid_argument(why);
+    if (int(out.size()) < est.channels)
+        throw std::invalid_argument("fewer output planes than channels");
+    const CriticalValues critical(options.alpha);
+    const int r = options.radius;
+    auto gamma = [&](int x, int y) {
+        return critical.gamma(2.0 * std::floor(est.count[est.index(0, x, y)]) - 2.0);
+    };
+
+    for (int yi = 0; yi < est.height; ++yi)
+        for (int xi = 0; xi < est.width; ++xi) {
+            double sum[4] = {}, weight_sum = 1, members = 1;
+            for (int c = 0; c < est.channels; ++c)
+                sum[c] = est.value[est.index(c, xi, yi)];
+            const bool centre_testable = est.testable(xi, yi);
+            for (int yj = yi - r; yj <= yi + r && centre_testable; ++yj)
+                for (int xj = xi - r; xj <= xi + r; ++xj) {
+                    const double p2 = double(xj - xi) * (xj - xi) + double(yj - yi) * (yj - yi);
+                    if (xj < 0 || yj < 0 || xj >= est.width || yj >= est.height || p2 > double(r) * r ||
+                        (xj == xi && yj == yi) || !est.testable(xj, yj))
+                        continue;
+                    const double gi = gamma(xi, yi), gj = gamma(xj, yj);
+                    bool member = true;
+                    for (int c = 0; c < est.channels; ++c) {
+                        const double d = double(est.test_mean[est.index(c, xi, yi)]) -
+                                         est.test_mean[est.index(c, xj, yj)];
+                        const double bound = gi * gi * est.test_variance[est.index(c, xi, yi)] +
+                                             gj * gj * est.test_variance[est.index(c, xj, yj)];
+                        member = member && d * d <= bound;
+                    }
+                    if (!member)
+                        continue;
+                    double log_w = -p2 / (2.0 * double(options.sigma_spatial) * options.sigma_spatial);
+                    if (guides.has_albedo())
+                        log_w -= squared_distance(guides.albedo, xi, yi, xj, yj) /
+                                 (2.0 * double(options.sigma_albedo) * options.sigma_albedo);
+                    if (guides.has_normal())
+                        log_w -= squared_distance(guides.normal, xi, yi, xj, yj) /
+                                 (2.0 * double(options.sigma_normal) * options.sigma_normal);
+                    const double w = std::exp(log_w);
+                    for (int c = 0; c < est.channels; ++c)
+                        sum[c] += w * est.value[est.index(c, xj, yj)];
+                    weight_sum += w;
+                    members += 1;
+                }
+            for (int c = 0; c < est.channels; ++c)
+                out[c](xi, yi) = float(sum[c] / weight_sum);
+            if (diagnostics.members)
+                diagnostics.members(xi, yi) = float(members);
+            if (diagnostics.weight_sum)
+                diagnostics.weight_sum(xi, yi) = float(weight_sum);
+        }
+}
+
+}  // namespace statmc

@@ -1,0 +1,32 @@
+// One-lane "vector" with the interface of simd_avx2.h, so the filter kernel compiles as
+// a portable fallback from the same source.
+#pragma once
+
+#include <cmath>
+
+namespace statmc::simd {
+
+struct Scalar {
+    using F = float;
+    using M = bool;
+    static constexpr int kWidth = 1;
+    static constexpr const char* kName = "scalar";
+
+    static F load(const float* p) { return *p; }
+    static F set1(float x) { return x; }
+    static F zero() { return 0.f; }
+    static F add(F a, F b) { return a + b; }
+    static F sub(F a, F b) { return a - b; }
+    static F mul(F a, F b) { return a * b; }
+    static F div(F a, F b) { return a / b; }
+    static F fmadd(F a, F b, F c) { return std::fma(a, b, c); }
+    static F fmsub(F a, F b, F c) { return std::fma(a, b, -c); }
+    static F fnmadd(F a, F b, F c) { return std::fma(-a, b, c); }
+    static M le(F a, F b) { return a <= b; }
+    static M both(M a, M b) { return a && b; }
+    static F select(M m, F a) { return m ? a : 0.f; }
+    static F exp(F x) { return std::exp(x); }
+    static void store(float* p, F v) { *p = v; }
+};
+
+}  // namespace statmc::simd

@@ -1,0 +1,81 @@
+#include "statmc/core/statistics_image.h"
+
+namespace statmc {
+
+StatisticsView StatisticsPlanes::view() const
+{
+    StatisticsView v;
+    v.width = width;
+    v.height = height;
+    v.channels = channels;
+    const std::size_t n = std::size_t(width) * height;
+    v.count = dense_plane(count.data(), width);
+    for (int c = 0; c < channels; ++c) {
+        v.mean[c] = dense_plane(mean.data() + c * n, width);
+        v.variance[c] = dense_plane(variance.data() + c * n, width);
+        v.bc_mean[c] = dense_plane(bc_mean.data() + c * n, width);
+        v.bc_variance[c] = dense_plane(bc_variance.data() + c * n, width);
+        v.bc_moment3[c] = dense_plane(bc_moment3.data() + c * n, width);
+    }
+    return v;
+}
+
+template <int C>
+StatisticsPlanes StatisticsImage<C>::planes() const
+{
+    StatisticsPlanes p;
+    p.width = width_;
+    p.height = height_;
+    p.channels = C;
+    const std::size_t n = pixels_.size();
+    p.count.resize(n);
+    for (auto* plane : {&p.mean, &p.variance, &p.bc_mean, &p.bc_variance, &p.bc_moment3})
+        plane->resize(n * C);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Pixel& px = pixels_[i];
+        p.count[i] = float(px.n);
+        // s² is undefined below two samples; 0 is stored and the count tells the reader.
+        const double to_variance = px.n > 1 ? 1.0 / (px.n - 1) : 0.0;
+        const double to_moment3 = px.n > 0 ? 1.0 / px.n : 0.0;
+        for (int c = 0; c < C; ++c) {
+            const std::size_t k = c * n + i;
+            p.mean[k] = float(px.raw[c].mean);
+            p.variance[k] = float(px.raw[c].m2 * to_variance);
+            p.bc_mean[k] = float(px.box_cox[c].mean);
+            p.bc_variance[k] = float(px.box_cox[c].m2 * to_variance);
+            p.bc_moment3[k] = float(px.box_cox[c].m3 * to_moment3);
+        }
+    }
+    return p;
+}
+
+template <int C>
+StatisticsImage<C> StatisticsImage<C>::from_view(const StatisticsView& view)
+{
+    if (view.channels != C)
+        throw std::invalid_argument("StatisticsImage::from_view: channel count differs");
+    if (!view.count || !view.has_box_cox())
+        throw std::invalid_argument("StatisticsImage::from_view: Box-Cox planes are missing");
+    StatisticsImage img(view.width, view.height);
+    for (int y = 0; y < view.height; ++y)
+        for (int x = 0; x < view.width; ++x) {
+            Pixel& px = img.at(x, y);
+            px.n = view.count(x, y);
+            const double to_mean_variance = view.variance_of_mean ? px.n : 1.0;
+            for (int c = 0; c < C; ++c) {
+                const double m2_scale = px.n > 1 ? px.n - 1 : 0.0;
+                px.raw[c].mean = view.mean[c](x, y);
+                px.raw[c].m2 = view.variance[c](x, y) * to_mean_variance * m2_scale;
+                px.box_cox[c].mean = view.bc_mean[c](x, y);
+                px.box_cox[c].m2 = view.bc_variance[c](x, y) * m2_scale;
+                px.box_cox[c].m3 = view.bc_moment3[c](x, y) * px.n;
+            }
+        }
+    return img;
+}
+
+template class StatisticsImage<1>;
+template class StatisticsImage<3>;
+template class StatisticsImage<4>;
+
+}  // namespace statmc
