@@ -10,12 +10,16 @@ StatisticsView StatisticsPlanes::view() const
     v.channels = channels;
     const std::size_t n = std::size_t(width) * height;
     v.count = dense_plane(count.data(), width);
+    // An empty vector (e.g. no Box-Cox planes) gives null planes.
+    auto plane = [&](const std::vector<float>& v, int c) {
+        return v.empty() ? ConstPlane{} : dense_plane(v.data() + c * n, width);
+    };
     for (int c = 0; c < channels; ++c) {
-        v.mean[c] = dense_plane(mean.data() + c * n, width);
-        v.variance[c] = dense_plane(variance.data() + c * n, width);
-        v.bc_mean[c] = dense_plane(bc_mean.data() + c * n, width);
-        v.bc_variance[c] = dense_plane(bc_variance.data() + c * n, width);
-        v.bc_moment3[c] = dense_plane(bc_moment3.data() + c * n, width);
+        v.mean[c] = plane(mean, c);
+        v.variance[c] = plane(variance, c);
+        v.bc_mean[c] = plane(bc_mean, c);
+        v.bc_variance[c] = plane(bc_variance, c);
+        v.bc_moment3[c] = plane(bc_moment3, c);
     }
     return v;
 }

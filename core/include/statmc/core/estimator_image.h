@@ -48,10 +48,4 @@ enum class TestDomain {
 /// Throws std::invalid_argument when the view lacks the planes the domain needs.
 EstimatorImage estimators_from_statistics(const StatisticsView& stats, TestDomain domain);
 
-/// K ≥ 2 independent renders of one frame (mode 3): per pixel the mean of the K images is
-/// the value, their sample variance over K the variance of that mean, and n = K.
-/// `passes[k][c]` is channel c of render k. Non-finite or negative pixels count as 0.
-EstimatorImage estimators_from_passes(const std::vector<std::vector<ConstPlane>>& passes,
-                                      int width, int height);
-
 }  // namespace statmc

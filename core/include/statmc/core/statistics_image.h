@@ -13,6 +13,7 @@ namespace statmc {
 
 /// Dense float planes of statistics (count, mean, variance, Box-Cox mean, variance, M3/n),
 /// the exported form of a StatisticsImage; view() exposes them to the rest of core.
+/// Planes a source does not provide (Box-Cox for K passes) are left empty.
 struct StatisticsPlanes {
     int width = 0;
     int height = 0;

@@ -1,0 +1,20 @@
+// Statistics from K independent renders of one frame: how any renderer can use statmc
+// without integration (mode 3 of the foundation issue).
+#pragma once
+
+#include <vector>
+
+#include "statmc/core/plane.h"
+#include "statmc/core/statistics_image.h"
+
+namespace statmc {
+
+/// Treats each of K ≥ 2 renders (different seeds) as one sample of the pixel: count = K,
+/// mean = the mean of the renders, variance = their sample variance (per render), no
+/// Box-Cox planes. Tested untransformed this gives df = 2K − 2. `passes[k][c]` is channel
+/// c of render k; a non-finite or negative render pixel counts as 0, as a sample would.
+/// Throws std::invalid_argument for K < 2 or renders that differ in channel count.
+StatisticsPlanes statistics_from_passes(const std::vector<std::vector<ConstPlane>>& passes,
+                                        int width, int height);
+
+}  // namespace statmc
