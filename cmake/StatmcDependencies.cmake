@@ -2,6 +2,7 @@
 find_package(TBB CONFIG REQUIRED)
 find_package(Boost 1.74 REQUIRED)   # header-only Boost.Math
 
+if(NOT STATMC_CORE_ONLY)
 find_package(OpenImageIO 2.4 CONFIG REQUIRED)
 # OIIO's exported target lists /usr/include/opencv4 even when OpenCV is absent.
 get_target_property(_statmc_oiio_inc OpenImageIO::OpenImageIO INTERFACE_INCLUDE_DIRECTORIES)
@@ -9,6 +10,7 @@ list(FILTER _statmc_oiio_inc EXCLUDE REGEX "opencv4")
 set_target_properties(OpenImageIO::OpenImageIO PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_statmc_oiio_inc}")
 find_package(OpenEXR 3 CONFIG REQUIRED)
 find_package(Imath 3 CONFIG REQUIRED)
+endif()
 
 if(STATMC_BUILD_TESTS)
   find_package(GTest CONFIG REQUIRED)

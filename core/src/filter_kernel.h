@@ -41,11 +41,15 @@ void filter_chunk(const FilterLayout& L, const std::vector<Plane>& out,
     using F = typename V::F;
     const std::ptrdiff_t centre = std::ptrdiff_t(y) * L.stride + x0;
     Centre<V, NC> ctr;
-    F acc[NC];
+    // Σ W_ij (F_j − F_i) rather than Σ W_ij F_j: out_i = F_i + that / Σ W_ij is the same
+    // average, but members equal to the centre add exactly nothing, so flat regions come
+    // back bit for bit and large offsets (HDR) lose no digits.
+    F value[NC], acc[NC];
     for (int c = 0; c < NC; ++c) {
         ctr.mean[c] = V::load(L.mean[c] + centre);
         ctr.threshold[c] = V::load(L.threshold[c] + centre);
-        acc[c] = V::load(L.value[c] + centre);  // the centre, weight 1
+        value[c] = V::load(L.value[c] + centre);
+        acc[c] = V::zero();
     }
     F guide[NG > 0 ? NG : 1];
     for (int g = 0; g < NG; ++g)
@@ -69,7 +73,7 @@ void filter_chunk(const FilterLayout& L, const std::vector<Plane>& out,
         }
         w = V::select(m, w);
         for (int c = 0; c < NC; ++c)
-            acc[c] = V::fmadd(w, V::load(L.value[c] + off), acc[c]);
+            acc[c] = V::fmadd(w, V::sub(V::load(L.value[c] + off), value[c]), acc[c]);
         weight_sum = V::add(weight_sum, w);
         if constexpr (kDiagnostics)
             member_count = V::add(member_count, V::select(m, V::set1(1.f)));
@@ -90,7 +94,7 @@ void filter_chunk(const FilterLayout& L, const std::vector<Plane>& out,
 
     float lanes[NC][V::kWidth], wsum[V::kWidth], count[V::kWidth];
     for (int c = 0; c < NC; ++c)
-        V::store(lanes[c], V::div(acc[c], weight_sum));
+        V::store(lanes[c], V::add(value[c], V::div(acc[c], weight_sum)));
     V::store(wsum, weight_sum);
     V::store(count, member_count);
     const int n = std::min(V::kWidth, L.width - x0);

@@ -89,7 +89,11 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         L.guide_scale[g] = guide_planes[g].second;
     }
 
-    const CriticalValues critical(options.alpha);
+    float max_count = 0;
+    for (std::size_t i = 0; i < est.pixels(); ++i)
+        max_count = std::max(max_count, std::isfinite(est.count[i]) ? est.count[i] : 0.f);
+    const auto table = CriticalValues::shared(options.alpha, 2.0 * std::floor(max_count) - 2.0);
+    const CriticalValues& critical = *table;
     auto fill_rows = [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y)
             for (int x = 0; x < est.width; ++x) {

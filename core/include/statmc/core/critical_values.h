@@ -2,6 +2,7 @@
 // calls Boost per pixel.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 namespace statmc {
@@ -14,10 +15,16 @@ public:
     static constexpr int kDenseLimit = 1024;
     static constexpr int kTailNodes = 64;
 
-    /// α in (0, 1); throws std::invalid_argument otherwise.
-    explicit CriticalValues(double alpha);
+    /// α in (0, 1); throws std::invalid_argument otherwise. Values up to `max_df` are
+    /// tabulated (each costs a Boost quantile); larger df fall back to exact evaluation.
+    explicit CriticalValues(double alpha, double max_df = 1e300);
+
+    /// A process-wide table for α covering df ≤ max_df, built once and then shared:
+    /// progressive renders and batch jobs filter many images at one α.
+    static std::shared_ptr<const CriticalValues> shared(double alpha, double max_df);
 
     double alpha() const { return alpha_; }
+    double max_df() const { return max_df_; }
     /// df ≥ 1 (df < 1 is a caller error and returns NaN); non-integer df is allowed.
     double gamma(double df) const;
 
@@ -26,6 +33,7 @@ public:
 
 private:
     double alpha_;
+    double max_df_;
     std::vector<double> dense_;  // index df, 1..kDenseLimit
     std::vector<double> tail_;   // node k at 1/df = k / (kTailNodes * kDenseLimit)
 };

@@ -1,0 +1,103 @@
+// Filter speed at the reference size: 1280×720 RGB, r = 20, α = 0.005, n = 64.
+// Reports the median over repetitions and pixel-taps per second (taps = window pixels
+// tested per output pixel, summed over the image).
+#include <random>
+
+#include <benchmark/benchmark.h>
+
+#include "statmc/core/filter.h"
+#include "statmc/core/statistics_image.h"
+
+namespace {
+
+using namespace statmc;
+
+constexpr int kWidth = 1280, kHeight = 720, kSamples = 64;
+
+// A render-like frame: smooth shading, a few hard edges, exponential noise.
+const StatisticsPlanes& frame()
+{
+    static const StatisticsPlanes planes = [] {
+        std::mt19937_64 rng(1);
+        StatisticsImage<3> img(kWidth, kHeight);
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                const float shade = 0.2f + 0.6f * float(x) / kWidth + ((x / 160 + y / 120) % 2) * 0.5f;
+                std::exponential_distribution<float> expo(1.f / shade);
+                for (int i = 0; i < kSamples; ++i) {
+                    const float s[3] = {expo(rng), 0.8f * expo(rng), 0.6f * expo(rng)};
+                    img.add(x, y, s);
+                }
+            }
+        return img.planes();
+    }();
+    return planes;
+}
+
+struct GuidePlanes {
+    std::vector<float> data = std::vector<float>(std::size_t(6) * kWidth * kHeight);
+    Guides guides;
+    GuidePlanes()
+    {
+        const std::size_t n = std::size_t(kWidth) * kHeight;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x)
+                for (int k = 0; k < 6; ++k)
+                    data[k * n + std::size_t(y) * kWidth + x] = 0.1f * k + ((x / 160 + y / 120) % 2) * 0.3f;
+        for (int k = 0; k < 3; ++k) {
+            guides.albedo[k] = dense_plane(data.data() + k * n, kWidth);
+            guides.normal[k] = dense_plane(data.data() + (k + 3) * n, kWidth);
+        }
+    }
+};
+
+double taps_per_image(int radius)
+{
+    // Window pixels inside the image, summed over all pixels (what the filter tests).
+    double taps = 0;
+    for (int dy = -radius; dy <= radius; ++dy)
+        for (int dx = -radius; dx <= radius; ++dx)
+            if (dx * dx + dy * dy <= radius * radius && (dx || dy))
+                taps += double(kWidth - std::abs(dx)) * (kHeight - std::abs(dy));
+    return taps;
+}
+
+void run(benchmark::State& state, bool with_guides, SimdLevel level, bool reference)
+{
+    const EstimatorImage est = estimators_from_statistics(frame().view(), TestDomain::BoxCox);
+    static GuidePlanes guide_planes;
+    const Guides guides = with_guides ? guide_planes.guides : Guides{};
+    std::vector<float> out(est.value.size());
+    std::vector<Plane> planes;
+    for (int c = 0; c < 3; ++c)
+        planes.push_back(dense_plane(out.data() + c * est.pixels(), kWidth));
+    const DenoiseOptions options;  // r = 20, α = 0.005
+    for (auto _ : state) {
+        if (reference)
+            filter_reference(est, guides, options, planes);
+        else
+            filter(est, guides, options, planes, {}, int(state.range(0)), level);
+        benchmark::DoNotOptimize(out.data());
+    }
+    state.counters["taps/s"] = benchmark::Counter(taps_per_image(options.radius) * state.iterations(),
+                                                  benchmark::Counter::kIsRate);
+    state.SetLabel(reference ? "reference (double, 1 thread)" : simd_level_name(level));
+}
+
+void BM_Filter(benchmark::State& s) { run(s, false, detected_simd_level(), false); }
+void BM_FilterGuides(benchmark::State& s) { run(s, true, detected_simd_level(), false); }
+void BM_FilterScalarKernel(benchmark::State& s) { run(s, false, SimdLevel::Scalar, false); }
+void BM_FilterReference(benchmark::State& s) { run(s, false, SimdLevel::Scalar, true); }
+void BM_FilterReferenceGuides(benchmark::State& s) { run(s, true, SimdLevel::Scalar, true); }
+
+// Arg = threads (0 = all cores). Medians over 5 repetitions; the reference takes tens of
+// seconds per image, so it runs once.
+BENCHMARK(BM_Filter)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
+BENCHMARK(BM_FilterGuides)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
+BENCHMARK(BM_FilterScalarKernel)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(3)->ReportAggregatesOnly();
+BENCHMARK(BM_FilterReference)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_FilterReferenceGuides)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();

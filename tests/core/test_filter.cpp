@@ -1,0 +1,172 @@
+// The optimised filter against the plain reference of method.md §5, and its invariants.
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "estimator_fixtures.h"
+#include "statmc/core/filter.h"
+
+namespace statmc {
+namespace {
+
+struct Output {
+    int w, h, c;
+    std::vector<float> values, members, weights;
+    Output(int w_, int h_, int c_) : w(w_), h(h_), c(c_), values(std::size_t(w) * h * c), members(std::size_t(w) * h), weights(std::size_t(w) * h) {}
+    std::vector<Plane> planes()
+    {
+        std::vector<Plane> p;
+        for (int k = 0; k < c; ++k)
+            p.push_back(dense_plane(values.data() + std::size_t(k) * w * h, w));
+        return p;
+    }
+    FilterDiagnostics diagnostics() { return {dense_plane(members.data(), w), dense_plane(weights.data(), w)}; }
+};
+
+// Random estimators with region structure, so that the test both accepts and rejects.
+EstimatorImage random_estimators(int w, int h, int channels, std::uint64_t seed)
+{
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    EstimatorImage est(w, h, channels);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            est.count[est.index(0, x, y)] = float(2 + rng() % 64);
+            const float level = ((x / 5 + y / 4) % 3) * 0.5f;
+            for (int c = 0; c < channels; ++c) {
+                const std::size_t i = est.index(c, x, y);
+                est.value[i] = level + 0.2f * u(rng);
+                est.test_mean[i] = level + 0.1f * u(rng);
+                est.test_variance[i] = 0.002f * u(rng);
+            }
+            if (rng() % 23 == 0)  // a few untestable pixels
+                est.test_variance[est.index(0, x, y)] = NAN;
+        }
+    return est;
+}
+
+struct GuideImages {
+    std::vector<float> data;
+    Guides guides;
+    GuideImages(int w, int h, bool albedo, bool normal, std::uint64_t seed) : data(std::size_t(w) * h * 6)
+    {
+        std::mt19937_64 rng(seed);
+        std::uniform_real_distribution<float> u(0.f, 1.f);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                for (int k = 0; k < 6; ++k)
+                    data[std::size_t(k) * w * h + std::size_t(y) * w + x] = ((x / 7) % 2) * 0.05f + 0.03f * u(rng) + 0.1f * k;
+        for (int k = 0; k < 3; ++k) {
+            if (albedo)
+                guides.albedo[k] = dense_plane(data.data() + std::size_t(k) * w * h, w);
+            if (normal)
+                guides.normal[k] = dense_plane(data.data() + std::size_t(k + 3) * w * h, w);
+        }
+    }
+};
+
+void expect_matches_reference(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& opt,
+                              SimdLevel level)
+{
+    Output fast(est.width, est.height, est.channels), ref(est.width, est.height, est.channels);
+    filter(est, guides, opt, fast.planes(), fast.diagnostics(), 0, level);
+    filter_reference(est, guides, opt, ref.planes(), ref.diagnostics());
+    // Membership must agree exactly; values up to float accumulation order.
+    for (std::size_t i = 0; i < ref.members.size(); ++i)
+        ASSERT_EQ(fast.members[i], ref.members[i]) << "pixel " << i;
+    for (std::size_t i = 0; i < ref.values.size(); ++i)
+        ASSERT_NEAR(fast.values[i], ref.values[i], 2e-5f * (1 + std::abs(ref.values[i]))) << "value " << i;
+    for (std::size_t i = 0; i < ref.weights.size(); ++i)
+        ASSERT_NEAR(fast.weights[i], ref.weights[i], 1e-4f * ref.weights[i]) << "weight " << i;
+}
+
+struct Case {
+    int w, h, channels, radius;
+    bool albedo, normal;
+};
+
+class FilterVsReference : public ::testing::TestWithParam<Case> {};
+
+TEST_P(FilterVsReference, Agree)
+{
+    const Case k = GetParam();
+    const EstimatorImage est = random_estimators(k.w, k.h, k.channels, 100 + k.w + k.radius);
+    GuideImages g(k.w, k.h, k.albedo, k.normal, 7);
+    DenoiseOptions opt;
+    opt.radius = k.radius;
+    opt.sigma_spatial = 3.f;
+    opt.sigma_albedo = 0.05f;
+    opt.sigma_normal = 0.2f;
+    expect_matches_reference(est, g.guides, opt, SimdLevel::Scalar);
+    if (detected_simd_level() == SimdLevel::Avx2)
+        expect_matches_reference(est, g.guides, opt, SimdLevel::Avx2);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Shapes, FilterVsReference,
+    ::testing::Values(Case{37, 23, 3, 5, false, false},   // width not a multiple of 8
+                      Case{37, 23, 3, 1, false, false},   // r = 1
+                      Case{37, 23, 3, 0, false, false},   // r = 0: identity
+                      Case{9, 6, 3, 20, false, false},    // r larger than the image
+                      Case{1, 1, 3, 20, false, false},    // one pixel
+                      Case{1, 17, 3, 4, false, false},    // one column
+                      Case{40, 3, 1, 6, false, false},    // one channel
+                      Case{24, 16, 4, 6, false, false},   // four channels
+                      Case{33, 19, 3, 6, true, false},    // albedo guide
+                      Case{33, 19, 3, 6, false, true},    // normal guide
+                      Case{33, 19, 3, 6, true, true}));   // both guides
+
+TEST(Filter, BitwiseIdenticalForAnyThreadCount)
+{
+    const EstimatorImage est = random_estimators(150, 97, 3, 3);
+    GuideImages g(150, 97, true, true, 4);
+    DenoiseOptions opt;
+    opt.radius = 9;
+    Output one(150, 97, 3), two(150, 97, 3), all(150, 97, 3);
+    filter(est, g.guides, opt, one.planes(), one.diagnostics(), 1);
+    filter(est, g.guides, opt, two.planes(), two.diagnostics(), 2);
+    filter(est, g.guides, opt, all.planes(), all.diagnostics(), 0);
+    EXPECT_EQ(std::memcmp(one.values.data(), two.values.data(), one.values.size() * 4), 0);
+    EXPECT_EQ(std::memcmp(one.values.data(), all.values.data(), one.values.size() * 4), 0);
+    EXPECT_EQ(std::memcmp(one.weights.data(), two.weights.data(), one.weights.size() * 4), 0);
+}
+
+TEST(Filter, WritesThroughStridedInterleavedOutput)
+{
+    const EstimatorImage est = random_estimators(20, 10, 3, 5);
+    Output dense(20, 10, 3);
+    filter(est, {}, DenoiseOptions{}, dense.planes());
+    std::vector<float> rgba(20 * 10 * 4, -7.f);
+    std::vector<Plane> interleaved;
+    for (int c = 0; c < 3; ++c)
+        interleaved.push_back(Plane{rgba.data() + c, 4, 80});
+    filter(est, {}, DenoiseOptions{}, interleaved);
+    for (int i = 0; i < 200; ++i) {
+        for (int c = 0; c < 3; ++c)
+            EXPECT_EQ(rgba[i * 4 + c], dense.values[c * 200 + i]);
+        EXPECT_EQ(rgba[i * 4 + 3], -7.f) << "the fourth channel is not touched";
+    }
+}
+
+TEST(Filter, RejectsInvalidArguments)
+{
+    const EstimatorImage est = random_estimators(4, 4, 3, 1);
+    Output out(4, 4, 3);
+    DenoiseOptions bad;
+    bad.radius = -1;
+    EXPECT_THROW(filter(est, {}, bad, out.planes()), std::invalid_argument);
+    bad = {};
+    bad.alpha = 1.0;
+    EXPECT_THROW(filter(est, {}, bad, out.planes()), std::invalid_argument);
+    bad = {};
+    bad.sigma_spatial = 0.f;
+    EXPECT_THROW(filter(est, {}, bad, out.planes()), std::invalid_argument);
+    std::vector<Plane> too_few = out.planes();
+    too_few.pop_back();
+    EXPECT_THROW(filter(est, {}, DenoiseOptions{}, too_few), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace statmc
