@@ -1,0 +1,70 @@
+// Names of the EXR layer contract (docs/exr-layers.md): channels `[<aov>.]<stat>.<channel>`
+// and the namespaced header attributes. Every reader and writer takes its names from here.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace statmc::layers {
+
+/// The contract version this build reads and writes.
+inline constexpr int kFormatVersion = 1;
+/// The Box-Cox exponent the contract stores (core fixes it, see box_cox.h).
+inline constexpr float kBoxCoxLambda = 0.5f;
+
+/// Header attributes. Namespaced so that other tools carry them through untouched.
+namespace attr {
+inline constexpr const char* kFormatVersion = "statmc:formatVersion";  // int
+inline constexpr const char* kBoxCoxLambda = "statmc:boxcoxLambda";    // float
+inline constexpr const char* kVariance = "statmc:variance";            // "sample" | "mean"
+inline constexpr const char* kSpp = "statmc:spp";                      // int
+inline constexpr const char* kSeed = "statmc:seed";                    // int
+inline constexpr const char* kDenoised = "statmc:denoised";            // int 1
+}  // namespace attr
+
+/// Values of attr::kVariance: the per-sample variance s² (default) or the variance of the
+/// mean s²/n, as RenderMan's `mse` stores it.
+inline constexpr const char* kVarianceOfSample = "sample";
+inline constexpr const char* kVarianceOfMean = "mean";
+
+/// The statistics stored per AOV and colour channel.
+enum class Statistic { Mean, Variance, BoxCoxMean, BoxCoxVariance, BoxCoxMoment3 };
+
+/// All statistics in storage order, for loops over layers.
+const std::vector<Statistic>& all_statistics();
+
+/// The one sample count of a pixel, shared by every AOV of the image.
+inline constexpr const char* kSampleCountLayer = "sampleCount";
+inline constexpr const char* kSampleCountChannel = "sampleCount.Y";
+
+/// Default guide layers.
+inline constexpr const char* kAlbedoLayer = "albedo";  // albedo.R/G/B
+inline constexpr const char* kNormalLayer = "normal";  // normal.X/Y/Z
+inline constexpr const char* kDepthLayer = "depth";    // depth.Z
+
+/// The layer that holds `stat` of `aov` ("" is the beauty): the mean is the AOV itself
+/// ("" for the beauty, whose channels are unprefixed), the others are "variance",
+/// "diffuse.variance", "bounce1.boxcoxM3" and so on.
+std::string statistic_layer(std::string_view aov, Statistic stat);
+
+/// The short name of a statistic: "mean", "variance", "boxcoxMean", ...
+const char* statistic_name(Statistic stat);
+
+/// Whether `channel` holds a statistic other than the mean of `aov` ("variance.R",
+/// "boxcoxM3.B", ...) or the sample count: what a plain render never has.
+bool is_statistics_channel(std::string_view channel, std::string_view aov = "");
+
+/// `layer.suffix`, or the bare suffix for the unprefixed layer "".
+std::string channel_name(std::string_view layer, std::string_view suffix);
+
+/// Channel suffixes: colour R,G,B; scalar Y; vector X,Y,Z; depth Z.
+const std::vector<std::string>& colour_suffixes();
+const std::vector<std::string>& scalar_suffixes();
+const std::vector<std::string>& vector_suffixes();
+
+/// The suffixes a quantity of `channels` channels is stored under (1 → Y, 3 → R,G,B).
+/// Throws LayerError for other counts: the contract names no other layout.
+const std::vector<std::string>& suffixes_for_channels(int channels);
+
+}  // namespace statmc::layers

@@ -1,0 +1,87 @@
+#include "statmc/layers/layer_names.h"
+
+#include "statmc/layers/layer_error.h"
+
+namespace statmc::layers {
+
+const std::vector<Statistic>& all_statistics()
+{
+    static const std::vector<Statistic> all = {
+        Statistic::Mean, Statistic::Variance, Statistic::BoxCoxMean,
+        Statistic::BoxCoxVariance, Statistic::BoxCoxMoment3};
+    return all;
+}
+
+const char* statistic_name(Statistic stat)
+{
+    switch (stat) {
+    case Statistic::Mean: return "mean";
+    case Statistic::Variance: return "variance";
+    case Statistic::BoxCoxMean: return "boxcoxMean";
+    case Statistic::BoxCoxVariance: return "boxcoxVariance";
+    case Statistic::BoxCoxMoment3: return "boxcoxM3";
+    }
+    return "?";
+}
+
+std::string statistic_layer(std::string_view aov, Statistic stat)
+{
+    // The mean is the AOV's own layer, so that tools unaware of statmc see the image.
+    if (stat == Statistic::Mean)
+        return std::string(aov);
+    return channel_name(aov, statistic_name(stat));
+}
+
+bool is_statistics_channel(std::string_view channel, std::string_view aov)
+{
+    if (channel == kSampleCountChannel)
+        return true;
+    const std::size_t dot = channel.rfind('.');
+    if (dot == std::string_view::npos)
+        return false;
+    const std::string_view layer = channel.substr(0, dot);
+    for (Statistic stat : all_statistics())
+        if (stat != Statistic::Mean && layer == statistic_layer(aov, stat))
+            return true;
+    return false;
+}
+
+std::string channel_name(std::string_view layer, std::string_view suffix)
+{
+    if (layer.empty())
+        return std::string(suffix);
+    std::string name(layer);
+    name += '.';
+    name += suffix;
+    return name;
+}
+
+const std::vector<std::string>& colour_suffixes()
+{
+    static const std::vector<std::string> s = {"R", "G", "B"};
+    return s;
+}
+
+const std::vector<std::string>& scalar_suffixes()
+{
+    static const std::vector<std::string> s = {"Y"};
+    return s;
+}
+
+const std::vector<std::string>& vector_suffixes()
+{
+    static const std::vector<std::string> s = {"X", "Y", "Z"};
+    return s;
+}
+
+const std::vector<std::string>& suffixes_for_channels(int channels)
+{
+    if (channels == 3)
+        return colour_suffixes();
+    if (channels == 1)
+        return scalar_suffixes();
+    throw LayerError("the layer contract stores 1 (Y) or 3 (R, G, B) channels per AOV, got " +
+                     std::to_string(channels));
+}
+
+}  // namespace statmc::layers

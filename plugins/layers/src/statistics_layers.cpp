@@ -1,0 +1,251 @@
+#include "statmc/layers/statistics_layers.h"
+
+#include <utility>
+
+#include "statmc/layers/float_pixels.h"
+#include "statmc/layers/layer_error.h"
+#include "statmc/layers/layer_lookup.h"
+
+namespace statmc::layers {
+
+namespace {
+
+const std::vector<Statistic>& box_cox_statistics()
+{
+    static const std::vector<Statistic> s = {Statistic::BoxCoxMean, Statistic::BoxCoxVariance,
+                                             Statistic::BoxCoxMoment3};
+    return s;
+}
+
+void check_format_version(const OIIO::ImageSpec& spec)
+{
+    const OIIO::ParamValue* p = spec.find_attribute(attr::kFormatVersion);
+    if (!p)
+        return;  // other renderers' variance AOVs carry no statmc: attributes
+    const int version = p->get_int(-1);
+    if (version < 1 || version > kFormatVersion)
+        throw LayerError(std::string(attr::kFormatVersion) + " is " + p->get_string() +
+                         "; this build reads version " + std::to_string(kFormatVersion));
+}
+
+void check_box_cox_lambda(const OIIO::ImageSpec& spec)
+{
+    const OIIO::ParamValue* p = spec.find_attribute(attr::kBoxCoxLambda);
+    if (p && p->get_float(-1.f) != kBoxCoxLambda)
+        throw LayerError(std::string(attr::kBoxCoxLambda) + " is " + p->get_string() +
+                         "; the Box-Cox statistics must use lambda 0.5");
+}
+
+bool read_variance_of_mean(const OIIO::ImageSpec& spec)
+{
+    const OIIO::ParamValue* p = spec.find_attribute(attr::kVariance);
+    if (!p)
+        return false;
+    const std::string kind = p->get_string();
+    if (kind == kVarianceOfSample)
+        return false;
+    if (kind == kVarianceOfMean)
+        return true;
+    throw LayerError(std::string(attr::kVariance) + " must be \"" + kVarianceOfSample +
+                     "\" or \"" + kVarianceOfMean + "\", got \"" + kind + "\"");
+}
+
+// The mean layer decides whether the AOV is colour (R,G,B) or scalar (Y).
+std::pair<std::vector<std::string>, std::vector<int>>
+find_mean(const OIIO::ImageSpec& spec, std::string_view aov)
+{
+    std::vector<int> colour = channel_indices(spec, aov, colour_suffixes());
+    if (all_present(colour))
+        return {colour_suffixes(), colour};
+    std::vector<int> scalar = channel_indices(spec, aov, scalar_suffixes());
+    if (all_present(scalar) && none_present(colour))
+        return {scalar_suffixes(), scalar};
+    return {colour_suffixes(), require_layer(spec, aov, colour_suffixes())};
+}
+
+void find_box_cox(const OIIO::ImageSpec& spec, StatisticsChannels& ch)
+{
+    int present = 0;
+    for (Statistic stat : box_cox_statistics()) {
+        ch.indices(stat) = optional_layer(spec, statistic_layer(ch.aov, stat), ch.suffixes);
+        present += ch.has(stat);
+    }
+    if (present == 0 || present == 3)
+        return;
+    // Half a Box-Cox set would silently fall back to the untransformed test.
+    for (Statistic stat : box_cox_statistics())
+        if (!ch.has(stat))
+            throw LayerError("incomplete Box-Cox statistics: " +
+                             missing_layer_message(spec, statistic_layer(ch.aov, stat),
+                                                   ch.suffixes));
+}
+
+ConstPlane plane_or_null(const OIIO::ImageBuf& buf, const std::vector<int>& indices, int c)
+{
+    return indices.empty() ? ConstPlane{} : channel_plane(buf, indices[c]);
+}
+
+void copy_plane(const ConstPlane& from, const Plane& to, int width, int height)
+{
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            to(x, y) = from(x, y);
+}
+
+// The channels an image of `stats` gets, in writing order, each with its source plane.
+std::vector<std::pair<std::string, ConstPlane>>
+layout_channels(const StatisticsView& stats, const StatisticsMetadata& metadata,
+                const GuidePlanes& guides)
+{
+    const std::vector<std::string>& suffixes = suffixes_for_channels(stats.channels);
+    std::vector<std::pair<std::string, ConstPlane>> out;
+    auto add = [&](Statistic stat, const std::array<ConstPlane, 4>& planes) {
+        for (int c = 0; c < stats.channels; ++c)
+            out.emplace_back(channel_name(statistic_layer(metadata.aov, stat), suffixes[c]),
+                             planes[c]);
+    };
+    add(Statistic::Mean, stats.mean);
+    out.emplace_back(kSampleCountChannel, stats.count);
+    if (stats.variance[0])
+        add(Statistic::Variance, stats.variance);
+    if (stats.has_box_cox()) {
+        add(Statistic::BoxCoxMean, stats.bc_mean);
+        add(Statistic::BoxCoxVariance, stats.bc_variance);
+        add(Statistic::BoxCoxMoment3, stats.bc_moment3);
+    }
+    auto add_guide = [&](const char* layer, const std::vector<std::string>& names,
+                         const std::array<ConstPlane, 3>& planes) {
+        if (planes[0] && planes[1] && planes[2])
+            for (int c = 0; c < 3; ++c)
+                out.emplace_back(channel_name(layer, names[c]), planes[c]);
+    };
+    add_guide(kAlbedoLayer, colour_suffixes(), guides.albedo);
+    add_guide(kNormalLayer, vector_suffixes(), guides.normal);
+    if (guides.depth)
+        out.emplace_back(channel_name(kDepthLayer, "Z"), guides.depth);
+    return out;
+}
+
+void set_attributes(OIIO::ImageSpec& spec, const StatisticsView& stats,
+                    const StatisticsMetadata& metadata)
+{
+    spec.attribute(attr::kFormatVersion, kFormatVersion);
+    if (stats.variance[0])
+        spec.attribute(attr::kVariance,
+                       stats.variance_of_mean ? kVarianceOfMean : kVarianceOfSample);
+    if (stats.has_box_cox())
+        spec.attribute(attr::kBoxCoxLambda, kBoxCoxLambda);
+    if (metadata.spp)
+        spec.attribute(attr::kSpp, *metadata.spp);
+    if (metadata.seed)
+        spec.attribute(attr::kSeed, *metadata.seed);
+    spec.attribute("compression", "zip");
+}
+
+}  // namespace
+
+bool StatisticsChannels::has_box_cox() const
+{
+    return has(Statistic::BoxCoxMean) && has(Statistic::BoxCoxVariance) &&
+           has(Statistic::BoxCoxMoment3);
+}
+
+const std::vector<int>& StatisticsChannels::indices(Statistic stat) const
+{
+    switch (stat) {
+    case Statistic::Mean: return mean;
+    case Statistic::Variance: return variance;
+    case Statistic::BoxCoxMean: return bc_mean;
+    case Statistic::BoxCoxVariance: return bc_variance;
+    case Statistic::BoxCoxMoment3: return bc_moment3;
+    }
+    return mean;
+}
+
+std::vector<int>& StatisticsChannels::indices(Statistic stat)
+{
+    return const_cast<std::vector<int>&>(std::as_const(*this).indices(stat));
+}
+
+std::string StatisticsChannels::channel(Statistic stat, int c) const
+{
+    return channel_name(statistic_layer(aov, stat), suffixes.at(c));
+}
+
+StatisticsChannels find_statistics(const OIIO::ImageSpec& spec, std::string_view aov)
+{
+    check_format_version(spec);
+    check_box_cox_lambda(spec);
+    StatisticsChannels ch;
+    ch.aov = std::string(aov);
+    std::tie(ch.suffixes, ch.mean) = find_mean(spec, aov);
+    ch.count = spec.channelindex(kSampleCountChannel);
+    if (ch.count < 0)
+        throw LayerError(missing_layer_message(spec, kSampleCountLayer, scalar_suffixes()));
+    ch.variance = optional_layer(spec, statistic_layer(aov, Statistic::Variance), ch.suffixes);
+    find_box_cox(spec, ch);
+    ch.variance_of_mean = read_variance_of_mean(spec);
+    return ch;
+}
+
+void require_statistic(const OIIO::ImageSpec& spec, const StatisticsChannels& channels,
+                       Statistic stat)
+{
+    if (!channels.has(stat))
+        throw LayerError(
+            missing_layer_message(spec, statistic_layer(channels.aov, stat), channels.suffixes));
+}
+
+StatisticsView statistics_view(const OIIO::ImageBuf& buf, const StatisticsChannels& ch)
+{
+    StatisticsView view;
+    view.width = buf.spec().width;
+    view.height = buf.spec().height;
+    view.channels = ch.channels();
+    view.count = channel_plane(buf, ch.count);
+    view.variance_of_mean = ch.variance_of_mean;
+    for (int c = 0; c < view.channels; ++c) {
+        view.mean[c] = channel_plane(buf, ch.mean.at(c));
+        view.variance[c] = plane_or_null(buf, ch.variance, c);
+        view.bc_mean[c] = plane_or_null(buf, ch.bc_mean, c);
+        view.bc_variance[c] = plane_or_null(buf, ch.bc_variance, c);
+        view.bc_moment3[c] = plane_or_null(buf, ch.bc_moment3, c);
+    }
+    return view;
+}
+
+StatisticsView read_statistics(const OIIO::ImageBuf& buf, std::string_view aov)
+{
+    return statistics_view(buf, find_statistics(buf.spec(), aov));
+}
+
+OIIO::ImageBuf make_statistics_image(const StatisticsView& stats,
+                                     const StatisticsMetadata& metadata,
+                                     const GuidePlanes& guides)
+{
+    if (stats.width <= 0 || stats.height <= 0 || !stats.count || !stats.mean[0])
+        throw LayerError("statistics need a resolution, a sample count and a mean");
+    const auto channels = layout_channels(stats, metadata, guides);
+    OIIO::ImageSpec spec(stats.width, stats.height, int(channels.size()), OIIO::TypeDesc::FLOAT);
+    spec.channelnames.clear();
+    for (const auto& channel : channels)
+        spec.channelnames.push_back(channel.first);
+    // The constructor guessed an alpha channel from the count; there is none.
+    spec.alpha_channel = -1;
+    spec.z_channel = -1;
+    set_attributes(spec, stats, metadata);
+
+    OIIO::ImageBuf image(spec, OIIO::InitializePixels::No);
+    for (int i = 0; i < int(channels.size()); ++i)
+        copy_plane(channels[i].second, channel_plane(image, i), stats.width, stats.height);
+    return image;
+}
+
+OIIO::ImageBuf make_statistics_image(const StatisticsPlanes& stats,
+                                     const StatisticsMetadata& metadata,
+                                     const GuidePlanes& guides)
+{
+    return make_statistics_image(stats.view(), metadata, guides);
+}
+
+}  // namespace statmc::layers
