@@ -1,0 +1,38 @@
+// The denoise operator in the style of OIIO's ImageBufAlgo: an image holding per-pixel
+// statistics (docs/exr-layers.md) in, the same image with its mean denoised out.
+#pragma once
+
+#include <OpenImageIO/imagebuf.h>
+
+#include "statmc/denoise/denoise_image_options.h"
+
+namespace statmc {
+
+/// Denoises the mean of `opt.aov` (R,G,B of the beauty by default) of `src` with the
+/// StatMC filter (method.md §5).
+///
+/// `dst` becomes a float copy of `src`, every channel and attribute kept, in which the
+/// mean channels inside `roi` are replaced by the filtered values and `statmc:denoised` is
+/// set to 1. Pixels outside `roi` keep their input values, but the filter still reads
+/// neighbours within `opt.filter.radius` outside it. `roi` defaults to the data window;
+/// its channel range is ignored (the mean channels are always the ones filtered).
+///
+/// The test domain follows `opt.test`: Box-Cox when the image has the Box-Cox layers,
+/// else the untransformed mean with `variance.*` (statmc:variance says whether that is
+/// per sample or of the mean). The image's statistics are checked first (see
+/// layers::validate_statistics): a count below 1, a negative variance, and, with
+/// NonfinitePolicy::Error, NaN or Inf, refuse the image.
+///
+/// `dst` may be `src`. nthreads: 0 uses OIIO's global "threads" attribute, 1 the calling
+/// thread only; the result is bitwise the same for any thread count.
+///
+/// Returns false after `dst.errorfmt(...)` on any error (a missing layer or guide, bad
+/// options or statistics); never throws.
+bool denoise(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseImageOptions& opt,
+             OIIO::ROI roi = {}, int nthreads = 0);
+
+/// The return-value form: check `has_error()` on the result.
+OIIO::ImageBuf denoise(const OIIO::ImageBuf& src, const DenoiseImageOptions& opt,
+                       OIIO::ROI roi = {}, int nthreads = 0);
+
+}  // namespace statmc

@@ -1,0 +1,50 @@
+// What the denoise operator does with an image: the core filter's parameters plus the
+// image-level choices (guides, test domain, non-finite policy).
+#pragma once
+
+#include <string>
+
+#include "statmc/core/denoise_options.h"
+#include "statmc/layers/layer_names.h"
+
+namespace statmc {
+
+/// Whether a guide layer steers the filter.
+enum class GuideUse {
+    Auto,      ///< when the image has the layer
+    Required,  ///< always; an image without the layer is an error
+    Off,       ///< never
+};
+
+struct GuideSelection {
+    GuideUse albedo = GuideUse::Auto;
+    GuideUse normal = GuideUse::Auto;
+    std::string albedo_layer = layers::kAlbedoLayer;  ///< R,G,B (or X,Y,Z) channels
+    std::string normal_layer = layers::kNormalLayer;  ///< X,Y,Z (or R,G,B) channels
+};
+
+/// Which statistics the membership test compares.
+enum class TestDomainChoice {
+    Auto,           ///< Box-Cox when the Box-Cox layers are present, else untransformed
+    BoxCox,         ///< StatMC proper; requires boxcoxMean, boxcoxVariance, boxcoxM3
+    Untransformed,  ///< means and variance, as a renderer's variance AOV gives them
+};
+
+/// What NaN or Inf in the statistics means.
+enum class NonfinitePolicy {
+    Error,  ///< the image is refused, naming the layer and first pixel
+    Zero,   ///< core's rule: the value counts as 0 and the pixel joins no test
+};
+
+struct DenoiseImageOptions {
+    DenoiseOptions filter;
+    GuideSelection guides;
+    TestDomainChoice test = TestDomainChoice::Auto;
+    NonfinitePolicy nonfinite = NonfinitePolicy::Error;
+    std::string aov;  ///< the AOV denoised; "" is the beauty (R,G,B)
+
+    /// Empty when valid, else a message naming the offending parameter.
+    std::string validate() const;
+};
+
+}  // namespace statmc

@@ -1,0 +1,224 @@
+#include "statmc/denoise/denoise.h"
+
+#include <stdexcept>
+#include <vector>
+
+#include "statmc/core/estimator_image.h"
+#include "statmc/core/filter.h"
+#include "statmc/layers/float_pixels.h"
+#include "statmc/layers/guide_layers.h"
+#include "statmc/layers/layer_error.h"
+#include "statmc/layers/layer_lookup.h"
+#include "statmc/layers/statistics_layers.h"
+#include "statmc/layers/statistics_validation.h"
+#include "statmc/layers/view_window.h"
+
+namespace statmc {
+
+namespace {
+
+using layers::LayerError;
+using layers::Statistic;
+using layers::StatisticsChannels;
+
+// What is written (the ROI within the data window) and what the filter reads: the ROI
+// grown by the radius, so that ROI pixels come out exactly as in a full-frame run.
+struct Regions {
+    OIIO::ROI output;
+    OIIO::ROI input;
+};
+
+Regions regions_for(const OIIO::ImageBuf& src, const OIIO::ROI& roi, int radius)
+{
+    const OIIO::ROI data = src.roi();
+    const OIIO::ROI output = roi.defined() ? OIIO::roi_intersection(roi, data) : data;
+    if (output.width() <= 0 || output.height() <= 0)
+        throw std::invalid_argument("the ROI does not overlap the data window");
+    OIIO::ROI input = output;
+    input.xbegin -= radius;
+    input.xend += radius;
+    input.ybegin -= radius;
+    input.yend += radius;
+    return {output, OIIO::roi_intersection(input, data)};
+}
+
+void check_input(const OIIO::ImageBuf& src)
+{
+    if (!src.initialized())
+        throw std::invalid_argument("uninitialized input image");
+    if (src.deep())
+        throw std::invalid_argument("deep images are not supported");
+    if (src.spec().depth > 1)
+        throw std::invalid_argument("volume images are not supported");
+}
+
+
+TestDomain choose_domain(const OIIO::ImageSpec& spec, const StatisticsChannels& ch,
+                         TestDomainChoice choice)
+{
+    switch (choice) {
+    case TestDomainChoice::Auto:
+        if (ch.has_box_cox())
+            return TestDomain::BoxCox;
+        if (!ch.has(Statistic::Variance))
+            throw LayerError(layers::missing_layer_message(
+                spec, layers::statistic_layer(ch.aov, Statistic::Variance), ch.suffixes,
+                "layer", "denoising needs it or the Box-Cox layers (boxcoxMean, "
+                         "boxcoxVariance, boxcoxM3)"));
+        return TestDomain::Untransformed;
+    case TestDomainChoice::BoxCox:
+        for (Statistic stat : {Statistic::BoxCoxMean, Statistic::BoxCoxVariance,
+                               Statistic::BoxCoxMoment3})
+            layers::require_statistic(spec, ch, stat);
+        return TestDomain::BoxCox;
+    case TestDomainChoice::Untransformed:
+        layers::require_statistic(spec, ch, Statistic::Variance);
+        return TestDomain::Untransformed;
+    }
+    throw std::invalid_argument("unknown test domain");
+}
+
+// Only the statistics the chosen test reads are checked and viewed.
+StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain)
+{
+    if (domain == TestDomain::BoxCox) {
+        ch.variance.clear();
+    } else {
+        ch.bc_mean.clear();
+        ch.bc_variance.clear();
+        ch.bc_moment3.clear();
+    }
+    return ch;
+}
+
+void check_statistics(const OIIO::ImageBuf& in, const StatisticsChannels& ch,
+                      const DenoiseImageOptions& opt, const OIIO::ROI& region)
+{
+    layers::ValidationOptions options;
+    options.nonfinite_is_problem = opt.nonfinite == NonfinitePolicy::Error;
+    options.roi = region;
+    const auto problems = layers::validate_statistics(in, ch, options);
+    if (!problems.empty())
+        throw LayerError(layers::join_messages(problems));
+}
+
+std::array<ConstPlane, 3> guide(const OIIO::ImageBuf& in, GuideUse use, const std::string& layer,
+                                bool colour)
+{
+    if (use == GuideUse::Off)
+        return {};
+    const std::vector<int> indices = use == GuideUse::Required
+        ? layers::require_guide_layer(in.spec(), layer, colour)
+        : layers::find_guide_layer(in.spec(), layer, colour);
+    return indices.empty() ? std::array<ConstPlane, 3>{} : layers::guide_planes(in, indices);
+}
+
+// OIIO's convention: 0 threads means the global "threads" attribute.
+int thread_count(int nthreads)
+{
+    if (nthreads > 0)
+        return nthreads;
+    int global = 0;
+    OIIO::getattribute("threads", global);
+    return global > 0 ? global : 0;
+}
+
+// The filtered means of the input region, dense and channel-major.
+std::vector<float> filter_region(const StatisticsView& stats, TestDomain domain,
+                                 const Guides& guides, const DenoiseOptions& options,
+                                 int nthreads)
+{
+    const EstimatorImage est = estimators_from_statistics(stats, domain);
+    const std::size_t pixels = std::size_t(stats.width) * stats.height;
+    std::vector<float> filtered(pixels * stats.channels);
+    std::vector<Plane> out;
+    for (int c = 0; c < stats.channels; ++c)
+        out.push_back(dense_plane(filtered.data() + c * pixels, stats.width));
+    filter(est, guides, options, out, {}, thread_count(nthreads));
+    return filtered;
+}
+
+void write_means(OIIO::ImageBuf& result, const StatisticsChannels& ch,
+                 const std::vector<float>& filtered, const Regions& regions)
+{
+    const OIIO::ImageSpec& spec = result.spec();
+    const OIIO::ROI& in = regions.input;
+    const OIIO::ROI& out = regions.output;
+    const std::size_t pixels = std::size_t(in.width()) * in.height();
+    for (int c = 0; c < ch.channels(); ++c) {
+        const Plane to = layers::shifted(layers::channel_plane(result, ch.mean[c]),
+                                         out.xbegin - spec.x, out.ybegin - spec.y);
+        const ConstPlane from =
+            layers::shifted(dense_plane(filtered.data() + c * pixels, in.width()),
+                            out.xbegin - in.xbegin, out.ybegin - in.ybegin);
+        for (int y = 0; y < out.height(); ++y)
+            for (int x = 0; x < out.width(); ++x)
+                to(x, y) = from(x, y);
+    }
+}
+
+bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseImageOptions& opt,
+                  const OIIO::ROI& roi, int nthreads)
+{
+    check_input(src);
+    if (const std::string why = opt.validate(); !why.empty())
+        throw std::invalid_argument(why);
+    OIIO::ImageBuf scratch;
+    const OIIO::ImageBuf& in = layers::local_float_pixels(src, scratch);
+    const OIIO::ImageSpec& spec = in.spec();
+
+    const StatisticsChannels all = layers::find_statistics(spec, opt.aov);
+    const TestDomain domain = choose_domain(spec, all, opt.test);
+    const StatisticsChannels ch = used_channels(all, domain);
+    const Regions regions = regions_for(in, roi, opt.filter.radius);
+    check_statistics(in, ch, opt, regions.input);
+
+    layers::GuidePlanes guides;
+    guides.albedo = guide(in, opt.guides.albedo, opt.guides.albedo_layer, true);
+    guides.normal = guide(in, opt.guides.normal, opt.guides.normal_layer, false);
+
+    const int x0 = regions.input.xbegin - spec.x;
+    const int y0 = regions.input.ybegin - spec.y;
+    const StatisticsView window = layers::view_window(layers::statistics_view(in, ch), x0, y0,
+                                                      regions.input.width(),
+                                                      regions.input.height());
+    const Guides window_guides{layers::shifted(guides.albedo, x0, y0),
+                               layers::shifted(guides.normal, x0, y0)};
+    const std::vector<float> filtered =
+        filter_region(window, domain, window_guides, opt.filter, nthreads);
+
+    OIIO::ImageBuf result = in.copy(OIIO::TypeDesc::FLOAT);
+    if (result.has_error() || !layers::has_local_float_pixels(result))
+        throw std::runtime_error("cannot allocate the output image: " + result.geterror());
+    write_means(result, ch, filtered, regions);
+    result.specmod().attribute(layers::attr::kDenoised, 1);
+    dst = std::move(result);  // last, since dst may be src
+    return true;
+}
+
+}  // namespace
+
+bool denoise(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseImageOptions& opt,
+             OIIO::ROI roi, int nthreads)
+{
+    // The ImageBufAlgo contract: errors travel on dst, nothing is thrown to the caller.
+    try {
+        return denoise_impl(dst, src, opt, roi, nthreads);
+    } catch (const std::exception& e) {
+        dst.errorfmt("{}", e.what());
+    } catch (...) {
+        dst.errorfmt("denoise: unknown error");
+    }
+    return false;
+}
+
+OIIO::ImageBuf denoise(const OIIO::ImageBuf& src, const DenoiseImageOptions& opt, OIIO::ROI roi,
+                       int nthreads)
+{
+    OIIO::ImageBuf result;
+    if (!denoise(result, src, opt, roi, nthreads) && !result.has_error())
+        result.errorfmt("denoise failed");
+    return result;
+}
+
+}  // namespace statmc

@@ -1,0 +1,16 @@
+#include "statmc/denoise/denoise_image_options.h"
+
+namespace statmc {
+
+std::string DenoiseImageOptions::validate() const
+{
+    if (std::string why = filter.validate(); !why.empty())
+        return why;
+    if (guides.albedo != GuideUse::Off && guides.albedo_layer.empty())
+        return "the albedo guide needs a layer name";
+    if (guides.normal != GuideUse::Off && guides.normal_layer.empty())
+        return "the normal guide needs a layer name";
+    return {};
+}
+
+}  // namespace statmc

@@ -1,0 +1,212 @@
+#include "statmc/passes/passes.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include <OpenImageIO/imagebufalgo.h>
+
+#include "statmc/core/passes.h"
+#include "statmc/layers/float_pixels.h"
+#include "statmc/layers/layer_lookup.h"
+#include "statmc/layers/layer_names.h"
+#include "statmc/layers/statistics_layers.h"
+#include "statmc/layers/view_window.h"
+
+namespace statmc {
+
+namespace {
+
+using Renders = std::vector<const OIIO::ImageBuf*>;
+
+std::string label(const Renders& renders, std::size_t k)
+{
+    std::string text = "render " + std::to_string(k);
+    if (renders[k] && !renders[k]->name().empty())
+        text += " (" + std::string(renders[k]->name()) + ")";
+    return text;
+}
+
+std::string join(const std::vector<std::string>& names)
+{
+    std::string text;
+    for (const std::string& n : names)
+        text += (text.empty() ? "" : ", ") + n;
+    return text.empty() ? std::string("none") : text;
+}
+
+// Names in `a` that `b` lacks.
+std::vector<std::string> missing_from(const std::vector<std::string>& a,
+                                      const std::vector<std::string>& b)
+{
+    std::vector<std::string> out;
+    for (const std::string& n : a)
+        if (std::find(b.begin(), b.end(), n) == b.end())
+            out.push_back(n);
+    return out;
+}
+
+void check_render(const Renders& renders, std::size_t k)
+{
+    const OIIO::ImageBuf* r = renders[k];
+    if (!r || !r->initialized())
+        throw std::invalid_argument(label(renders, k) + " is uninitialized");
+    if (r->deep() || r->spec().depth > 1)
+        throw std::invalid_argument(label(renders, k) + " is a deep or volume image");
+    // Averaging statistics layers as if they were radiance would be silently wrong.
+    for (const std::string& channel : r->spec().channelnames)
+        if (layers::is_statistics_channel(channel))
+            throw std::invalid_argument(label(renders, k) + " already holds statistics (" +
+                                        channel + "); passes takes plain renders");
+}
+
+void check_match(const Renders& renders, std::size_t k)
+{
+    const OIIO::ImageSpec& a = renders[k]->spec();
+    const OIIO::ImageSpec& b = renders[0]->spec();
+    const std::string these = label(renders, k) + " and " + label(renders, 0);
+    if (a.width != b.width || a.height != b.height)
+        throw std::invalid_argument(OIIO::Strutil::fmt::format(
+            "{} differ in resolution: {}x{} vs {}x{}", these, a.width, a.height, b.width,
+            b.height));
+    if (a.x != b.x || a.y != b.y)
+        throw std::invalid_argument(OIIO::Strutil::fmt::format(
+            "{} differ in data window: origin ({}, {}) vs ({}, {})", these, a.x, a.y, b.x, b.y));
+    const auto only_a = missing_from(a.channelnames, b.channelnames);
+    const auto only_b = missing_from(b.channelnames, a.channelnames);
+    if (!only_a.empty() || !only_b.empty())
+        throw std::invalid_argument(these + " differ in channels: only in " + label(renders, k) +
+                                    ": " + join(only_a) + "; only in " + label(renders, 0) +
+                                    ": " + join(only_b));
+}
+
+const std::vector<std::string>& beauty_suffixes(const Renders& renders)
+{
+    const OIIO::ImageSpec& spec = renders[0]->spec();
+    if (layers::all_present(layers::channel_indices(spec, "", layers::colour_suffixes())))
+        return layers::colour_suffixes();
+    if (layers::all_present(layers::channel_indices(spec, "", layers::scalar_suffixes())))
+        return layers::scalar_suffixes();
+    throw std::invalid_argument(label(renders, 0) + ": " +
+                                layers::missing_layer_message(spec, "", layers::colour_suffixes()));
+}
+
+// Planes of the named channels of `buf`, shifted so (0, 0) is the region's corner.
+std::vector<ConstPlane> region_planes(const OIIO::ImageBuf& buf,
+                                      const std::vector<std::string>& names,
+                                      const OIIO::ROI& region)
+{
+    std::vector<ConstPlane> planes;
+    for (const std::string& name : names)
+        planes.push_back(layers::shifted(layers::channel_plane(buf, buf.spec().channelindex(name)),
+                                         region.xbegin - buf.spec().x,
+                                         region.ybegin - buf.spec().y));
+    return planes;
+}
+
+// Channels other than the beauty, averaged over the renders.
+OIIO::ImageBuf mean_of_other_channels(const std::vector<const OIIO::ImageBuf*>& floats,
+                                      const std::vector<std::string>& names,
+                                      const OIIO::ROI& region)
+{
+    OIIO::ImageSpec spec(region.width(), region.height(), int(names.size()), OIIO::TypeDesc::FLOAT);
+    spec.channelnames = names;
+    spec.alpha_channel = spec.channelindex("A");
+    spec.z_channel = spec.channelindex("Z");
+    OIIO::ImageBuf out(spec, OIIO::InitializePixels::No);
+    const double k = double(floats.size());
+    for (int c = 0; c < int(names.size()); ++c) {
+        const Plane to = layers::channel_plane(out, c);
+        std::vector<ConstPlane> from;
+        for (const OIIO::ImageBuf* f : floats)
+            from.push_back(region_planes(*f, {names[c]}, region)[0]);
+        for (int y = 0; y < region.height(); ++y)
+            for (int x = 0; x < region.width(); ++x) {
+                double sum = 0;
+                for (const ConstPlane& p : from)
+                    sum += p(x, y);
+                to(x, y) = float(sum / k);
+            }
+    }
+    return out;
+}
+
+void keep_metadata(OIIO::ImageBuf& result, const OIIO::ImageBuf& first, const OIIO::ROI& region)
+{
+    const OIIO::ParamValueList statmc_attribs = result.spec().extra_attribs;
+    result.copy_metadata(first);
+    OIIO::ImageSpec& spec = result.specmod();
+    for (const char* name : {layers::attr::kSpp, layers::attr::kSeed, layers::attr::kDenoised,
+                             layers::attr::kBoxCoxLambda})
+        spec.erase_attribute(name);
+    for (const OIIO::ParamValue& p : statmc_attribs)
+        spec.extra_attribs.add_or_replace(p);
+    result.set_origin(region.xbegin, region.ybegin);
+}
+
+bool passes_impl(OIIO::ImageBuf& dst, const Renders& renders, OIIO::ROI roi, int nthreads)
+{
+    if (renders.size() < 2)
+        throw std::invalid_argument("passes needs at least 2 renders, got " +
+                                    std::to_string(renders.size()));
+    for (std::size_t k = 0; k < renders.size(); ++k)
+        check_render(renders, k);
+    for (std::size_t k = 1; k < renders.size(); ++k)
+        check_match(renders, k);
+
+    const OIIO::ImageBuf& first = *renders[0];
+    const OIIO::ROI region = roi.defined() ? OIIO::roi_intersection(roi, first.roi()) : first.roi();
+    if (region.width() <= 0 || region.height() <= 0)
+        throw std::invalid_argument("the ROI does not overlap the data window");
+
+    std::vector<OIIO::ImageBuf> scratch(renders.size());
+    std::vector<const OIIO::ImageBuf*> floats;
+    for (std::size_t k = 0; k < renders.size(); ++k)
+        floats.push_back(&layers::local_float_pixels(*renders[k], scratch[k]));
+
+    const std::vector<std::string>& suffixes = beauty_suffixes(renders);
+    std::vector<std::vector<ConstPlane>> beauty;
+    for (const OIIO::ImageBuf* f : floats)
+        beauty.push_back(region_planes(*f, suffixes, region));
+    const StatisticsPlanes stats = statistics_from_passes(beauty, region.width(), region.height());
+
+    OIIO::ImageBuf result = layers::make_statistics_image(stats);
+    std::vector<std::string> others = missing_from(first.spec().channelnames, suffixes);
+    if (!others.empty()) {
+        OIIO::ImageBuf appended;
+        if (!OIIO::ImageBufAlgo::channel_append(appended, result,
+                                                mean_of_other_channels(floats, others, region),
+                                                {}, nthreads))
+            throw std::runtime_error(appended.geterror());
+        result = std::move(appended);
+    }
+    keep_metadata(result, first, region);
+    dst = std::move(result);
+    return true;
+}
+
+}  // namespace
+
+bool passes(OIIO::ImageBuf& dst, const std::vector<const OIIO::ImageBuf*>& renders, OIIO::ROI roi,
+            int nthreads)
+{
+    try {
+        return passes_impl(dst, renders, roi, nthreads);
+    } catch (const std::exception& e) {
+        dst.errorfmt("{}", e.what());
+    } catch (...) {
+        dst.errorfmt("passes: unknown error");
+    }
+    return false;
+}
+
+OIIO::ImageBuf passes(const std::vector<const OIIO::ImageBuf*>& renders, OIIO::ROI roi,
+                      int nthreads)
+{
+    OIIO::ImageBuf result;
+    if (!passes(result, renders, roi, nthreads) && !result.has_error())
+        result.errorfmt("passes failed");
+    return result;
+}
+
+}  // namespace statmc

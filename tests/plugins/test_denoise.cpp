@@ -1,0 +1,341 @@
+// The denoise operator must give exactly what core's filter gives on the same
+// statistics, and touch nothing else.
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "statmc/denoise/denoise.h"
+#include "statmc/layers/statistics_layers.h"
+#include "statmc/layers/view_window.h"
+#include "test_images.h"
+
+namespace statmc {
+namespace {
+
+using test::channel_value;
+using test::same_bits;
+
+constexpr int kW = 37, kH = 23;  // odd sizes: SIMD chunks straddle the edges
+
+DenoiseOptions small_filter()
+{
+    DenoiseOptions o;
+    o.radius = 5;
+    o.alpha = 0.01;
+    o.sigma_spatial = 4.f;
+    return o;
+}
+
+DenoiseImageOptions options(GuideUse guides = GuideUse::Off)
+{
+    DenoiseImageOptions o;
+    o.filter = small_filter();
+    o.guides.albedo = o.guides.normal = guides;
+    return o;
+}
+
+struct Frame {
+    StatisticsPlanes stats = test::noisy_statistics(kW, kH, 8, 42);
+    test::GuideData guides = test::make_guides(kW, kH, 43);
+    OIIO::ImageBuf image = layers::make_statistics_image(stats, {}, guides.planes());
+};
+
+// R,G,B of `out` equal `expected` (dense, channel-major over the image) everywhere.
+void expect_rgb_equals(const OIIO::ImageBuf& out, const std::vector<float>& expected)
+{
+    const std::size_t n = std::size_t(kW) * kH;
+    const char* names[3] = {"R", "G", "B"};
+    const int x0 = out.spec().x, y0 = out.spec().y;
+    for (int c = 0; c < 3; ++c)
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const float e = expected[c * n + std::size_t(y) * kW + x];
+                const float g = channel_value(out, names[c], x0 + x, y0 + y);
+                ASSERT_TRUE(same_bits(e, g))
+                    << names[c] << " at (" << x << ", " << y << "): " << g << " vs " << e;
+            }
+}
+
+// The filter must actually have changed something, or equality proves little.
+std::size_t changed_pixels(const OIIO::ImageBuf& out, const OIIO::ImageBuf& in)
+{
+    std::size_t changed = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            changed += !same_bits(channel_value(out, "G", x, y), channel_value(in, "G", x, y));
+    return changed;
+}
+
+TEST(DenoiseOperator, BoxCoxStatisticsMatchCoreFilterBitwise)
+{
+    Frame f;
+    OIIO::ImageBuf out;
+    ASSERT_TRUE(denoise(out, f.image, options())) << out.geterror();
+    expect_rgb_equals(out, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {},
+                                               small_filter()));
+    EXPECT_GT(changed_pixels(out, f.image), std::size_t(kW * kH / 2));
+    EXPECT_EQ(out.spec().get_int_attribute("statmc:denoised"), 1);
+}
+
+TEST(DenoiseOperator, VarianceAovUsesTheUntransformedTest)
+{
+    Frame f;
+    StatisticsPlanes plain = f.stats;
+    plain.bc_mean.clear();
+    plain.bc_variance.clear();
+    plain.bc_moment3.clear();
+    const OIIO::ImageBuf image = layers::make_statistics_image(plain);
+    const OIIO::ImageBuf out = denoise(image, options());
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    const auto expected =
+        test::core_filtered(plain.view(), TestDomain::Untransformed, {}, small_filter());
+    expect_rgb_equals(out, expected);
+    // Forcing the untransformed test on full statistics gives the same.
+    DenoiseImageOptions forced = options();
+    forced.test = TestDomainChoice::Untransformed;
+    expect_rgb_equals(denoise(f.image, forced), expected);
+    // And the two domains really differ on this data.
+    const auto boxcox = test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter());
+    EXPECT_NE(boxcox, expected);
+}
+
+TEST(DenoiseOperator, VarianceOfTheMeanIsHonoured)
+{
+    Frame f;
+    StatisticsPlanes plain = f.stats;
+    plain.bc_mean.clear();
+    plain.bc_variance.clear();
+    plain.bc_moment3.clear();
+    // Store s²/n and say so: the test must see the same variance of the mean.
+    for (std::size_t c = 0; c < 3; ++c)
+        for (std::size_t i = 0; i < plain.count.size(); ++i)
+            plain.variance[c * plain.count.size() + i] /= plain.count[i];
+    StatisticsView view = plain.view();
+    view.variance_of_mean = true;
+    const OIIO::ImageBuf out = denoise(layers::make_statistics_image(view), options());
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    expect_rgb_equals(out, test::core_filtered(view, TestDomain::Untransformed, {},
+                                               small_filter()));
+}
+
+TEST(DenoiseOperator, RequestedGuidesAreUsed)
+{
+    Frame f;
+    const auto expected = test::core_filtered(f.stats.view(), TestDomain::BoxCox,
+                                              f.guides.planes().core(), small_filter());
+    OIIO::ImageBuf out;
+    ASSERT_TRUE(denoise(out, f.image, options(GuideUse::Required))) << out.geterror();
+    expect_rgb_equals(out, expected);
+    // Auto finds them too; without guides the result differs.
+    expect_rgb_equals(denoise(f.image, options(GuideUse::Auto)), expected);
+    EXPECT_NE(expected,
+              test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter()));
+}
+
+TEST(DenoiseOperator, OnlyTheAlbedoGuideWhenOnlyItIsAsked)
+{
+    Frame f;
+    DenoiseImageOptions opt = options(GuideUse::Off);
+    opt.guides.albedo = GuideUse::Required;
+    Guides albedo_only;
+    albedo_only.albedo = f.guides.planes().albedo;
+    expect_rgb_equals(denoise(f.image, opt), test::core_filtered(f.stats.view(),
+                                                                 TestDomain::BoxCox, albedo_only,
+                                                                 small_filter()));
+}
+
+TEST(DenoiseOperator, MissingRequiredGuideIsAnError)
+{
+    Frame f;
+    const OIIO::ImageBuf no_albedo =
+        test::without_channels(f.image, {"albedo.R", "albedo.G", "albedo.B"});
+    OIIO::ImageBuf out;
+    EXPECT_FALSE(denoise(out, no_albedo, options(GuideUse::Required)));
+    EXPECT_EQ(out.geterror().rfind(
+                  "missing guide layer albedo (channels albedo.R, albedo.G, albedo.B)", 0),
+              0u);
+    // Auto quietly goes without it and uses the normal alone.
+    Guides normal_only;
+    normal_only.normal = f.guides.planes().normal;
+    expect_rgb_equals(denoise(no_albedo, options(GuideUse::Auto)),
+                      test::core_filtered(f.stats.view(), TestDomain::BoxCox, normal_only,
+                                          small_filter()));
+    // A renamed guide layer is found under its new name.
+    DenoiseImageOptions renamed = options(GuideUse::Required);
+    renamed.guides.normal_layer = "N";
+    expect_rgb_equals(denoise(test::renamed_channels(f.image, "normal", "N"), renamed),
+                      test::core_filtered(f.stats.view(), TestDomain::BoxCox,
+                                          f.guides.planes().core(), small_filter()));
+}
+
+TEST(DenoiseOperator, RoiChangesOnlyItsPixelsAndReadsNeighboursOutsideIt)
+{
+    Frame f;
+    const auto full = test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter());
+    const OIIO::ROI roi(10, 21, 4, 15);
+    OIIO::ImageBuf out;
+    ASSERT_TRUE(denoise(out, f.image, options(), roi)) << out.geterror();
+    const std::size_t n = std::size_t(kW) * kH;
+    const char* names[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c)
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const float got = channel_value(out, names[c], x, y);
+                const bool inside = roi.contains(x, y);
+                const float want = inside ? full[c * n + std::size_t(y) * kW + x]
+                                          : channel_value(f.image, names[c], x, y);
+                ASSERT_TRUE(same_bits(got, want))
+                    << names[c] << " at (" << x << ", " << y << ") inside=" << inside;
+            }
+}
+
+TEST(DenoiseOperator, RoiAtTheCornerAndDataWindowOffset)
+{
+    Frame f;
+    OIIO::ImageBuf shifted = f.image;
+    shifted.set_origin(-7, 30);
+    const auto full = test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter());
+    expect_rgb_equals(denoise(shifted, options()), full);
+    // A ROI hanging over the data window's corner is clipped to it.
+    const OIIO::ImageBuf out = denoise(shifted, options(), OIIO::ROI(-20, -3, 20, 34));
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const bool inside = x < 4 && y < 4;
+            const float want = inside ? full[std::size_t(y) * kW + x]
+                                      : channel_value(f.image, "R", x, y);
+            ASSERT_TRUE(same_bits(channel_value(out, "R", x - 7, y + 30), want))
+                << "(" << x << ", " << y << ")";
+        }
+    EXPECT_EQ(denoise(shifted, options(), OIIO::ROI(0, 5, 0, 5)).geterror(),
+              "the ROI does not overlap the data window");
+}
+
+TEST(DenoiseOperator, EveryOtherChannelAndAttributeIsKept)
+{
+    Frame f;
+    OIIO::ImageBuf src = f.image;
+    src.specmod().attribute("statmc:spp", 8);
+    src.specmod().attribute("renderer:name", "test");
+    const float camera[16] = {1, 0, 0, 0, 0, 2, 0, 0, 0, 0, 3, 0, 4, 5, 6, 1};
+    src.specmod().attribute("worldtocamera", OIIO::TypeMatrix, camera);
+    OIIO::ImageBuf out;
+    ASSERT_TRUE(denoise(out, src, options(GuideUse::Required))) << out.geterror();
+    ASSERT_EQ(out.spec().channelnames, src.spec().channelnames);
+    for (int c = 0; c < src.spec().nchannels; ++c) {
+        const std::string& name = src.spec().channelnames[c];
+        if (name == "R" || name == "G" || name == "B")
+            continue;
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                ASSERT_TRUE(same_bits(out.getchannel(x, y, 0, c), src.getchannel(x, y, 0, c)))
+                    << name << " at (" << x << ", " << y << ")";
+    }
+    for (const OIIO::ParamValue& p : src.spec().extra_attribs) {
+        const OIIO::ParamValue* q = out.spec().find_attribute(p.name());
+        ASSERT_TRUE(q) << p.name();
+        EXPECT_EQ(q->get_string(), p.get_string()) << p.name();
+    }
+    EXPECT_EQ(out.spec().get_int_attribute("statmc:denoised"), 1);
+}
+
+TEST(DenoiseOperator, DstMayBeSrcAndThreadCountDoesNotMatter)
+{
+    Frame f;
+    const OIIO::ImageBuf once = denoise(f.image, options(), {}, 1);
+    OIIO::ImageBuf in_place = f.image;
+    ASSERT_TRUE(denoise(in_place, in_place, options(), {}, 0)) << in_place.geterror();
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            ASSERT_TRUE(same_bits(channel_value(in_place, "B", x, y),
+                                  channel_value(once, "B", x, y)));
+}
+
+TEST(DenoiseOperator, NonFiniteStatisticsAreRefusedOrZeroed)
+{
+    Frame f;
+    OIIO::ImageBuf bad = f.image;
+    test::set_channel(bad, "G", 6, 2, std::numeric_limits<float>::quiet_NaN());
+    OIIO::ImageBuf out;
+    EXPECT_FALSE(denoise(out, bad, options()));
+    EXPECT_EQ(out.geterror(), "G: NaN at pixel (6, 2) [1 pixel affected]");
+
+    DenoiseImageOptions zero = options();
+    zero.nonfinite = NonfinitePolicy::Zero;
+    ASSERT_TRUE(denoise(out, bad, zero)) << out.geterror();
+    const StatisticsView view = layers::read_statistics(bad);
+    const auto expected = test::core_filtered(view, TestDomain::BoxCox, {}, small_filter());
+    expect_rgb_equals(out, expected);
+    EXPECT_EQ(channel_value(out, "G", 6, 2), 0.f);  // the pixel keeps core's stand-in
+}
+
+TEST(DenoiseOperator, BadStatisticsAreRefusedEvenWhenZeroingNonFinite)
+{
+    Frame f;
+    DenoiseImageOptions zero = options();
+    zero.nonfinite = NonfinitePolicy::Zero;
+    OIIO::ImageBuf count0 = f.image;
+    test::set_channel(count0, "sampleCount.Y", 3, 4, 0.f);
+    OIIO::ImageBuf out;
+    EXPECT_FALSE(denoise(out, count0, zero));
+    EXPECT_EQ(out.geterror(), "sampleCount.Y: n = 0 at pixel (3, 4) [1 pixel affected]");
+
+    OIIO::ImageBuf negative = f.image;
+    test::set_channel(negative, "boxcoxVariance.G", 12, 7, -0.3f);
+    EXPECT_FALSE(denoise(out, negative, zero));
+    EXPECT_EQ(out.geterror(),
+              "boxcoxVariance.G: negative value -0.3 at pixel (12, 7) [1 pixel affected]");
+    // Only the planes the chosen test reads are checked: the raw variance is unused here.
+    OIIO::ImageBuf unused = f.image;
+    test::set_channel(unused, "variance.G", 12, 7, -0.3f);
+    EXPECT_TRUE(denoise(out, unused, options())) << out.geterror();
+}
+
+TEST(DenoiseOperator, MissingStatisticsAndBadOptionsAreErrorsNotExceptions)
+{
+    Frame f;
+    OIIO::ImageBuf out;
+    const OIIO::ImageBuf no_variance = test::without_channels(
+        f.image, {"variance.R", "variance.G", "variance.B", "boxcoxMean.R", "boxcoxMean.G",
+                  "boxcoxMean.B", "boxcoxVariance.R", "boxcoxVariance.G", "boxcoxVariance.B",
+                  "boxcoxM3.R", "boxcoxM3.G", "boxcoxM3.B"});
+    EXPECT_FALSE(denoise(out, no_variance, options()));
+    EXPECT_EQ(out.geterror().rfind(
+                  "missing layer variance (channels variance.R, variance.G, variance.B)", 0),
+              0u);
+
+    DenoiseImageOptions boxcox = options();
+    boxcox.test = TestDomainChoice::BoxCox;
+    const OIIO::ImageBuf plain = test::without_channels(
+        f.image, {"boxcoxMean.R", "boxcoxMean.G", "boxcoxMean.B", "boxcoxVariance.R",
+                  "boxcoxVariance.G", "boxcoxVariance.B", "boxcoxM3.R", "boxcoxM3.G",
+                  "boxcoxM3.B"});
+    EXPECT_FALSE(denoise(out, plain, boxcox));
+    EXPECT_EQ(out.geterror().rfind("missing layer boxcoxMean", 0), 0u);
+
+    DenoiseImageOptions bad = options();
+    bad.filter.radius = -3;
+    EXPECT_FALSE(denoise(out, f.image, bad));
+    EXPECT_EQ(out.geterror(), "radius must be in [0, 1000], got -3");
+
+    EXPECT_FALSE(denoise(out, OIIO::ImageBuf(), options()));
+    EXPECT_EQ(out.geterror(), "uninitialized input image");
+}
+
+TEST(DenoiseOperator, HalfInputIsDenoisedAsItsFloatConversion)
+{
+    Frame f;
+    const OIIO::ImageBuf half = f.image.copy(OIIO::TypeDesc::HALF);
+    const OIIO::ImageBuf as_float = half.copy(OIIO::TypeDesc::FLOAT);
+    const OIIO::ImageBuf a = denoise(half, options());
+    const OIIO::ImageBuf b = denoise(as_float, options());
+    ASSERT_FALSE(a.has_error()) << a.geterror();
+    EXPECT_EQ(a.spec().format, OIIO::TypeDesc::FLOAT);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            ASSERT_TRUE(same_bits(channel_value(a, "R", x, y), channel_value(b, "R", x, y)));
+}
+
+}  // namespace
+}  // namespace statmc
