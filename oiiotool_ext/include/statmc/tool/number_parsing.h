@@ -1,0 +1,16 @@
+// Strict number parsing for command arguments: the whole text must be the number, so
+// "abc", "3x" and "" are errors rather than 0 or 3.
+#pragma once
+
+#include <string_view>
+
+namespace statmc::tool {
+
+/// Throws ToolError "<what>: expected an integer, got 'abc'".
+int parse_int(std::string_view text, std::string_view what);
+
+/// A finite decimal or scientific number. Throws ToolError
+/// "<what>: expected a number, got 'abc'".
+double parse_float(std::string_view text, std::string_view what);
+
+}  // namespace statmc::tool

@@ -1,0 +1,15 @@
+// The error every command reports: a message for the user, printed as
+// "statmc: error: <message>" with exit code 1.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace statmc::tool {
+
+class ToolError : public std::runtime_error {
+public:
+    explicit ToolError(const std::string& message) : std::runtime_error(message) {}
+};
+
+}  // namespace statmc::tool

@@ -1,0 +1,71 @@
+#include "statmc/tool/command_line.h"
+
+#include "statmc/tool/command_table.h"
+#include "statmc/tool/tool_error.h"
+
+namespace statmc::tool {
+
+namespace {
+
+std::vector<std::string> split(const std::string& text, char separator)
+{
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t at = text.find(separator, start);
+        parts.push_back(text.substr(start, at - start));
+        if (at == std::string::npos)
+            return parts;
+        start = at + 1;
+    }
+}
+
+bool is_command_word(const std::string& word) { return word.size() > 1 && word[0] == '-'; }
+
+}  // namespace
+
+std::pair<std::string, std::vector<std::pair<std::string, std::string>>>
+split_command(const std::string& word)
+{
+    std::vector<std::string> parts = split(word, ':');
+    std::vector<std::pair<std::string, std::string>> modifiers;
+    for (std::size_t i = 1; i < parts.size(); ++i) {
+        const std::string& part = parts[i];
+        const std::size_t eq = part.find('=');
+        if (part.empty())
+            throw ToolError(parts[0] + ": empty modifier in '" + word + "'");
+        if (eq == std::string::npos || eq == 0)
+            throw ToolError(parts[0] + ": modifier '" + part + "' is not of the form name=value");
+        modifiers.emplace_back(part.substr(0, eq), part.substr(eq + 1));
+    }
+    return {parts[0], modifiers};
+}
+
+Invocation parse_invocation(const std::vector<std::string>& args, std::size_t& i)
+{
+    const std::string& word = args[i++];
+    if (word == "-")
+        throw ToolError("'-': statmc cannot read images from standard input");
+    Invocation inv;
+    if (!is_command_word(word)) {
+        // oiiotool's rule: a bare argument is an input file.
+        inv.command = find_command("-i");
+        inv.name = "-i";
+        inv.args = {word};
+        return inv;
+    }
+    auto [name, given] = split_command(word);
+    inv.command = find_command(name);
+    if (!inv.command)
+        throw ToolError("unknown command '" + name + "' (see statmc --help)");
+    inv.name = name;
+    inv.modifiers = Modifiers::parse(name, given, inv.command->modifiers);
+    for (const std::string& arg_name : inv.command->arg_names) {
+        if (i >= args.size())
+            throw ToolError(name + ": missing argument " + arg_name);
+        inv.args.push_back(args[i++]);
+    }
+    return inv;
+}
+
+}  // namespace statmc::tool

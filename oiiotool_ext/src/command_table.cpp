@@ -1,0 +1,99 @@
+#include "statmc/tool/command_table.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace statmc::tool {
+
+namespace {
+
+std::string usage_of(const Command& c)
+{
+    std::string usage = c.name;
+    if (!c.modifiers.empty())
+        usage += "[:mod=val...]";
+    for (const std::string& arg : c.arg_names)
+        usage += " " + arg;
+    return usage;
+}
+
+constexpr std::size_t kHelpWidth = 100;
+
+// `left` padded to `column`, then `text` word-wrapped with its continuation lines
+// indented to the same column.
+void help_line(std::ostringstream& os, const std::string& left, std::size_t column,
+               const std::string& text)
+{
+    std::string line = left;
+    line.resize(std::max(column, left.size() + 1), ' ');
+    const std::string indent(column, ' ');
+    std::istringstream words(text);
+    std::string word;
+    bool first = true;
+    while (words >> word) {
+        if (!first && line.size() + 1 + word.size() > kHelpWidth) {
+            os << line << "\n";
+            line = indent;
+            first = true;
+        }
+        line += (first ? "" : " ") + word;
+        first = false;
+    }
+    os << line << "\n";
+}
+
+void describe(std::ostringstream& os, const Command& c)
+{
+    help_line(os, "  " + usage_of(c), 32, c.summary);
+    for (const std::string& alias : c.aliases)
+        help_line(os, "", 32, "(also " + alias + ")");
+    // The left column shows the default as oiiotool's help does: ":radius=20".
+    for (const ModifierSpec& m : c.modifiers) {
+        const std::string shown = m.default_value.empty() ? m.value_syntax() : m.default_value;
+        help_line(os, "      :" + m.name + "=" + shown, 32,
+                  "(" + m.value_syntax() + ") " + m.help);
+    }
+}
+
+}  // namespace
+
+const std::vector<Command>& command_table()
+{
+    static const std::vector<Command> table = {
+        input_command(),  output_command(),  denoise_command(), passes_command(),
+        threads_command(), help_command(), version_command(),
+    };
+    return table;
+}
+
+const Command* find_command(std::string_view name)
+{
+    for (const Command& c : command_table())
+        if (c.name == name ||
+            std::find(c.aliases.begin(), c.aliases.end(), name) != c.aliases.end())
+            return &c;
+    return nullptr;
+}
+
+std::string version_text() { return std::string("statmc ") + STATMC_VERSION + "\n"; }
+
+std::string help_text()
+{
+    std::ostringstream os;
+    os << "statmc " << STATMC_VERSION
+       << " - statistical Monte Carlo denoising (Sakai et al. 2024)\n\n"
+          "Usage: statmc [INPUT | COMMAND]...\n\n"
+          "Arguments are read left to right on an image stack, as oiiotool reads them: an\n"
+          "input file is pushed, a command pops its operands and pushes its result, and -o\n"
+          "writes the top image. Modifiers follow a command: --name:mod=value:mod2=value.\n"
+          "Images hold per-pixel statistics as EXR layers (docs/exr-layers.md).\n\n"
+          "Commands:\n";
+    for (const Command& c : command_table())
+        describe(os, c);
+    os << "\nExamples:\n"
+          "  statmc in.exr --denoise:radius=20:alpha=0.005:guides=albedo,normal -o out.exr\n"
+          "  statmc a.exr b.exr c.exr --passes --denoise -o out.exr\n";
+    return os.str();
+}
+
+}  // namespace statmc::tool

@@ -1,0 +1,61 @@
+// --help, --version and --threads: commands that touch no image.
+#include <OpenImageIO/imageio.h>
+
+#include "statmc/tool/command_table.h"
+#include "statmc/tool/number_parsing.h"
+#include "statmc/tool/tool_context.h"
+#include "statmc/tool/tool_error.h"
+
+namespace statmc::tool {
+
+namespace {
+
+constexpr int kMaxThreads = 4096;
+
+int thread_argument(const Invocation& inv)
+{
+    const int n = parse_int(inv.args[0], inv.name);
+    if (n < 0 || n > kMaxThreads)
+        throw ToolError(inv.name + ": thread count must be in [0, " +
+                        std::to_string(kMaxThreads) + "], got " + std::to_string(n));
+    return n;
+}
+
+}  // namespace
+
+Command threads_command()
+{
+    Command c;
+    c.name = "--threads";
+    c.arg_names = {"N"};
+    c.summary = "Use N threads for the commands that follow (0 = all cores)";
+    c.check = [](const Invocation& inv) { thread_argument(inv); };
+    c.run = [](ToolContext& ctx, const Invocation& inv) {
+        ctx.nthreads = thread_argument(inv);
+        OIIO::attribute("threads", ctx.nthreads);
+    };
+    return c;
+}
+
+Command help_command()
+{
+    Command c;
+    c.name = "--help";
+    c.aliases = {"-h"};
+    c.summary = "Print this help and exit";
+    c.immediate = true;
+    c.run = [](ToolContext& ctx, const Invocation&) { ctx.out << help_text(); };
+    return c;
+}
+
+Command version_command()
+{
+    Command c;
+    c.name = "--version";
+    c.summary = "Print the version and exit";
+    c.immediate = true;
+    c.run = [](ToolContext& ctx, const Invocation&) { ctx.out << version_text(); };
+    return c;
+}
+
+}  // namespace statmc::tool

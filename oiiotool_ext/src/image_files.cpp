@@ -1,0 +1,145 @@
+#include "statmc/tool/image_files.h"
+
+#include <filesystem>
+#include <memory>
+#include <system_error>
+
+#include <unistd.h>
+
+#include <OpenImageIO/imagecache.h>
+#include <OpenImageIO/imageio.h>
+
+#include "statmc/layers/storage_rules.h"
+#include "statmc/tool/tool_error.h"
+
+namespace statmc::tool {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// ImageBuf opens files through the shared ImageCache; forgetting them keeps a file that
+// statmc later overwrites (in.exr ... -o in.exr) from being served stale.
+void forget_cached(const std::string& path)
+{
+    OIIO::ImageCache::create(true)->invalidate(OIIO::ustring(path), true);
+}
+
+struct ForgetOnExit {
+    std::string path;
+    ~ForgetOnExit() { forget_cached(path); }
+};
+
+// Removes the temporary file unless the write got as far as renaming it.
+class TemporaryFile {
+public:
+    explicit TemporaryFile(fs::path path) : path_(std::move(path)) {}
+    ~TemporaryFile()
+    {
+        if (!path_.empty()) {
+            std::error_code ignored;
+            fs::remove(path_, ignored);
+        }
+    }
+    TemporaryFile(const TemporaryFile&) = delete;
+    TemporaryFile& operator=(const TemporaryFile&) = delete;
+
+    const fs::path& path() const { return path_; }
+    void release() { path_.clear(); }
+
+private:
+    fs::path path_;
+};
+
+[[noreturn]] void cannot_write(const std::string& path, const std::string& why)
+{
+    throw ToolError(path + ": cannot write: " + why);
+}
+
+fs::path directory_of(const fs::path& target)
+{
+    return target.has_parent_path() ? target.parent_path() : fs::path(".");
+}
+
+// A hidden name in the target's directory, so that the final rename never crosses
+// file systems and a crash leaves nothing that looks like an image.
+fs::path temporary_name(const fs::path& target)
+{
+    static int serial = 0;
+    return directory_of(target) / ("." + target.filename().string() + ".statmc-tmp-" +
+                                   std::to_string(::getpid()) + "-" + std::to_string(serial++));
+}
+
+std::unique_ptr<OIIO::ImageOutput> exr_writer(const std::string& path)
+{
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out)
+        cannot_write(path, "no writer for this file type (" + OIIO::geterror() + ")");
+    if (std::string(out->format_name()) != "openexr")
+        cannot_write(path, "statmc writes OpenEXR files only (use the .exr extension)");
+    return out;
+}
+
+void check_target(const std::string& path)
+{
+    if (path.empty() || path == "-")
+        cannot_write(path, "statmc cannot write images to standard output");
+    const fs::path target(path);
+    std::error_code ec;
+    if (!fs::is_directory(directory_of(target), ec))
+        cannot_write(path, "directory '" + directory_of(target).string() + "' does not exist");
+    if (fs::is_directory(target, ec))
+        cannot_write(path, "it is a directory");
+}
+
+}  // namespace
+
+OIIO::ImageBuf read_image_file(const std::string& path)
+{
+    std::error_code ec;
+    if (!fs::exists(path, ec))
+        throw ToolError(path + ": no such file");
+    if (fs::is_directory(path, ec))
+        throw ToolError(path + ": is a directory, not an image");
+    const ForgetOnExit forget{path};
+    OIIO::ImageBuf image(path);
+    auto unreadable = [&] {
+        const std::string why = image.has_error() ? image.geterror() : OIIO::geterror();
+        return ToolError(path + ": not an OpenEXR/readable image: " + why);
+    };
+    if (!image.init_spec(path, 0, 0))
+        throw unreadable();
+    if (image.deep())
+        throw ToolError(path + ": deep images are not supported");
+    if (image.spec().depth > 1)
+        throw ToolError(path + ": volume images are not supported");
+    if (!image.read(0, 0, /*force=*/true, OIIO::TypeDesc::FLOAT))
+        throw unreadable();
+    return image;
+}
+
+void write_image_file(const OIIO::ImageBuf& image, const std::string& path)
+{
+    check_target(path);
+    auto out = exr_writer(path);
+    OIIO::ImageSpec spec = image.spec();
+    layers::apply_storage_rules(spec);
+
+    const fs::path target(path);
+    TemporaryFile temporary(temporary_name(target));
+    if (!out->open(temporary.path().string(), spec))
+        cannot_write(path, out->geterror());
+    if (!image.write(out.get()))
+        cannot_write(path, image.geterror());
+    if (!out->close())
+        cannot_write(path, out->geterror());
+    out.reset();
+    std::error_code ec;
+    fs::rename(temporary.path(), target, ec);
+    if (ec)
+        cannot_write(path, ec.message());
+    temporary.release();
+    forget_cached(path);
+}
+
+}  // namespace statmc::tool

@@ -1,0 +1,136 @@
+#include "statmc/tool/modifiers.h"
+
+#include <algorithm>
+
+#include "statmc/tool/number_parsing.h"
+#include "statmc/tool/tool_error.h"
+
+namespace statmc::tool {
+
+namespace {
+
+std::string join(const std::vector<std::string>& items, const char* separator)
+{
+    std::string text;
+    for (const std::string& item : items)
+        text += (text.empty() ? "" : separator) + item;
+    return text;
+}
+
+bool contains(const std::vector<std::string>& items, const std::string& item)
+{
+    return std::find(items.begin(), items.end(), item) != items.end();
+}
+
+std::vector<std::string> split_list(const std::string& text)
+{
+    std::vector<std::string> items;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = text.find(',', start);
+        items.push_back(text.substr(start, comma - start));
+        if (comma == std::string::npos)
+            return items;
+        start = comma + 1;
+    }
+}
+
+Modifiers::Value parse_value(const std::string& command, const ModifierSpec& spec,
+                             const std::string& text)
+{
+    const std::string what = command + ": " + spec.name;
+    switch (spec.type) {
+    case ModifierType::Int: return parse_int(text, what);
+    case ModifierType::Float: return parse_float(text, what);
+    case ModifierType::String:
+        if (text.empty())
+            throw ToolError(what + ": expected a value");
+        return text;
+    case ModifierType::Choice:
+        if (!contains(spec.choices, text))
+            throw ToolError(what + ": expected one of " + join(spec.choices, ", ") + ", got '" +
+                            text + "'");
+        return text;
+    case ModifierType::List: {
+        if (contains(spec.keywords, text))
+            return std::vector<std::string>{text};
+        std::vector<std::string> items = split_list(text);
+        for (const std::string& item : items)
+            if (!contains(spec.choices, item))
+                throw ToolError(what + ": unknown item '" + item + "' (expected a list of " +
+                                join(spec.choices, ", ") + ", or " + join(spec.keywords, " or ") +
+                                ")");
+        return items;
+    }
+    }
+    throw ToolError(what + ": unsupported modifier type");
+}
+
+}  // namespace
+
+std::string ModifierSpec::value_syntax() const
+{
+    switch (type) {
+    case ModifierType::Int: return "int";
+    case ModifierType::Float: return "float";
+    case ModifierType::String: return "name";
+    case ModifierType::Choice: return join(choices, "|");
+    case ModifierType::List: return join(choices, ",") + "|" + join(keywords, "|");
+    }
+    return "value";
+}
+
+const Modifiers::Value& Modifiers::at(const std::string& name) const
+{
+    const auto it = values_.find(name);
+    if (it == values_.end())
+        throw ToolError("modifier '" + name + "' has no value");
+    return it->second;
+}
+
+int Modifiers::get_int(const std::string& name) const { return std::get<int>(at(name)); }
+double Modifiers::get_float(const std::string& name) const { return std::get<double>(at(name)); }
+
+const std::string& Modifiers::get_string(const std::string& name) const
+{
+    return std::get<std::string>(at(name));
+}
+
+const std::vector<std::string>& Modifiers::get_list(const std::string& name) const
+{
+    return std::get<std::vector<std::string>>(at(name));
+}
+
+Modifiers Modifiers::parse(const std::string& command,
+                           const std::vector<std::pair<std::string, std::string>>& given,
+                           const std::vector<ModifierSpec>& specs)
+{
+    auto spec_of = [&](const std::string& name) -> const ModifierSpec* {
+        for (const ModifierSpec& s : specs)
+            if (s.name == name)
+                return &s;
+        return nullptr;
+    };
+    Modifiers m;
+    for (const auto& [name, text] : given) {
+        const ModifierSpec* spec = spec_of(name);
+        if (!spec) {
+            std::vector<std::string> known;
+            for (const ModifierSpec& s : specs)
+                known.push_back(s.name);
+            throw ToolError(command + ": unknown modifier '" + name + "' (" +
+                            (known.empty() ? std::string("it takes no modifiers")
+                                           : "modifiers: " + join(known, ", ")) +
+                            ")");
+        }
+        if (m.has(name))
+            throw ToolError(command + ": modifier '" + name + "' given twice");
+        m.values_[name] = parse_value(command, *spec, text);
+    }
+    for (const ModifierSpec& spec : specs)
+        if (!m.has(spec.name) && !spec.default_value.empty())
+            m.values_[spec.name] = parse_value(command, spec, spec.default_value);
+    return m;
+}
+
+}  // namespace statmc::tool

@@ -1,0 +1,57 @@
+#include "statmc/tool/tool.h"
+
+#include <new>
+
+#include "statmc/tool/command_line.h"
+#include "statmc/tool/command_table.h"
+#include "statmc/tool/tool_context.h"
+#include "statmc/tool/tool_error.h"
+
+namespace statmc::tool {
+
+namespace {
+
+// The whole command line is parsed and checked before the first command runs, so that
+// a typo late on the line cannot leave the outputs of earlier commands half done.
+int run_program(const std::vector<std::string>& args, ToolContext& ctx)
+{
+    if (args.empty()) {
+        ctx.out << help_text();
+        return 0;
+    }
+    std::vector<Invocation> program;
+    for (std::size_t i = 0; i < args.size();) {
+        Invocation inv = parse_invocation(args, i);
+        if (inv.command->immediate) {
+            inv.command->run(ctx, inv);
+            return 0;
+        }
+        if (inv.command->check)
+            inv.command->check(inv);
+        program.push_back(std::move(inv));
+    }
+    for (const Invocation& inv : program)
+        inv.command->run(ctx, inv);
+    return 0;
+}
+
+}  // namespace
+
+int run_tool(const std::vector<std::string>& args, std::ostream& out, std::ostream& err)
+{
+    ToolContext ctx(out);
+    try {
+        return run_program(args, ctx);
+    } catch (const ToolError& e) {
+        err << "statmc: error: " << e.what() << "\n";
+    } catch (const std::bad_alloc&) {
+        err << "statmc: error: out of memory\n";
+    } catch (const std::exception& e) {
+        err << "statmc: error: internal error: " << e.what() << "\n";
+    } catch (...) {
+        err << "statmc: error: internal error\n";
+    }
+    return 1;
+}
+
+}  // namespace statmc::tool

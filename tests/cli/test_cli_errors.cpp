@@ -1,0 +1,276 @@
+// Every bad input ends in one "statmc: error: ..." line naming the culprit, exit code 1,
+// no crash or hang, and no output or temporary file left behind.
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "cli_images.h"
+#include "cli_runner.h"
+#include "temp_dir.h"
+#include "test_images.h"
+
+namespace statmc::test {
+namespace {
+
+class CliError : public ::testing::Test {
+protected:
+    // Writes an input file and remembers it as one the directory may hold afterwards.
+    std::string input(const std::string& name, const OIIO::ImageBuf& image)
+    {
+        write_exr(image, dir.file(name));
+        inputs.push_back(name);
+        return dir.file(name);
+    }
+
+    std::string text_input(const std::string& name, const std::string& content)
+    {
+        std::ofstream(dir.file(name)) << content;
+        inputs.push_back(name);
+        return dir.file(name);
+    }
+
+    std::string out() const { return dir.file("out.exr"); }
+
+    // The run failed cleanly with `message` and left only the inputs.
+    void expect_failure(const std::vector<std::string>& args, const std::string& message)
+    {
+        const CliResult r = run_cli(args);
+        EXPECT_FALSE(r.timed_out);
+        EXPECT_EQ(r.signal, 0) << "killed by signal " << r.signal;
+        EXPECT_EQ(r.exit_code, 1) << r.err;
+        EXPECT_EQ(r.err.rfind("statmc: error: ", 0), 0u) << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos)
+            << "expected \"" << message << "\" in:\n" << r.err;
+        EXPECT_EQ(r.out, "");
+        std::vector<std::string> expected = inputs;
+        std::sort(expected.begin(), expected.end());
+        EXPECT_EQ(dir.entries(), expected) << "stray output or temporary file";
+    }
+
+    TempDir dir;
+    std::vector<std::string> inputs;
+};
+
+TEST_F(CliError, MissingLayer)
+{
+    const auto in = input("in.exr", without_channels(cli_variance_aov_image(),
+                                                     {"variance.R", "variance.G", "variance.B"}));
+    expect_failure({in, "--denoise", "-o", out()},
+                   "--denoise: " + in +
+                       ": missing layer variance (channels variance.R, variance.G, variance.B)");
+}
+
+TEST_F(CliError, MissingSampleCount)
+{
+    const auto in = input("in.exr", without_channels(cli_statistics_image(), {"sampleCount.Y"}));
+    expect_failure({in, "--denoise", "-o", out()},
+                   in + ": missing layer sampleCount (channels sampleCount.Y)");
+}
+
+TEST_F(CliError, MisnamedLayer)
+{
+    const auto in = input("in.exr", renamed_channels(cli_variance_aov_image(), "variance",
+                                                     "Variance"));
+    expect_failure({in, "--denoise", "-o", out()},
+                   "missing layer variance (channels variance.R, variance.G, variance.B); "
+                   "denoising needs it or the Box-Cox layers (boxcoxMean, boxcoxVariance, "
+                   "boxcoxM3); the image has layers (unprefixed), Variance, sampleCount; did you "
+                   "mean Variance?");
+}
+
+TEST_F(CliError, MissingRequestedGuide)
+{
+    const auto in = input("in.exr", without_channels(cli_statistics_image(),
+                                                     {"normal.X", "normal.Y", "normal.Z"}));
+    expect_failure({in, "--denoise:guides=albedo,normal", "-o", out()},
+                   in + ": missing guide layer normal (channels normal.X, normal.Y, normal.Z)");
+}
+
+TEST_F(CliError, PassesWithMismatchedResolutions)
+{
+    const auto a = input("a.exr", cli_render(0));
+    const auto b = input("b.exr", cli_render(1, kCliWidth, kCliHeight - 2));
+    expect_failure({a, b, "--passes", "-o", out()},
+                   "--passes: render 1 (" + b + ") and render 0 (" + a +
+                       ") differ in resolution: 24x14 vs 24x16");
+}
+
+TEST_F(CliError, PassesWithMismatchedDataWindows)
+{
+    const auto a = input("a.exr", cli_render(0));
+    OIIO::ImageBuf moved = cli_render(1);
+    moved.set_origin(2, 3);
+    const auto b = input("b.exr", moved);
+    expect_failure({a, b, "--passes", "-o", out()},
+                   "render 1 (" + b + ") and render 0 (" + a +
+                       ") differ in data window: origin (2, 3) vs (0, 0)");
+}
+
+TEST_F(CliError, PassesWithMismatchedChannels)
+{
+    const auto a = input("a.exr", cli_render(0));
+    const auto b = input("b.exr", without_channels(cli_render(1), {"albedo.R", "albedo.G",
+                                                                   "albedo.B"}));
+    expect_failure({a, b, "--passes", "-o", out()},
+                   "render 1 (" + b + ") and render 0 (" + a + ") differ in channels");
+}
+
+TEST_F(CliError, PassesNeedsTwoRenders)
+{
+    const auto a = input("a.exr", cli_render(0));
+    expect_failure({a, "--passes", "-o", out()},
+                   "--passes: needs at least 2 renders on the stack, got 1");
+    expect_failure({a, a, "--passes:n=3", "-o", out()}, "--passes: needs 3 images, the stack holds 2");
+    expect_failure({a, a, "--passes:n=1", "-o", out()}, "--passes: n must be at least 2, got 1");
+}
+
+TEST_F(CliError, NegativeVariance)
+{
+    OIIO::ImageBuf img = cli_variance_aov_image();
+    set_channel(img, "variance.G", 12, 7, -0.3f);
+    const auto in = input("in.exr", img);
+    expect_failure({in, "--denoise", "-o", out()},
+                   in + ": variance.G: negative value -0.3 at pixel (12, 7) [1 pixel affected]");
+}
+
+TEST_F(CliError, ZeroSampleCount)
+{
+    OIIO::ImageBuf img = cli_statistics_image();
+    set_channel(img, "sampleCount.Y", 3, 4, 0.f);
+    const auto in = input("in.exr", img);
+    expect_failure({in, "--denoise:nonfinite=zero", "-o", out()},
+                   "sampleCount.Y: n = 0 at pixel (3, 4)");
+}
+
+TEST_F(CliError, NaNAndInfWithNonfiniteError)
+{
+    OIIO::ImageBuf nan = cli_statistics_image();
+    set_channel(nan, "boxcoxMean.R", 9, 2, std::numeric_limits<float>::quiet_NaN());
+    const auto a = input("nan.exr", nan);
+    expect_failure({a, "--denoise", "-o", out()}, "boxcoxMean.R: NaN at pixel (9, 2)");
+
+    OIIO::ImageBuf inf = cli_variance_aov_image();
+    set_channel(inf, "R", 1, 0, std::numeric_limits<float>::infinity());
+    const auto b = input("inf.exr", inf);
+    expect_failure({b, "--denoise:nonfinite=error", "-o", out()}, "R: Inf at pixel (1, 0)");
+
+    // The same files pass when non-finite values are zeroed.
+    const CliResult ok = run_cli({a, "--denoise:nonfinite=zero", "-o", out()});
+    EXPECT_EQ(ok.exit_code, 0) << ok.err;
+}
+
+TEST_F(CliError, TruncatedExr)
+{
+    const auto in = input("in.exr", cli_statistics_image());
+    const auto size = std::filesystem::file_size(in);
+    std::filesystem::resize_file(in, size - size / 3);
+    expect_failure({in, "--denoise", "-o", out()}, in + ": not an OpenEXR/readable image: ");
+    std::filesystem::resize_file(in, 64);  // cut inside the header
+    expect_failure({in, "--denoise", "-o", out()}, in + ": not an OpenEXR/readable image: ");
+}
+
+TEST_F(CliError, TextFileIsNotAnImage)
+{
+    const auto exr = text_input("notes.exr", "not an image\n");
+    expect_failure({exr, "-o", out()}, exr + ": not an OpenEXR/readable image: ");
+    const auto txt = text_input("notes.txt", "not an image either\n");
+    expect_failure({txt, "-o", out()}, txt + ": not an OpenEXR/readable image: ");
+}
+
+TEST_F(CliError, NonexistentInput)
+{
+    const std::string missing = dir.file("missing.exr");
+    expect_failure({missing, "--denoise", "-o", out()}, missing + ": no such file");
+    expect_failure({"-i", dir.path().string(), "-o", out()}, ": is a directory, not an image");
+}
+
+TEST_F(CliError, UnwritableOutput)
+{
+    const auto in = input("in.exr", cli_statistics_image());
+    const std::string target = dir.file("no/such/dir/out.exr");
+    expect_failure({in, "--denoise", "-o", target},
+                   target + ": cannot write: directory '" + dir.file("no/such/dir") +
+                       "' does not exist");
+    expect_failure({in, "-o", dir.file("out.png")},
+                   "out.png: cannot write: statmc writes OpenEXR files only");
+    expect_failure({in, "-o", dir.path().string()}, ": cannot write: it is a directory");
+}
+
+TEST_F(CliError, OutOfRangeParameters)
+{
+    const auto in = input("in.exr", cli_statistics_image());
+    expect_failure({in, "--denoise:radius=-1", "-o", out()},
+                   "--denoise: radius must be in [0, 1000], got -1");
+    expect_failure({in, "--denoise:radius=1001", "-o", out()},
+                   "--denoise: radius must be in [0, 1000], got 1001");
+    expect_failure({in, "--denoise:alpha=0", "-o", out()}, "--denoise: alpha must be in (0, 1)");
+    expect_failure({in, "--denoise:alpha=1", "-o", out()}, "--denoise: alpha must be in (0, 1)");
+    expect_failure({in, "--denoise:sigma_s=0", "-o", out()}, "--denoise: sigma_s must be > 0");
+    expect_failure({in, "--denoise:sigma_albedo=-2", "-o", out()},
+                   "--denoise: sigma_albedo must be > 0");
+    expect_failure({in, "--denoise:sigma_normal=0", "-o", out()},
+                   "--denoise: sigma_normal must be > 0");
+    expect_failure({"--threads", "-2", in, "-o", out()},
+                   "--threads: thread count must be in [0, 4096], got -2");
+}
+
+TEST_F(CliError, MalformedParameters)
+{
+    const auto in = input("in.exr", cli_statistics_image());
+    expect_failure({in, "--denoise:radius=abc", "-o", out()},
+                   "--denoise: radius: expected an integer, got 'abc'");
+    expect_failure({in, "--denoise:radius=3.5", "-o", out()},
+                   "--denoise: radius: expected an integer, got '3.5'");
+    expect_failure({in, "--denoise:radius=", "-o", out()},
+                   "--denoise: radius: expected an integer, got ''");
+    expect_failure({in, "--denoise:alpha=0.01x", "-o", out()},
+                   "--denoise: alpha: expected a finite number, got '0.01x'");
+    expect_failure({in, "--denoise:alpha=nan", "-o", out()},
+                   "--denoise: alpha: expected a finite number, got 'nan'");
+    expect_failure({in, "--denoise:test=fast", "-o", out()},
+                   "--denoise: test: expected one of auto, boxcox, untransformed, got 'fast'");
+    expect_failure({in, "--denoise:guides=albedo,depth", "-o", out()},
+                   "--denoise: guides: unknown item 'depth'");
+    expect_failure({in, "--denoise:radius", "-o", out()},
+                   "--denoise: modifier 'radius' is not of the form name=value");
+    expect_failure({in, "--denoise:radius=3:radius=4", "-o", out()},
+                   "--denoise: modifier 'radius' given twice");
+    expect_failure({"--threads", "many", in, "-o", out()},
+                   "--threads: expected an integer, got 'many'");
+}
+
+TEST_F(CliError, UnknownModifier)
+{
+    const auto in = input("in.exr", cli_statistics_image());
+    expect_failure({in, "--denoise:radius=3:sigma=2", "-o", out()},
+                   "--denoise: unknown modifier 'sigma' (modifiers: radius, alpha, sigma_s");
+    expect_failure({in, "-o:compression=zip", out()},
+                   "-o: unknown modifier 'compression' (it takes no modifiers)");
+}
+
+TEST_F(CliError, UnknownCommand)
+{
+    const auto in = input("in.exr", cli_statistics_image());
+    expect_failure({in, "--denoize", "-o", out()}, "unknown command '--denoize'");
+    // Checked before anything runs: the earlier -o writes nothing either.
+    expect_failure({in, "-o", out(), "--bogus"}, "unknown command '--bogus'");
+}
+
+TEST_F(CliError, OutputWithEmptyStack)
+{
+    expect_failure({"-o", out()}, "-o: the image stack is empty");
+    expect_failure({"--denoise", "-o", out()}, "--denoise: the image stack is empty");
+}
+
+TEST_F(CliError, MissingArguments)
+{
+    const auto in = input("in.exr", cli_statistics_image());
+    expect_failure({in, "--denoise", "-o"}, "-o: missing argument FILE");
+    expect_failure({in, "--threads"}, "--threads: missing argument N");
+    expect_failure({"-", "-o", out()}, "'-': statmc cannot read images from standard input");
+}
+
+}  // namespace
+}  // namespace statmc::test

@@ -1,0 +1,164 @@
+// statmc runs that succeed: outputs equal the operators' results on the same files.
+#include <gtest/gtest.h>
+
+#include "cli_images.h"
+#include "cli_runner.h"
+#include "statmc/denoise/denoise.h"
+#include "statmc/passes/passes.h"
+#include "temp_dir.h"
+#include "test_images.h"
+
+namespace statmc::test {
+namespace {
+
+void expect_same_channels(const OIIO::ImageBuf& got, const OIIO::ImageBuf& want)
+{
+    ASSERT_EQ(got.spec().width, want.spec().width);
+    ASSERT_EQ(got.spec().height, want.spec().height);
+    for (int c = 0; c < want.spec().nchannels; ++c) {
+        const std::string& name = want.spec().channelnames[c];
+        const int gc = got.spec().channelindex(name);
+        ASSERT_GE(gc, 0) << name;
+        for (int y = want.spec().y; y < want.spec().y + want.spec().height; ++y)
+            for (int x = want.spec().x; x < want.spec().x + want.spec().width; ++x)
+                ASSERT_TRUE(same_bits(got.getchannel(x, y, 0, gc), want.getchannel(x, y, 0, c)))
+                    << name << " at (" << x << ", " << y << ")";
+    }
+}
+
+void expect_success(const CliResult& r)
+{
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_FALSE(r.timed_out);
+}
+
+TEST(CliRun, DenoiseRoundTripEqualsTheOperator)
+{
+    TempDir dir;
+    write_exr(cli_statistics_image(), dir.file("in.exr"));
+    const CliResult r =
+        run_cli({dir.file("in.exr"), "--denoise:radius=6:alpha=0.01:sigma_s=3:guides=albedo,normal",
+                 "-o", dir.file("out.exr")});
+    expect_success(r);
+    EXPECT_EQ(dir.entries(), (std::vector<std::string>{"in.exr", "out.exr"}));
+
+    DenoiseImageOptions opt;
+    opt.filter.radius = 6;
+    opt.filter.alpha = 0.01;
+    opt.filter.sigma_spatial = 3.f;
+    opt.guides.albedo = opt.guides.normal = GuideUse::Required;
+    const OIIO::ImageBuf in = read_exr(dir.file("in.exr"));
+    const OIIO::ImageBuf expected = denoise(in, opt);
+    ASSERT_FALSE(expected.has_error()) << expected.geterror();
+    const OIIO::ImageBuf out = read_exr(dir.file("out.exr"));
+    expect_same_channels(out, expected);  // R,G,B denoised, every other channel kept
+    EXPECT_EQ(out.spec().nchannels, in.spec().nchannels);
+    EXPECT_EQ(out.spec().get_int_attribute("statmc:denoised"), 1);
+    EXPECT_EQ(out.spec().get_int_attribute("statmc:spp"), 8);
+    EXPECT_EQ(out.spec().get_string_attribute("compression"), "zip");
+    // The denoiser changed the image.
+    EXPECT_NE(channel_value(out, "R", 5, 5), channel_value(in, "R", 5, 5));
+}
+
+TEST(CliRun, DefaultsAndExplicitInputCommand)
+{
+    TempDir dir;
+    write_exr(cli_variance_aov_image(), dir.file("aov.exr"));
+    expect_success(run_cli({"-i", dir.file("aov.exr"), "--denoise", "-o", dir.file("out.exr")}));
+    const OIIO::ImageBuf expected = denoise(read_exr(dir.file("aov.exr")), DenoiseImageOptions{});
+    expect_same_channels(read_exr(dir.file("out.exr")), expected);
+}
+
+TEST(CliRun, OutputMayReplaceTheInput)
+{
+    TempDir dir;
+    write_exr(cli_statistics_image(), dir.file("frame.exr"));
+    const OIIO::ImageBuf expected =
+        denoise(read_exr(dir.file("frame.exr")), DenoiseImageOptions{});
+    expect_success(run_cli({dir.file("frame.exr"), "--denoise", "-o", dir.file("frame.exr")}));
+    EXPECT_EQ(dir.entries(), (std::vector<std::string>{"frame.exr"}));
+    expect_same_channels(read_exr(dir.file("frame.exr")), expected);
+}
+
+TEST(CliRun, PassesThenDenoise)
+{
+    TempDir dir;
+    for (int k = 0; k < 3; ++k)
+        write_exr(cli_render(k), dir.file("r" + std::to_string(k) + ".exr"));
+    expect_success(run_cli({dir.file("r0.exr"), dir.file("r1.exr"), dir.file("r2.exr"),
+                            "--passes", "-o", dir.file("stats.exr")}));
+    expect_success(run_cli({dir.file("r0.exr"), dir.file("r1.exr"), dir.file("r2.exr"),
+                            "--passes", "--denoise:radius=4", "-o", dir.file("out.exr")}));
+
+    const OIIO::ImageBuf r0 = read_exr(dir.file("r0.exr")), r1 = read_exr(dir.file("r1.exr")),
+                         r2 = read_exr(dir.file("r2.exr"));
+    const OIIO::ImageBuf stats = passes({&r0, &r1, &r2});
+    ASSERT_FALSE(stats.has_error()) << stats.geterror();
+    const OIIO::ImageBuf stats_file = read_exr(dir.file("stats.exr"));
+    expect_same_channels(stats_file, stats);
+    EXPECT_EQ(channel_value(stats_file, "sampleCount.Y", 0, 0), 3.f);
+    // Hand check of one pixel: R at (1, 1) over k = 0, 1, 2.
+    double v[3], mean = 0;
+    for (int k = 0; k < 3; ++k)
+        mean += v[k] = 0.2f + 0.1f * float((5 + 3 + k * 7) % 5);
+    mean /= 3;
+    double var = 0;
+    for (double x : v)
+        var += (x - mean) * (x - mean);
+    EXPECT_FLOAT_EQ(channel_value(stats_file, "R", 1, 1), float(mean));
+    EXPECT_FLOAT_EQ(channel_value(stats_file, "variance.R", 1, 1), float(var / 2));
+
+    DenoiseImageOptions opt;
+    opt.filter.radius = 4;
+    expect_same_channels(read_exr(dir.file("out.exr")), denoise(stats, opt));
+}
+
+TEST(CliRun, PassesTakesTheTopNImages)
+{
+    TempDir dir;
+    for (int k = 0; k < 3; ++k)
+        write_exr(cli_render(k), dir.file("r" + std::to_string(k) + ".exr"));
+    expect_success(run_cli({dir.file("r0.exr"), dir.file("r1.exr"), dir.file("r2.exr"),
+                            "--passes:n=2", "-o", dir.file("stats.exr")}));
+    const OIIO::ImageBuf r1 = read_exr(dir.file("r1.exr")), r2 = read_exr(dir.file("r2.exr"));
+    const OIIO::ImageBuf stats_file = read_exr(dir.file("stats.exr"));
+    EXPECT_EQ(channel_value(stats_file, "sampleCount.Y", 3, 3), 2.f);
+    expect_same_channels(stats_file, passes({&r1, &r2}));
+}
+
+TEST(CliRun, ThreadsDoNotChangeTheResult)
+{
+    TempDir dir;
+    write_exr(cli_statistics_image(), dir.file("in.exr"));
+    expect_success(run_cli({"--threads", "1", dir.file("in.exr"), "--denoise", "-o",
+                            dir.file("one.exr")}));
+    expect_success(run_cli({"--threads", "0", dir.file("in.exr"), "--denoise", "-o",
+                            dir.file("all.exr")}));
+    expect_same_channels(read_exr(dir.file("one.exr")), read_exr(dir.file("all.exr")));
+}
+
+TEST(CliRun, HelpListsEveryCommandAndModifier)
+{
+    const CliResult r = run_cli({"--help"});
+    expect_success(r);
+    for (const char* text :
+         {"-i FILE", "-o FILE", "--denoise", "--passes", "--threads N", "--help", "--version",
+          ":radius=20 ", ":alpha=0.005 ", ":sigma_s=10 ", ":sigma_albedo=0.02 ",
+          ":sigma_normal=0.1 ", ":guides=auto ", "(albedo,normal|auto|none)",
+          ":albedo_layer=albedo ", ":normal_layer=normal ", ":test=auto ",
+          "(auto|boxcox|untransformed)", ":nonfinite=error ", "(error|zero)", ":n=int "})
+        EXPECT_NE(r.out.find(text), std::string::npos) << text;
+    EXPECT_EQ(run_cli({"-h"}).out, r.out);
+    EXPECT_EQ(run_cli({}).out, r.out);
+}
+
+TEST(CliRun, Version)
+{
+    const CliResult r = run_cli({"--version"});
+    expect_success(r);
+    EXPECT_EQ(r.out.rfind("statmc ", 0), 0u);
+}
+
+}  // namespace
+}  // namespace statmc::test
