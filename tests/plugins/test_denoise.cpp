@@ -2,6 +2,7 @@
 // statistics, and touch nothing else.
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -321,6 +322,48 @@ TEST(DenoiseOperator, MissingStatisticsAndBadOptionsAreErrorsNotExceptions)
 
     EXPECT_FALSE(denoise(out, OIIO::ImageBuf(), options()));
     EXPECT_EQ(out.geterror(), "uninitialized input image");
+}
+
+TEST(DenoiseOperator, AnAovIsDenoisedUnderItsPrefix)
+{
+    Frame f;
+    layers::StatisticsMetadata meta;
+    meta.aov = "diffuse";
+    const OIIO::ImageBuf image = layers::make_statistics_image(f.stats, meta);
+    DenoiseImageOptions opt = options();
+    opt.aov = "diffuse";
+    const OIIO::ImageBuf out = denoise(image, opt);
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    const auto expected = test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter());
+    const std::size_t n = std::size_t(kW) * kH;
+    for (int c = 0; c < 3; ++c)
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                ASSERT_TRUE(same_bits(channel_value(out, std::string("diffuse.") + "RGB"[c], x, y),
+                                      expected[c * n + std::size_t(y) * kW + x]));
+    EXPECT_FALSE(denoise(image, options()).geterror().empty());  // no beauty R,G,B
+}
+
+TEST(DenoiseOperator, OneChannelQuantityUsesY)
+{
+    StatisticsImage<1> acc(kW, kH);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            for (int s = 0; s < 6; ++s) {
+                const float v = (x < kW / 2 ? 0.1f : 0.6f) * 2.f * u(rng);
+                acc.add(x, y, &v);
+            }
+    const StatisticsPlanes stats = acc.planes();
+    const OIIO::ImageBuf image = layers::make_statistics_image(stats);
+    EXPECT_EQ(image.spec().channelnames.front(), "Y");
+    const OIIO::ImageBuf out = denoise(image, options());
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    const auto expected = test::core_filtered(stats.view(), TestDomain::BoxCox, {}, small_filter());
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            ASSERT_TRUE(same_bits(channel_value(out, "Y", x, y), expected[std::size_t(y) * kW + x]));
 }
 
 TEST(DenoiseOperator, HalfInputIsDenoisedAsItsFloatConversion)
