@@ -57,13 +57,13 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
     L.stride = padded_width;
     L.plane_size = std::size_t(padded_width) * (est.height + 2 * L.pad_y);
 
-    std::vector<std::pair<ConstPlane, float>> guide_planes;  // plane, 1/(2σ²)
+    std::vector<std::pair<ConstPlane, float>> guide_planes;  // plane, 1/(√2·σ)
     if (guides.has_albedo())
         for (const ConstPlane& p : guides.albedo)
-            guide_planes.emplace_back(p, float(0.5 / (double(options.sigma_albedo) * options.sigma_albedo)));
+            guide_planes.emplace_back(p, float(1.0 / (std::sqrt(2.0) * options.sigma_albedo)));
     if (guides.has_normal())
         for (const ConstPlane& p : guides.normal)
-            guide_planes.emplace_back(p, float(0.5 / (double(options.sigma_normal) * options.sigma_normal)));
+            guide_planes.emplace_back(p, float(1.0 / (std::sqrt(2.0) * options.sigma_normal)));
     L.guide_count = int(guide_planes.size());
 
     const int planes = 3 * L.channels + L.guide_count;
@@ -86,7 +86,6 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
     for (int g = 0; g < L.guide_count; ++g) {
         guide[g] = plane_origin(3 * L.channels + g);
         L.guide[g] = guide[g];
-        L.guide_scale[g] = guide_planes[g].second;
     }
 
     float max_count = 0;
@@ -111,7 +110,7 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                         : kNever;
                 }
                 for (int g = 0; g < L.guide_count; ++g)
-                    guide[g][p] = finite_or_zero(guide_planes[g].first(x, y));
+                    guide[g][p] = finite_or_zero(guide_planes[g].first(x, y)) * guide_planes[g].second;
             }
     };
     if (nthreads == 1)

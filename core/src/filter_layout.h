@@ -23,8 +23,7 @@ struct FilterLayout {
     const float* threshold[4] = {};  // T = γ²(df = 2n − 2)·v, or −∞ when untestable
     const float* value[4] = {};      // F, what is averaged
     int guide_count = 0;             // 0, 3 (albedo or normal) or 6 (both)
-    const float* guide[6] = {};
-    float guide_scale[6] = {};       // 1/(2σ²) for each guide plane
+    const float* guide[6] = {};      // scaled by 1/(√2·σ): Σ (Δg)² is the log-weight
 
     // The disk: for row offset dy ∈ [−pad_y, pad_y], |dx| ≤ half_width[dy + pad_y];
     // spatial weight and its logarithm at (dx, dy) are at [(dy + pad_y)*(2*pad_x+1) + dx + pad_x].

@@ -19,9 +19,10 @@ struct Scalar {
     static F sub(F a, F b) { return a - b; }
     static F mul(F a, F b) { return a * b; }
     static F div(F a, F b) { return a / b; }
-    static F fmadd(F a, F b, F c) { return std::fma(a, b, c); }
-    static F fmsub(F a, F b, F c) { return std::fma(a, b, -c); }
-    static F fnmadd(F a, F b, F c) { return std::fma(-a, b, c); }
+    // Unfused on purpose: without hardware FMA, std::fma is a slow library call.
+    static F fmadd(F a, F b, F c) { return a * b + c; }
+    static F fmsub(F a, F b, F c) { return a * b - c; }
+    static F fnmadd(F a, F b, F c) { return c - a * b; }
     static M le(F a, F b) { return a <= b; }
     static M both(M a, M b) { return a && b; }
     static F select(M m, F a) { return m ? a : 0.f; }
