@@ -1,11 +1,22 @@
 #include "statmc/core/denoise_options.h"
 
+#include <charconv>
 #include <cmath>
 
 namespace statmc {
 
 namespace {
+
 bool positive(float v) { return std::isfinite(v) && v > 0; }
+
+// Shortest text that reads back to the same value: users see "1e-09", not "0.000000".
+std::string number(double v)
+{
+    char buf[32];
+    const auto result = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, result.ptr);
+}
+
 }  // namespace
 
 std::string DenoiseOptions::validate() const
@@ -13,13 +24,13 @@ std::string DenoiseOptions::validate() const
     if (radius < 0 || radius > 1000)
         return "radius must be in [0, 1000], got " + std::to_string(radius);
     if (!(alpha > 0 && alpha < 1))
-        return "alpha must be in (0, 1), got " + std::to_string(alpha);
+        return "alpha must be in (0, 1), got " + number(alpha);
     if (!positive(sigma_spatial))
-        return "sigma_s must be > 0, got " + std::to_string(sigma_spatial);
+        return "sigma_s must be > 0, got " + number(sigma_spatial);
     if (!positive(sigma_albedo))
-        return "sigma_albedo must be > 0, got " + std::to_string(sigma_albedo);
+        return "sigma_albedo must be > 0, got " + number(sigma_albedo);
     if (!positive(sigma_normal))
-        return "sigma_normal must be > 0, got " + std::to_string(sigma_normal);
+        return "sigma_normal must be > 0, got " + number(sigma_normal);
     return {};
 }
 

@@ -75,13 +75,16 @@ EstimatorImage estimators_from_statistics(const StatisticsView& stats, TestDomai
         for (int x = 0; x < stats.width; ++x) {
             const float n = stats.count(x, y);
             est.count[est.index(0, x, y)] = n;
+            const bool enough_samples = n >= 2;  // else s² and every ratio below are undefined
             bool finite_value = true;
             for (int c = 0; c < stats.channels; ++c) {
                 const float f = stats.mean[c](x, y);
                 finite_value = finite_value && std::isfinite(f);
                 est.value[est.index(c, x, y)] = std::isfinite(f) ? f : 0.f;
-                float mu, v;
-                if (domain == TestDomain::BoxCox) {
+                float mu = 0.f, v = 0.f;
+                if (!enough_samples) {
+                    // left untestable below
+                } else if (domain == TestDomain::BoxCox) {
                     const float s2 = stats.bc_variance[c](x, y);
                     const float m3 = stats.bc_moment3[c](x, y);
                     // Johnson's (1978) first-order skewness correction of the mean.

@@ -2,6 +2,7 @@
 
 #include <new>
 
+#include "statmc/layers/file_error.h"
 #include "statmc/tool/command_line.h"
 #include "statmc/tool/command_table.h"
 #include "statmc/tool/tool_context.h"
@@ -43,6 +44,8 @@ int run_tool(const std::vector<std::string>& args, std::ostream& out, std::ostre
     try {
         return run_program(args, ctx);
     } catch (const ToolError& e) {
+        err << "statmc: error: " << e.what() << "\n";
+    } catch (const layers::FileError& e) {
         err << "statmc: error: " << e.what() << "\n";
     } catch (const std::bad_alloc&) {
         err << "statmc: error: out of memory\n";

@@ -1,6 +1,6 @@
 // -i and -o: images between files and the stack.
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/image_files.h"
+#include "statmc/layers/exr_files.h"
 #include "statmc/tool/tool_context.h"
 
 namespace statmc::tool {
@@ -12,7 +12,7 @@ Command input_command()
     c.arg_names = {"FILE"};
     c.summary = "Read an image and push it on the stack (a bare FILE does the same)";
     c.run = [](ToolContext& ctx, const Invocation& inv) {
-        ctx.stack.push({read_image_file(inv.args[0]), inv.args[0]});
+        ctx.stack.push({layers::read_image_file(inv.args[0]), inv.args[0]});
     };
     return c;
 }
@@ -25,7 +25,7 @@ Command output_command()
     c.summary = "Write the top image to an OpenEXR file (float, lossless; via a temporary "
                 "file, so a failed write leaves no file)";
     c.run = [](ToolContext& ctx, const Invocation& inv) {
-        write_image_file(ctx.stack.top(inv.name).image, inv.args[0]);
+        layers::write_image_file(ctx.stack.top(inv.name).image, inv.args[0]);
     };
     return c;
 }

@@ -8,7 +8,8 @@
 namespace statmc {
 
 /// Per-pixel statistics of a C-channel quantity. Variances are per sample, s² = M2/(n − 1),
-/// unless `variance_of_mean` says they are already divided by n; bc_moment3 is the third
+/// unless `variance_of_mean` says the untransformed `variance` planes are already divided
+/// by n (renderers' "mse" AOVs); the Box-Cox variance is always per sample. bc_moment3 is the third
 /// central moment M3/n of the Box-Cox samples. Box-Cox planes may be absent (renderers
 /// that write only a variance AOV).
 struct StatisticsView {

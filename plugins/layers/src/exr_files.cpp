@@ -1,4 +1,4 @@
-#include "statmc/tool/image_files.h"
+#include "statmc/layers/exr_files.h"
 
 #include <filesystem>
 #include <memory>
@@ -9,10 +9,10 @@
 #include <OpenImageIO/imagecache.h>
 #include <OpenImageIO/imageio.h>
 
+#include "statmc/layers/file_error.h"
 #include "statmc/layers/storage_rules.h"
-#include "statmc/tool/tool_error.h"
 
-namespace statmc::tool {
+namespace statmc::layers {
 
 namespace fs = std::filesystem;
 
@@ -53,7 +53,7 @@ private:
 
 [[noreturn]] void cannot_write(const std::string& path, const std::string& why)
 {
-    throw ToolError(path + ": cannot write: " + why);
+    throw FileError(path + ": cannot write: " + why);
 }
 
 fs::path directory_of(const fs::path& target)
@@ -98,21 +98,21 @@ OIIO::ImageBuf read_image_file(const std::string& path)
 {
     std::error_code ec;
     if (!fs::exists(path, ec))
-        throw ToolError(path + ": no such file");
+        throw FileError(path + ": no such file");
     if (fs::is_directory(path, ec))
-        throw ToolError(path + ": is a directory, not an image");
+        throw FileError(path + ": is a directory, not an image");
     const ForgetOnExit forget{path};
     OIIO::ImageBuf image(path);
     auto unreadable = [&] {
         const std::string why = image.has_error() ? image.geterror() : OIIO::geterror();
-        return ToolError(path + ": not an OpenEXR/readable image: " + why);
+        return FileError(path + ": not an OpenEXR/readable image: " + why);
     };
     if (!image.init_spec(path, 0, 0))
         throw unreadable();
     if (image.deep())
-        throw ToolError(path + ": deep images are not supported");
+        throw FileError(path + ": deep images are not supported");
     if (image.spec().depth > 1)
-        throw ToolError(path + ": volume images are not supported");
+        throw FileError(path + ": volume images are not supported");
     if (!image.read(0, 0, /*force=*/true, OIIO::TypeDesc::FLOAT))
         throw unreadable();
     return image;
@@ -123,7 +123,7 @@ void write_image_file(const OIIO::ImageBuf& image, const std::string& path)
     check_target(path);
     auto out = exr_writer(path);
     OIIO::ImageSpec spec = image.spec();
-    layers::apply_storage_rules(spec);
+    apply_storage_rules(spec);
 
     const fs::path target(path);
     TemporaryFile temporary(temporary_name(target));
@@ -142,4 +142,4 @@ void write_image_file(const OIIO::ImageBuf& image, const std::string& path)
     forget_cached(path);
 }
 
-}  // namespace statmc::tool
+}  // namespace statmc::layers

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Installs everything statmc needs to build, test and run, from Debian 12 packages.
+set -euo pipefail
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev openexr
+  libopencolorio-dev libembree-dev libtbb-dev libboost-math-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
+)
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null
