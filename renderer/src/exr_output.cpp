@@ -1,0 +1,47 @@
+#include "exr_output.h"
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "statmc/core/plane.h"
+#include "statmc/layers/statistics_layers.h"
+#include "statmc/layers/exr_files.h"
+
+namespace statmc::render {
+
+namespace fs = std::filesystem;
+
+OIIO::ImageBuf make_output_image(const Film& film, const OutputInfo& info)
+{
+    const StatisticsPlanes planes = film.stats.planes();
+    const std::vector<float> albedo = film.albedo(), normal = film.normal(), depth = film.depth();
+    const std::size_t n = std::size_t(film.width) * film.height;
+    layers::GuidePlanes guides;
+    for (int c = 0; c < 3; ++c) {
+        guides.albedo[c] = dense_plane(albedo.data() + c * n, film.width);
+        guides.normal[c] = dense_plane(normal.data() + c * n, film.width);
+    }
+    guides.depth = dense_plane(depth.data(), film.width);
+    layers::StatisticsMetadata meta;
+    meta.spp = info.spp;
+    meta.seed = info.seed;
+    OIIO::ImageBuf image = layers::make_statistics_image(planes, meta, guides);
+    image.specmod().attribute(kRenderTimeAttribute, info.render_seconds);
+    image.specmod().attribute(kSceneAttribute, info.scene);
+    return image;
+}
+
+void write_exr(const OIIO::ImageBuf& image, const std::string& path)
+{
+    layers::write_image_file(image, path);  // temporary file + rename, storage rules
+}
+
+std::string denoised_path(const std::string& path)
+{
+    fs::path p(path);
+    const std::string ext = p.extension().string();
+    p.replace_extension();
+    return p.string() + ".denoised" + (ext.empty() ? ".exr" : ext);
+}
+
+}  // namespace statmc::render

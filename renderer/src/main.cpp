@@ -1,0 +1,118 @@
+// statmc-render: renders a pbrt-v3 scene with statmc's path tracer and writes the
+// per-pixel statistics EXR (docs/exr-layers.md), optionally denoised as well.
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <regex>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "statmc/denoise/denoise.h"
+
+#include "camera.h"
+#include "exr_output.h"
+#include "progress.h"
+#include "render_loop.h"
+#include "scene.h"
+#include "scene_parser.h"
+
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+
+// Async-signal-safe: sets a lock-free flag; a second Ctrl-C gets the default action.
+extern "C" void on_sigint(int)
+{
+    g_interrupted.store(true);
+    std::signal(SIGINT, SIG_DFL);
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    using namespace statmc::render;
+    CLI::App app{"statmc-render: path-trace a pbrt-v3 scene (Embree 3) into a statistics EXR\n"
+                 "(mean, variance, Box-Cox moments, sample count, albedo/normal/depth guides)."};
+    std::string scene_path, output;
+    int spp = 0, iterations = 0, seed = 0, threads = 0, maxdepth = -1;
+    std::string resolution;
+    bool denoise = false, quiet = false;
+    app.add_option("scene", scene_path, "pbrt-v3 scene file")->required();
+    app.add_option("-o,--output", output, "output statistics EXR")->required();
+    auto* spp_opt = app.add_option("--spp", spp,
+                                   "total samples per pixel, in iterations of 4, 4, 8, 16, ... "
+                                   "[default: the scene's Sampler pixelsamples]")
+                        ->check(CLI::PositiveNumber);
+    app.add_option("--iterations", iterations,
+                   "number of progressive iterations instead of --spp (totals 4, 8, 16, ...) [default: unset]")
+        ->check(CLI::PositiveNumber)
+        ->excludes(spp_opt);
+    app.add_option("--resolution", resolution,
+                   "image size WxH; the scene's fov is kept [default: the scene's Film resolution]");
+    app.add_option("--seed", seed, "random seed")->capture_default_str()->check(CLI::NonNegativeNumber);
+    app.add_option("--threads", threads, "worker threads, 0 = all cores")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--maxdepth", maxdepth, "maximum path depth [default: the scene's Integrator maxdepth]")
+        ->check(CLI::NonNegativeNumber);
+    app.add_flag("--denoise", denoise, "also write the denoised image to OUT.denoised.exr [default: off]");
+    app.add_flag("-q,--quiet", quiet, "no progress bar and no summary [default: off]");
+    CLI11_PARSE(app, argc, argv);
+
+    try {
+        SceneDescription desc = parse_scene_file(scene_path);
+        for (const std::string& w : desc.warnings)
+            std::fprintf(stderr, "%s\n", w.c_str());
+        int width = desc.camera.width, height = desc.camera.height;
+        if (!resolution.empty()) {
+            std::smatch m;
+            if (!std::regex_match(resolution, m, std::regex(R"((\d+)[xX](\d+))")))
+                throw std::runtime_error("--resolution: expected WxH, got '" + resolution + "'");
+            width = std::stoi(m[1]);
+            height = std::stoi(m[2]);
+            if (width <= 0 || height <= 0 || width > 65536 || height > 65536)
+                throw std::runtime_error("--resolution: width and height must be in 1..65536");
+        }
+        RenderSettings settings;
+        settings.width = width;
+        settings.height = height;
+        settings.schedule = iterations > 0 ? schedule_for_iterations(iterations)
+                                           : schedule_for_spp(spp > 0 ? spp : desc.spp);
+        settings.seed = std::uint64_t(seed);
+        settings.threads = threads;
+        settings.integrator.maxdepth = maxdepth >= 0 ? maxdepth : desc.maxdepth;
+        settings.progress = !quiet && Progress::stderr_is_terminal();
+
+        const Scene scene(desc);
+        const Camera camera(desc.camera, width, height);
+        Film film(width, height);
+        std::signal(SIGINT, on_sigint);
+        const RenderStats stats = render(scene, camera, settings, film, &g_interrupted);
+        std::signal(SIGINT, SIG_DFL);
+
+        OutputInfo info;
+        info.spp = film.min_samples();
+        info.seed = seed;
+        info.render_seconds = float(stats.seconds);
+        info.scene = scene_path;
+        const OIIO::ImageBuf image = make_output_image(film, info);
+        write_exr(image, output);
+        if (denoise) {
+            OIIO::ImageBuf denoised;
+            if (!statmc::denoise(denoised, image, statmc::DenoiseImageOptions{}))
+                throw std::runtime_error("denoise: " + denoised.geterror());
+            write_exr(denoised, denoised_path(output));
+        }
+        if (!quiet)
+            std::fprintf(stderr, "%s: %dx%d, %d spp%s, %.2f s, %.2f Msamples/s\n", output.c_str(), width, height,
+                         info.spp, stats.interrupted ? " (interrupted)" : "", stats.seconds,
+                         stats.seconds > 0 ? double(stats.samples) / stats.seconds * 1e-6 : 0.0);
+        return stats.interrupted ? 130 : 0;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "statmc-render: error: %s\n", e.what());
+        return 1;
+    }
+}

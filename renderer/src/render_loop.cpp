@@ -1,0 +1,156 @@
+#include "render_loop.h"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+
+#include <pmmintrin.h>
+#include <xmmintrin.h>
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include "progress.h"
+
+namespace statmc::render {
+
+Film::Film(int w, int h)
+    : width(w), height(h), stats(w, h), albedo_sum(std::size_t(w) * h * 3), normal_sum(std::size_t(w) * h * 3),
+      depth_sum(std::size_t(w) * h)
+{
+}
+
+namespace {
+
+std::vector<float> average(const std::vector<double>& sums, int channels, const Film& film)
+{
+    const std::size_t n = std::size_t(film.width) * film.height;
+    std::vector<float> out(n * channels);
+    for (int y = 0; y < film.height; ++y)
+        for (int x = 0; x < film.width; ++x) {
+            const std::size_t i = std::size_t(y) * film.width + x;
+            const double count = film.stats.at(x, y).n;
+            for (int c = 0; c < channels; ++c)
+                out[c * n + i] = count > 0 ? float(sums[c * n + i] / count) : 0.f;
+        }
+    return out;
+}
+
+}  // namespace
+
+std::vector<float> Film::albedo() const { return average(albedo_sum, 3, *this); }
+std::vector<float> Film::normal() const { return average(normal_sum, 3, *this); }
+std::vector<float> Film::depth() const { return average(depth_sum, 1, *this); }
+
+int Film::min_samples() const
+{
+    double m = std::numeric_limits<double>::infinity();
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            m = std::min(m, stats.at(x, y).n);
+    return int(m);
+}
+
+std::vector<int> schedule_for_spp(int total_spp)
+{
+    std::vector<int> s;
+    int done = 0, next = 4;
+    while (done < total_spp) {
+        const int n = std::min(next, total_spp - done);
+        s.push_back(n);
+        done += n;
+        if (s.size() > 1)
+            next *= 2;
+    }
+    return s;
+}
+
+std::vector<int> schedule_for_iterations(int iterations)
+{
+    std::vector<int> s;
+    int next = 4;
+    for (int i = 0; i < iterations; ++i) {
+        s.push_back(next);
+        if (i > 0)
+            next *= 2;
+    }
+    return s;
+}
+
+RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings, Film& film,
+                   const std::atomic<bool>* cancel,
+                   const std::function<void(int iteration, const Film&)>& after_iteration)
+{
+    const auto start = std::chrono::steady_clock::now();
+    std::unique_ptr<tbb::global_control> limit;
+    if (settings.threads > 0)
+        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                      std::size_t(settings.threads));
+    const PathIntegrator integrator(scene, settings.integrator);
+    constexpr int kTile = 16;
+    const int tiles_x = (settings.width + kTile - 1) / kTile, tiles_y = (settings.height + kTile - 1) / kTile;
+    const std::size_t npix = std::size_t(settings.width) * settings.height;
+
+    std::uint64_t total = 0;
+    for (int n : settings.schedule)
+        total += std::uint64_t(n) * npix;
+    Progress progress(total, settings.progress);
+
+    RenderStats rs;
+    std::uint64_t first_sample = 0;
+    for (std::size_t it = 0; it < settings.schedule.size(); ++it) {
+        const int spp = settings.schedule[it];
+        const bool may_stop = it > 0;
+        std::atomic<std::uint64_t> samples{0};
+        tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
+            if (may_stop && cancel && cancel->load())
+                return;
+            // Denormals flushed on every worker, so no pixel depends on the thread it ran on.
+            _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+            _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+            const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
+            const int x1 = std::min(x0 + kTile, settings.width), y1 = std::min(y0 + kTile, settings.height);
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x) {
+                    const std::size_t pixel = std::size_t(y) * settings.width + x;
+                    for (int s = 0; s < spp; ++s) {
+                        Sampler sampler(settings.seed, pixel, first_sample + std::uint64_t(s));
+                        const float jx = sampler.get1d(), jy = sampler.get1d();
+                        const Ray ray = camera.generate(float(x) + jx, float(y) + jy);
+                        GuideSample guide;
+                        const Rgb L = integrator.radiance(ray, sampler, guide);
+                        const float value[3] = {L.r, L.g, L.b};
+                        film.stats.add(x, y, value);
+                        for (int c = 0; c < 3; ++c) {
+                            film.albedo_sum[c * npix + pixel] += guide.albedo[c];
+                            film.normal_sum[c * npix + pixel] += guide.normal[c];
+                        }
+                        film.depth_sum[pixel] += guide.depth;
+                    }
+                }
+            const std::uint64_t n = std::uint64_t(x1 - x0) * (y1 - y0) * spp;
+            samples += n;
+            progress.advance(n);
+        });
+        rs.samples += samples.load();
+        first_sample += std::uint64_t(spp);
+        const bool stopped = cancel && cancel->load() && may_stop;
+        if (stopped && samples.load() < std::uint64_t(spp) * npix) {
+            rs.interrupted = true;
+            ++rs.iterations_done;  // partial
+            break;
+        }
+        ++rs.iterations_done;
+        if (after_iteration)
+            after_iteration(int(it), film);
+        if (cancel && cancel->load()) {
+            rs.interrupted = true;
+            break;
+        }
+    }
+    progress.finish();
+    rs.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return rs;
+}
+
+}  // namespace statmc::render

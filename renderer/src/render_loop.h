@@ -1,0 +1,65 @@
+// The progressive render (method.md §6): iterations of 4, 4, 8, 16, ... samples per pixel
+// (totals 4, 8, 16, 32, ...), each over 16x16 tiles in parallel (TBB). Samples go straight
+// into core's per-pixel accumulators (StatisticsImage<3>): a tile owns its pixels and
+// adds their samples in sample-index order, so the statistics are exact and identical
+// for any thread count without a merge step. Guides are averaged alongside.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "statmc/core/statistics_image.h"
+
+#include "camera.h"
+#include "integrator.h"
+#include "scene.h"
+
+namespace statmc::render {
+
+/// Per-pixel accumulators for the beauty and the guide sums.
+struct Film {
+    Film(int width, int height);
+    int width, height;
+    StatisticsImage<3> stats;
+    std::vector<double> albedo_sum, normal_sum, depth_sum;  ///< channel-major sums
+
+    /// Guide averages as dense channel-major float planes (3, 3 and 1 channels).
+    std::vector<float> albedo() const;
+    std::vector<float> normal() const;
+    std::vector<float> depth() const;
+    /// The smallest per-pixel sample count.
+    int min_samples() const;
+};
+
+/// Per-iteration sample counts reaching `total_spp` (the last one clipped).
+std::vector<int> schedule_for_spp(int total_spp);
+/// The first `iterations` entries of the schedule: totals 4·2^(K−1).
+std::vector<int> schedule_for_iterations(int iterations);
+
+struct RenderSettings {
+    int width = 0, height = 0;
+    std::vector<int> schedule;  ///< samples per pixel of each iteration
+    std::uint64_t seed = 0;
+    int threads = 0;            ///< 0: all cores
+    IntegratorSettings integrator;
+    bool progress = false;
+};
+
+struct RenderStats {
+    double seconds = 0;
+    int iterations_done = 0;
+    bool interrupted = false;
+    std::uint64_t samples = 0;
+};
+
+/// Renders into `film`. When `cancel` becomes true, the iteration in progress finishes
+/// the tiles already started and skips the rest (never during the first iteration, so
+/// every pixel has samples), then the render stops. `after_iteration` runs after each
+/// iteration (the hook for per-iteration denoising).
+RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings, Film& film,
+                   const std::atomic<bool>* cancel = nullptr,
+                   const std::function<void(int iteration, const Film&)>& after_iteration = {});
+
+}  // namespace statmc::render
