@@ -68,6 +68,11 @@ void add_band(const FilterLayout& L, int y, int x0, int dy0, int dy1, Partial<V,
     auto tap = [&](int dx, int dy) {
         const std::ptrdiff_t off = centre + std::ptrdiff_t(dy) * L.stride + dx;
         const auto m = members<V, NC>(L, ctr, off);
+        if constexpr (NG > 0) {
+            // The guide weight costs an exp; a tap no lane accepts adds nothing anyway.
+            if (V::none(m))
+                return;
+        }
         F w;
         if constexpr (NG == 0) {
             w = V::set1(L.spatial(dx, dy));

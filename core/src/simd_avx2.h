@@ -26,6 +26,7 @@ struct Avx2 {
     static M le(F a, F b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
     static M both(M a, M b) { return _mm256_and_ps(a, b); }
     static F select(M m, F a) { return _mm256_and_ps(m, a); }
+    static bool none(M m) { return _mm256_movemask_ps(m) == 0; }
     static void store(float* p, F v) { _mm256_storeu_ps(p, v); }
 
     /// e^x to ~2 ulp for x in [−87.3, 88.3] (Cephes expf: range reduction by ln 2,

@@ -26,6 +26,7 @@ struct Scalar {
     static M le(F a, F b) { return a <= b; }
     static M both(M a, M b) { return a && b; }
     static F select(M m, F a) { return m ? a : 0.f; }
+    static bool none(M m) { return !m; }
     static F exp(F x) { return std::exp(x); }
     static void store(float* p, F v) { *p = v; }
 };

@@ -116,7 +116,12 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{24, 16, 4, 6, false, false},   // four channels
                       Case{33, 19, 3, 6, true, false},    // albedo guide
                       Case{33, 19, 3, 6, false, true},    // normal guide
-                      Case{33, 19, 3, 6, true, true}));   // both guides
+                      Case{33, 19, 3, 6, true, true}),    // both guides
+    [](const ::testing::TestParamInfo<Case>& info) {
+        const Case& k = info.param;
+        return std::to_string(k.w) + "x" + std::to_string(k.h) + "_c" + std::to_string(k.channels) +
+               "_r" + std::to_string(k.radius) + (k.albedo ? "_albedo" : "") + (k.normal ? "_normal" : "");
+    });
 
 TEST(Filter, BitwiseIdenticalForAnyThreadCount)
 {
