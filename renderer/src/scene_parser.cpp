@@ -91,12 +91,6 @@ private:
             fail(last_line(), "expected " + what + " (a quoted string)");
         return tokens_[pos_++].text;
     }
-    double expect_number(const std::string& what)
-    {
-        if (at_end() || peek().kind != Token::Kind::Number)
-            fail(last_line(), "expected " + what + " (a number)");
-        return tokens_[pos_++].number;
-    }
     /// n numbers, optionally enclosed in brackets (pbrt accepts both for Transform).
     std::vector<double> numbers(std::size_t n, const std::string& what)
     {
@@ -104,8 +98,11 @@ private:
         if (bracket)
             ++pos_;
         std::vector<double> v;
-        for (std::size_t i = 0; i < n; ++i)
-            v.push_back(expect_number(what + " needs " + std::to_string(n) + " numbers"));
+        for (std::size_t i = 0; i < n; ++i) {
+            if (at_end() || peek().kind != Token::Kind::Number)
+                fail(last_line(), what + " needs " + std::to_string(n) + " numbers");
+            v.push_back(tokens_[pos_++].number);
+        }
         if (bracket) {
             if (at_end() || peek().kind != Token::Kind::CloseBracket)
                 fail(last_line(), what + " needs exactly " + std::to_string(n) + " numbers and ']'");

@@ -1,0 +1,103 @@
+// statmc-render as a program: output layers and header, --denoise, errors.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <sys/wait.h>
+
+#include <OpenImageIO/imagebuf.h>
+
+#include "renderer_test_support.h"
+
+using statmc::render::test::ScratchDir;
+
+namespace {
+
+struct ProgramRun {
+    int status;
+    std::string output;  ///< stdout and stderr
+};
+
+ProgramRun run(const std::string& args, const ScratchDir& dir)
+{
+    const std::string log = dir.file("log.txt");
+    const std::string cmd = std::string("\"") + STATMC_RENDER_EXE + "\" " + args + " > \"" + log + "\" 2>&1";
+    const int raw = std::system(cmd.c_str());
+    std::ifstream in(log);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, ss.str()};
+}
+
+const std::string kScene =
+    "LookAt 0 0 -4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 40\n"
+    "Film \"image\" \"integer xresolution\" 32 \"integer yresolution\" 16\n"
+    "Sampler \"random\" \"integer pixelsamples\" 8\nWorldBegin\n"
+    "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 4 4]\nTranslate 0 3 0\n"
+    "Shape \"sphere\" \"float radius\" 1\nAttributeEnd\n"
+    "Material \"matte\" \"rgb Kd\" [0.5 0.4 0.3]\nShape \"sphere\" \"float radius\" 1\nWorldEnd\n";
+
+}  // namespace
+
+TEST(Cli, WritesStatisticsLayersAndHeader)
+{
+    ScratchDir dir("cli");
+    const std::string scene = dir.write("s.pbrt", kScene);
+    const ProgramRun r = run("\"" + scene + "\" -o \"" + dir.file("out.exr") + "\" --seed 5 --quiet --denoise", dir);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(r.output.empty()) << r.output;  // --quiet and no TTY: silent
+    OIIO::ImageBuf img(dir.file("out.exr"));
+    ASSERT_TRUE(img.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << img.geterror();
+    const OIIO::ImageSpec& spec = img.spec();
+    EXPECT_EQ(spec.width, 32);
+    EXPECT_EQ(spec.height, 16);
+    for (const char* ch : {"R", "G", "B", "variance.R", "boxcoxMean.G", "boxcoxVariance.B", "boxcoxM3.R",
+                           "sampleCount.Y", "albedo.R", "normal.X", "depth.Z"})
+        EXPECT_GE(spec.channelindex(ch), 0) << ch;
+    EXPECT_EQ(spec.get_int_attribute("statmc:spp"), 8);  // the scene's pixelsamples
+    EXPECT_EQ(spec.get_int_attribute("statmc:seed"), 5);
+    EXPECT_GT(spec.get_float_attribute("statmc:renderTime", -1.f), 0.f);
+    EXPECT_EQ(spec.get_string_attribute("statmc:scene"), scene);
+    EXPECT_TRUE(std::filesystem::exists(dir.file("out.denoised.exr")));
+    OIIO::ImageBuf den(dir.file("out.denoised.exr"));
+    ASSERT_TRUE(den.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << den.geterror();
+    EXPECT_EQ(den.spec().get_int_attribute("statmc:denoised"), 1);
+}
+
+TEST(Cli, ResolutionAndSppOverrides)
+{
+    ScratchDir dir("cli");
+    const std::string scene = dir.write("s.pbrt", kScene);
+    const ProgramRun r = run("\"" + scene + "\" -o \"" + dir.file("o.exr") + "\" --resolution 8x6 --spp 12 -q", dir);
+    ASSERT_EQ(r.status, 0) << r.output;
+    OIIO::ImageBuf img(dir.file("o.exr"));
+    ASSERT_TRUE(img.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+    EXPECT_EQ(img.spec().width, 8);
+    EXPECT_EQ(img.spec().height, 6);
+    EXPECT_EQ(img.spec().get_int_attribute("statmc:spp"), 12);
+    EXPECT_FLOAT_EQ(img.getchannel(3, 3, 0, img.spec().channelindex("sampleCount.Y")), 12.f);
+}
+
+TEST(Cli, MalformedSceneFailsWithFileLineAndNoOutput)
+{
+    ScratchDir dir("cli");
+    const std::string scene = dir.write("bad.pbrt", "WorldBegin\nShape \"sphere\" \"float radius\" [ 1\n");
+    const ProgramRun r = run("\"" + scene + "\" -o \"" + dir.file("o.exr") + "\" -q", dir);
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("bad.pbrt:2:"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("o.exr")));
+}
+
+TEST(Cli, HelpListsEveryOptionWithItsDefault)
+{
+    ScratchDir dir("cli");
+    const ProgramRun r = run("--help", dir);
+    EXPECT_EQ(r.status, 0);
+    for (const char* opt : {"--output", "--spp", "--iterations", "--resolution", "--seed", "--threads", "--maxdepth",
+                            "--denoise", "--quiet"})
+        EXPECT_NE(r.output.find(opt), std::string::npos) << opt;
+    EXPECT_NE(r.output.find("default"), std::string::npos);
+}
