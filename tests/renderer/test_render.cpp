@@ -44,12 +44,12 @@ Rendered render_scene(const SceneDescription& desc, int w, int h, int spp, std::
 // A diffuse plane of albedo ρ inside a closed box whose walls all emit L (and reflect
 // nothing). Every point of the plane sees emitters over its whole upper hemisphere, so
 // the radiance it reflects is ρ·L exactly, and the camera sees only the plane.
-std::string furnace_scene(float L, const char* rho)
+std::string furnace_scene(float L, const std::string& material, const std::string& shape, int maxdepth = 5)
 {
     const std::string l = std::to_string(L);
     std::string s = "LookAt 0 1 0  0 0 0  0 0 1\nCamera \"perspective\" \"float fov\" 40\n"
                     "Film \"image\" \"integer xresolution\" 16 \"integer yresolution\" 16\n"
-                    "Integrator \"path\" \"integer maxdepth\" 5\nWorldBegin\n"
+                    "Integrator \"path\" \"integer maxdepth\" " + std::to_string(maxdepth) + "\nWorldBegin\n"
                     "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [" + l + " " + l + " " + l + "]\n"
                     "Material \"matte\" \"rgb Kd\" [0 0 0]\n";
     // Six walls of the cube [-20, 20]^3, normals pointing inwards.
@@ -59,18 +59,89 @@ std::string furnace_scene(float L, const char* rho)
     s += quad("20 -20 -20  20 20 -20  20 20 20  20 -20 20", "-1 0 0");
     s += quad("-20 -20 -20  20 -20 -20  20 -20 20  -20 -20 20", "0 1 0");
     s += quad("-20 20 -20  20 20 -20  20 20 20  -20 20 20", "0 -1 0");
-    s += "AttributeEnd\nMaterial \"matte\" \"rgb Kd\" [" + std::string(rho) + "]\n";
-    s += quad("-5 0 -5  5 0 -5  5 0 5  -5 0 5", "0 1 0");
-    return s + "WorldEnd\n";
+    return s + "AttributeEnd\n" + material + "\n" + shape + "WorldEnd\n";
+}
+
+const std::string kPlane = quad("-5 0 -5  5 0 -5  5 0 5  -5 0 5", "0 1 0");
+
+/// Region mean and its standard error (from the per-sample variance layer) of channel c.
+std::pair<double, double> region_mean(const statmc::StatisticsPlanes& p, int c)
+{
+    const std::size_t m = std::size_t(p.width) * p.height;
+    double mean = 0, var = 0;
+    for (std::size_t i = 0; i < m; ++i) {
+        mean += p.mean[c * m + i];
+        var += p.variance[c * m + i] / p.count[i];
+    }
+    return {mean / double(m), std::sqrt(var) / double(m)};
 }
 
 }  // namespace
+
+TEST(Render, MirrorAndGlassVanishInAFurnace)
+{
+    // Lossless specular surfaces inside a uniform emitter show the emitter's radiance: the
+    // mirror plane exactly (zero variance), the glass sphere up to Russian roulette noise
+    // (the (η_i/η_t)² factors of entering and leaving cancel).
+    const auto mirror = parse_scene_string(
+        furnace_scene(1.5f, "Material \"mirror\" \"rgb Kr\" [1 1 1]", kPlane), "mirror.pbrt");
+    const auto rm = render_scene(mirror, 8, 8, 8, 3, 0);
+    const auto pm = rm.film->stats.planes();
+    for (float v : pm.mean)
+        EXPECT_FLOAT_EQ(v, 1.5f);
+    const auto glass = parse_scene_string(
+        furnace_scene(1.5f, "Material \"glass\"", "Translate 0 -3 0\nShape \"sphere\" \"float radius\" 2\n", 65),
+        "glass.pbrt");
+    const auto rg = render_scene(glass, 16, 16, 64, 3, 0);
+    const auto pg = rg.film->stats.planes();
+    const auto [mean, se] = region_mean(pg, 1);
+    EXPECT_LT(std::abs(mean - 1.5), 4 * se + 1e-4) << "mean " << mean << " se " << se;
+}
+
+TEST(Render, SphereLightOnDiffusePlaneMatchesClosedForm)
+{
+    // A sphere of radiance L and radius r, wholly above a Lambertian plane of albedo ρ,
+    // gives irradiance E = π·L·(r/D)²·cos β at a point at distance D from its centre
+    // (β between the normal and the centre): the pixel value is ρ·L·r²·cos β / D². The
+    // truth is that formula averaged over each pixel's footprint (8x8 quadrature);
+    // both MIS strategies (cone sampling, BSDF hits) contribute.
+    const float L = 4.f, r = 0.5f, rho = 0.5f;
+    const Vec3 c{0.3f, 3.f, 0.2f};
+    const std::string scene =
+        "LookAt 0 1 0  0 0 0  0 0 1\nCamera \"perspective\" \"float fov\" 50\n"
+        "Integrator \"path\" \"integer maxdepth\" 1\nWorldBegin\n"
+        "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 4 4]\nMaterial \"matte\" \"rgb Kd\" [0 0 0]\n"
+        "Translate 0.3 3 0.2\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
+        "Material \"matte\" \"rgb Kd\" [0.5 0.5 0.5]\n" + kPlane + "WorldEnd\n";
+    const auto desc = parse_scene_string(scene, "sphere.pbrt");
+    constexpr int kW = 12, kH = 12;
+    const auto result = render_scene(desc, kW, kH, 256, 9, 0);
+    const Camera camera(desc.camera, kW, kH);
+    double truth = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            for (int j = 0; j < 8; ++j)
+                for (int i = 0; i < 8; ++i) {
+                    const Ray ray = camera.generate(float(x) + (float(i) + 0.5f) / 8, float(y) + (float(j) + 0.5f) / 8);
+                    const float t = -ray.origin.y / ray.direction.y;
+                    const Vec3 p = ray.origin + ray.direction * t;
+                    const Vec3 v = c - p;
+                    const float d2 = length_squared(v);
+                    truth += rho * L * r * r * (v.y / std::sqrt(d2)) / d2;
+                }
+    truth /= double(kW) * kH * 64;
+    const auto p = result.film->stats.planes();
+    const auto [mean, se] = region_mean(p, 0);
+    // 4 standard errors: false-positive rate ≈ 6.3e-5 for a correct renderer.
+    EXPECT_LT(std::abs(mean - truth), 4 * se) << "mean " << mean << " truth " << truth << " se " << se;
+    EXPECT_LT(se, 0.01 * truth);
+}
 
 TEST(Render, DiffusePlaneInUniformEmitterMatchesClosedForm)
 {
     const float L = 2.f;
     const float rho[3] = {0.2f, 0.5f, 0.8f};
-    const auto desc = parse_scene_string(furnace_scene(L, "0.2 0.5 0.8"), "furnace.pbrt");
+    const auto desc = parse_scene_string(furnace_scene(L, "Material \"matte\" \"rgb Kd\" [0.2 0.5 0.8]", kPlane), "furnace.pbrt");
     const auto r = render_scene(desc, 16, 16, 64, 7, 0);
     // The stored statistics (as written to the EXR): per-pixel mean, per-sample
     // variance s², count n. The region mean's standard error is sqrt(Σ s²/n) / m.
@@ -97,7 +168,7 @@ TEST(Render, DiffusePlaneInUniformEmitterMatchesClosedForm)
 TEST(Render, BitwiseIdenticalForAnyThreadCountAndSeedDependent)
 {
     const std::string shared = statmc::render::test::shared_dir();
-    const auto desc = shared.empty() ? parse_scene_string(furnace_scene(1.f, "0.5 0.5 0.5"), "f.pbrt")
+    const auto desc = shared.empty() ? parse_scene_string(furnace_scene(1.f, "Material \"matte\"", kPlane), "f.pbrt")
                                      : parse_scene_file(shared + "/scenes/cornell-box/scene.pbrt");
     auto pixels = [&](std::uint64_t seed, int threads) {
         const auto r = render_scene(desc, 24, 20, 12, seed, threads);
