@@ -39,7 +39,7 @@ int main(int argc, char** argv)
     std::string scene_path, output;
     int spp = 0, iterations = 0, seed = 0, threads = 0, maxdepth = -1;
     std::string resolution;
-    bool denoise = false, quiet = false;
+    bool denoise = false, quiet = false, profile = false;
     app.add_option("scene", scene_path, "pbrt-v3 scene file")->required();
     app.add_option("-o,--output", output, "output statistics EXR")->required();
     auto* spp_opt = app.add_option("--spp", spp,
@@ -60,6 +60,9 @@ int main(int argc, char** argv)
         ->check(CLI::NonNegativeNumber);
     app.add_flag("--denoise", denoise, "also write the denoised image to OUT.denoised.exr [default: off]");
     app.add_flag("-q,--quiet", quiet, "no progress bar and no summary [default: off]");
+    app.add_flag("--profile", profile,
+                 "print samples/s, rays/s and the share of render time spent in Embree traversal "
+                 "(the rest is shading, sampling and accumulation) [default: off]");
     CLI11_PARSE(app, argc, argv);
 
     try {
@@ -86,7 +89,8 @@ int main(int argc, char** argv)
         settings.integrator.maxdepth = maxdepth >= 0 ? maxdepth : desc.maxdepth;
         settings.progress = !quiet && Progress::stderr_is_terminal();
 
-        const Scene scene(desc);
+        Scene scene(desc);
+        scene.enable_profiling(profile);
         const Camera camera(desc.camera, width, height);
         Film film(width, height);
         std::signal(SIGINT, on_sigint);
@@ -110,6 +114,17 @@ int main(int argc, char** argv)
             std::fprintf(stderr, "%s: %dx%d, %d spp%s, %.2f s, %.2f Msamples/s\n", output.c_str(), width, height,
                          info.spp, stats.interrupted ? " (interrupted)" : "", stats.seconds,
                          stats.seconds > 0 ? double(stats.samples) / stats.seconds * 1e-6 : 0.0);
+        if (profile) {
+            const auto t = scene.traversal_counters();
+            std::printf("%s: %dx%d, %d spp, %zu triangles, threads %s\n", scene_path.c_str(), width, height,
+                        info.spp, scene.triangle_count(), threads > 0 ? std::to_string(threads).c_str() : "all");
+            std::printf("  %.3f s, %.3f Msamples/s, %.2f Mrays/s, %.2f rays/sample\n", stats.seconds,
+                        double(stats.samples) / stats.seconds * 1e-6, double(t.rays) / stats.seconds * 1e-6,
+                        stats.samples ? double(t.rays) / double(stats.samples) : 0.0);
+            std::printf("  Embree traversal %.1f%% of render time, shading and the rest %.1f%%\n",
+                        100.0 * double(t.cycles) / double(stats.tile_cycles),
+                        100.0 - 100.0 * double(t.cycles) / double(stats.tile_cycles));
+        }
         return stats.interrupted ? 130 : 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "statmc-render: error: %s\n", e.what());

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include <pmmintrin.h>
+#include <x86intrin.h>
 #include <xmmintrin.h>
 
 #include <tbb/global_control.h>
@@ -101,10 +102,11 @@ RenderStats render(const Scene& scene, const Camera& camera, const RenderSetting
     for (std::size_t it = 0; it < settings.schedule.size(); ++it) {
         const int spp = settings.schedule[it];
         const bool may_stop = it > 0;
-        std::atomic<std::uint64_t> samples{0};
+        std::atomic<std::uint64_t> samples{0}, cycles{0};
         tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
             if (may_stop && cancel && cancel->load())
                 return;
+            const std::uint64_t t0 = __rdtsc();
             // Denormals flushed on every worker, so no pixel depends on the thread it ran on.
             _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
             _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
@@ -130,9 +132,11 @@ RenderStats render(const Scene& scene, const Camera& camera, const RenderSetting
                 }
             const std::uint64_t n = std::uint64_t(x1 - x0) * (y1 - y0) * spp;
             samples += n;
+            cycles += __rdtsc() - t0;
             progress.advance(n);
         });
         rs.samples += samples.load();
+        rs.tile_cycles += cycles.load();
         first_sample += std::uint64_t(spp);
         const bool stopped = cancel && cancel->load() && may_stop;
         if (stopped && samples.load() < std::uint64_t(spp) * npix) {

@@ -52,6 +52,7 @@ struct RenderStats {
     int iterations_done = 0;
     bool interrupted = false;
     std::uint64_t samples = 0;
+    std::uint64_t tile_cycles = 0;  ///< time stamp counter cycles inside tiles, all threads
 };
 
 /// Renders into `film`. When `cancel` becomes true, the iteration in progress finishes

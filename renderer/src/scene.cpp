@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <x86intrin.h>
+
 #include <embree3/rtcore.h>
 
 namespace statmc::render {
@@ -143,6 +145,16 @@ Scene::Scene(const SceneDescription& desc) : embree_(std::make_unique<Embree>())
 
 Scene::~Scene() = default;
 
+Scene::TraversalCounters Scene::traversal_counters() const
+{
+    TraversalCounters total;
+    for (const TraversalCounters& c : counters_) {
+        total.cycles += c.cycles;
+        total.rays += c.rays;
+    }
+    return total;
+}
+
 Vec3 Scene::offset_origin(Vec3 p, Vec3 ng, Vec3 w)
 {
     const float scale = 1e-4f * (1.f + std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
@@ -167,7 +179,15 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const
     rh.ray.time = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(embree_->scene, &ctx, &rh);
+    if (profiling_) {
+        const std::uint64_t t0 = __rdtsc();
+        rtcIntersect1(embree_->scene, &ctx, &rh);
+        auto& c = counters_.local();
+        c.cycles += __rdtsc() - t0;
+        ++c.rays;
+    } else {
+        rtcIntersect1(embree_->scene, &ctx, &rh);
+    }
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
         return std::nullopt;
 
@@ -228,7 +248,15 @@ bool Scene::occluded(Vec3 origin, Vec3 direction, float tmax) const
     ray.mask = ~0u;
     ray.flags = 0;
     ray.time = 0;
-    rtcOccluded1(embree_->scene, &ctx, &ray);
+    if (profiling_) {
+        const std::uint64_t t0 = __rdtsc();
+        rtcOccluded1(embree_->scene, &ctx, &ray);
+        auto& c = counters_.local();
+        c.cycles += __rdtsc() - t0;
+        ++c.rays;
+    } else {
+        rtcOccluded1(embree_->scene, &ctx, &ray);
+    }
     return ray.tfar < 0;
 }
 

@@ -2,9 +2,12 @@
 // and the lights, with the two ray queries the integrator needs.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
 
 #include "area_light.h"
 #include "camera.h"
@@ -44,6 +47,16 @@ public:
     /// a new ray does not hit the surface it leaves.
     static Vec3 offset_origin(Vec3 p, Vec3 ng, Vec3 w);
 
+    /// Time stamp counter cycles spent inside Embree queries and the number of queries,
+    /// summed over threads (for --profile: traversal vs shading). Off by default, since
+    /// reading the counter around every ray costs a little.
+    struct TraversalCounters {
+        std::uint64_t cycles = 0;
+        std::uint64_t rays = 0;
+    };
+    void enable_profiling(bool on) { profiling_ = on; }
+    TraversalCounters traversal_counters() const;
+
 private:
     struct Record;
     struct Embree;
@@ -52,6 +65,8 @@ private:
     std::vector<Material> materials_;
     Lights lights_;
     std::size_t triangles_ = 0;
+    bool profiling_ = false;
+    mutable tbb::enumerable_thread_specific<TraversalCounters> counters_;
 };
 
 }  // namespace statmc::render
