@@ -1,12 +1,17 @@
 // statmc-render as a program: output layers and header, --denoise, errors.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <thread>
 #include <fstream>
 #include <sstream>
 
+#include <fcntl.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <OpenImageIO/imagebuf.h>
 
@@ -100,4 +105,36 @@ TEST(Cli, HelpListsEveryOptionWithItsDefault)
                             "--denoise", "--quiet"})
         EXPECT_NE(r.output.find(opt), std::string::npos) << opt;
     EXPECT_NE(r.output.find("default"), std::string::npos);
+}
+
+TEST(Cli, InterruptWritesWhatWasRenderedAsAValidExr)
+{
+    ScratchDir dir("cli");
+    const std::string scene = dir.write("s.pbrt", kScene);
+    const std::string out = dir.file("o.exr");
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        const int devnull = ::open("/dev/null", O_WRONLY);
+        ::dup2(devnull, 1);
+        ::dup2(devnull, 2);
+        ::execl(STATMC_RENDER_EXE, STATMC_RENDER_EXE, scene.c_str(), "-o", out.c_str(), "--spp", "10000000",
+                "--resolution", "64x64", "--threads", "1", static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    ASSERT_EQ(::kill(pid, SIGINT), 0);
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130);  // interrupted, but the file is complete
+    OIIO::ImageBuf img(out);
+    ASSERT_TRUE(img.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << img.geterror();
+    const int spp = img.spec().get_int_attribute("statmc:spp");
+    EXPECT_GE(spp, 4);  // at least the first iteration
+    EXPECT_LT(spp, 10000000);
+    const int count = img.spec().channelindex("sampleCount.Y");
+    for (int y = 0; y < 64; y += 9)
+        for (int x = 0; x < 64; x += 7)
+            EXPECT_GE(img.getchannel(x, y, 0, count), float(spp));
 }

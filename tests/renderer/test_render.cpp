@@ -239,3 +239,27 @@ TEST(Render, CornellBoxAgreesWithTungstenReference)
                     << theirs << " (se " << se << ")";
             }
 }
+
+TEST(Render, SharedScenesRenderFiniteStatistics)
+{
+    // Veach MIS (sphere lights, rough metal) and Veach Ajar (PLY meshes, textures,
+    // glass, metal) at a tiny size: every pixel finite and non-negative, and some light
+    // gets through (Ajar's light is behind a door).
+    const std::string shared = statmc::render::test::shared_dir();
+    if (shared.empty())
+        GTEST_SKIP() << "../shared/scenes not present";
+    for (const char* name : {"veach-mis", "veach-ajar"}) {
+        const auto desc = parse_scene_file(shared + "/scenes/" + name + "/scene.pbrt");
+        const auto r = render_scene(desc, 32, 18, 8, 1, 0);
+        const auto p = r.film->stats.planes();
+        double sum = 0;
+        for (float v : p.mean) {
+            ASSERT_TRUE(std::isfinite(v)) << name;
+            ASSERT_GE(v, 0.f) << name;
+            sum += v;
+        }
+        for (float v : p.variance)
+            ASSERT_TRUE(std::isfinite(v) && v >= 0) << name;
+        EXPECT_GT(sum, 0.0) << name;
+    }
+}
