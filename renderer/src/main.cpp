@@ -4,6 +4,7 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <regex>
 #include <string>
 
@@ -66,6 +67,12 @@ int main(int argc, char** argv)
     CLI11_PARSE(app, argc, argv);
 
     try {
+        {  // Fail before rendering, not after, when the output cannot be written.
+            const std::filesystem::path out(output);
+            const auto dir = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
+            if (!std::filesystem::is_directory(dir))
+                throw std::runtime_error(output + ": cannot write: directory '" + dir.string() + "' does not exist");
+        }
         SceneDescription desc = parse_scene_file(scene_path);
         for (const std::string& w : desc.warnings)
             std::fprintf(stderr, "%s\n", w.c_str());
