@@ -29,7 +29,8 @@ void Lights::finish()
     prob_.clear();
     double total = 0;
     std::vector<double> w;
-    for (const Emitter& e : emitters_) {
+    for (Emitter& e : emitters_) {
+        e.cached_area = e.area();
         const double power = double(std::max(e.radiance.luminance(), 0.f)) * e.area() * (e.two_sided ? 2 : 1);
         w.push_back(power);
         total += power;
@@ -110,7 +111,7 @@ std::optional<LightSample> Lights::sample(Vec3 p, float u_select, float u1, floa
         const float cos_l = std::abs(dot(nrm, wi));
         if (cos_l <= 0)
             return std::nullopt;
-        return LightSample{wi, dist, e.emitted(n, -wi), p_select * dist2 / (cos_l * e.area())};
+        return LightSample{wi, dist, e.emitted(n, -wi), p_select * dist2 / (cos_l * e.cached_area)};
     }
 
     // Triangle: uniform barycentrics.
@@ -126,7 +127,7 @@ std::optional<LightSample> Lights::sample(Vec3 p, float u_select, float u1, floa
     const float cos_l = std::abs(dot(e.normal, wi));
     if (cos_l <= 1e-7f)
         return std::nullopt;
-    return LightSample{wi, dist, e.emitted(e.normal, -wi), p_select * dist2 / (cos_l * e.area())};
+    return LightSample{wi, dist, e.emitted(e.normal, -wi), p_select * dist2 / (cos_l * e.cached_area)};
 }
 
 float Lights::pdf(Vec3 p, int i, Vec3 q, Vec3 n) const
@@ -145,9 +146,9 @@ float Lights::pdf(Vec3 p, int i, Vec3 q, Vec3 n) const
             return p_select / (2 * kPi * sphere_one_minus_cos_max(d2, r2));
     }
     const float cos_l = std::abs(dot(n, v)) / std::sqrt(dist2);
-    if (cos_l <= 1e-7f || e.area() <= 0)
+    if (cos_l <= 1e-7f || e.cached_area <= 0)
         return 0;
-    return p_select * dist2 / (cos_l * e.area());
+    return p_select * dist2 / (cos_l * e.cached_area);
 }
 
 }  // namespace statmc::render

@@ -25,6 +25,7 @@ struct Emitter {
     bool inward = false;  ///< sphere: ReverseOrientation, emits towards its centre
 
     float area() const;
+    float cached_area = 0;  ///< area(), set by Lights::finish
     /// Radiance leaving point `p` with normal `n` (oriented as this emitter's) towards `w`.
     Rgb emitted(Vec3 n, Vec3 w) const;
 };

@@ -7,9 +7,16 @@
 
 namespace statmc::render {
 
-Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSample& guide) const
+Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSample& guide, PathRecord* record) const
 {
     Rgb L, beta{1.f};
+    if (record)
+        record->clear();
+    auto contribute = [&](int bounce, PathRecord::Technique technique, float weight, Rgb value) {
+        L += value;
+        if (record)
+            record->contributions.push_back({bounce, technique, weight, value});
+    };
     Ray ray = camera_ray;
     bool specular_bounce = false;
     bool guide_done = false;
@@ -22,6 +29,8 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
         if (!hit)
             break;  // no environment light in the supported subset
         const Vec3 wo = -ray.direction;
+        if (record)
+            record->throughput.push_back(beta);
         if (bounce == 0)
             guide.depth = hit->t;
 
@@ -32,10 +41,12 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
             const Rgb Le = e.emitted(hit->ng, wo);
             if (!Le.is_black()) {
                 if (bounce == 0 || specular_bounce) {
-                    L += beta * Le;
+                    contribute(bounce, PathRecord::Technique::Emission, 1.f, beta * Le);
                 } else {
+                    // Direct lighting of the previous vertex, found by its BSDF sample.
                     const float light_pdf = lights.pdf(prev_p, hit->emitter, hit->p, hit->ng);
-                    L += beta * Le * power_heuristic(bsdf_pdf, light_pdf);
+                    const float w = power_heuristic(bsdf_pdf, light_pdf);
+                    contribute(bounce - 1, PathRecord::Technique::Bsdf, w, beta * Le * w);
                 }
             }
         }
@@ -60,7 +71,7 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
                     const float tmax = length(hit->p + ls->wi * ls->distance - o) * (1.f - 1e-3f);
                     if (!scene_.occluded(o, ls->wi, tmax)) {
                         const float w = power_heuristic(ls->pdf, bsdf.pdf(wo, ls->wi));
-                        L += beta * f * ls->radiance * (w / ls->pdf);
+                        contribute(bounce, PathRecord::Technique::Light, w, beta * f * ls->radiance * (w / ls->pdf));
                     }
                 }
             }

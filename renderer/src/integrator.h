@@ -7,6 +7,8 @@
 // hook into PathState without restructuring the loop.
 #pragma once
 
+#include <vector>
+
 #include "sampler.h"
 #include "scene.h"
 
@@ -21,6 +23,29 @@ struct GuideSample {
     float depth = 0;
 };
 
+/// What one camera path did, vertex by vertex, for the per-bounce statistics of ACRR
+/// (method.md §7: L_j = the radiance arriving at vertex j with throughput 1 from there on,
+/// i.e. Σ of contributions at vertices ≥ j divided by the throughput at vertex j) and
+/// the technique win counts of SMIS (§8, from the MIS weights). Filled only when a
+/// recorder is passed; the integrator's result does not depend on it.
+struct PathRecord {
+    enum class Technique { Emission, Light, Bsdf };
+    struct Contribution {
+        int bounce;           ///< the vertex whose lighting this is (0 = first hit)
+        Technique technique;  ///< Emission: seen directly (camera or specular chain)
+        float mis_weight;     ///< 1 for Emission
+        Rgb value;            ///< added to the pixel sample
+    };
+    std::vector<Rgb> throughput;  ///< β on arrival at vertex b (β_0 = 1)
+    std::vector<Contribution> contributions;
+
+    void clear()
+    {
+        throughput.clear();
+        contributions.clear();
+    }
+};
+
 struct IntegratorSettings {
     int maxdepth = 5;         ///< pbrt's meaning: 1 = direct lighting only
     int rr_start_bounce = 3;  ///< classic roulette from the bounce after this one (pbrt: > 3)
@@ -31,7 +56,7 @@ public:
     PathIntegrator(const Scene& scene, IntegratorSettings settings) : scene_(scene), settings_(settings) {}
 
     /// The radiance arriving along `ray` (one Monte Carlo sample).
-    Rgb radiance(const Ray& ray, Sampler& sampler, GuideSample& guide) const;
+    Rgb radiance(const Ray& ray, Sampler& sampler, GuideSample& guide, PathRecord* record = nullptr) const;
 
 private:
     const Scene& scene_;

@@ -263,3 +263,40 @@ TEST(Render, SharedScenesRenderFiniteStatistics)
         EXPECT_GT(sum, 0.0) << name;
     }
 }
+
+TEST(Render, PathRecordDecomposesTheSample)
+{
+    // The per-vertex record (the hook for ACRR's per-bounce radiance and SMIS's win
+    // counts) adds up to the sample and does not change it.
+    const std::string shared = statmc::render::test::shared_dir();
+    const auto desc = shared.empty() ? parse_scene_string(furnace_scene(1.f, "Material \"matte\"", kPlane), "f.pbrt")
+                                     : parse_scene_file(shared + "/scenes/cornell-box/scene.pbrt");
+    const Scene scene(desc);
+    const Camera camera(desc.camera, 16, 16);
+    const PathIntegrator integrator(scene, IntegratorSettings{desc.maxdepth, 3});
+    PathRecord record;
+    int multi_bounce = 0;
+    for (int i = 0; i < 256; ++i) {
+        Sampler a(1, std::uint64_t(i), 0), b(1, std::uint64_t(i), 0);
+        GuideSample ga, gb;
+        const Ray ray = camera.generate(float(i % 16) + 0.5f, float(i / 16) + 0.5f);
+        const Rgb plain = integrator.radiance(ray, a, ga);
+        const Rgb recorded = integrator.radiance(ray, b, gb, &record);
+        EXPECT_EQ(plain.r, recorded.r);
+        EXPECT_EQ(plain.g, recorded.g);
+        Rgb sum;
+        for (const auto& c : record.contributions) {
+            sum += c.value;
+            EXPECT_GE(c.bounce, 0);
+            EXPECT_LT(std::size_t(c.bounce), record.throughput.size());
+            EXPECT_GE(c.mis_weight, 0.f);
+            EXPECT_LE(c.mis_weight, 1.f);
+            multi_bounce += c.bounce > 0;
+        }
+        EXPECT_EQ(sum.g, recorded.g);
+        if (!record.throughput.empty()) {
+            EXPECT_EQ(record.throughput[0].g, 1.f);
+        }
+    }
+    EXPECT_GT(multi_bounce, 0);
+}
