@@ -65,6 +65,8 @@ Invocation parse_invocation(const std::vector<std::string>& args, std::size_t& i
             throw ToolError(name + ": missing argument " + arg_name);
         inv.args.push_back(args[i++]);
     }
+    if (!inv.command->optional_arg_name.empty() && i < args.size())
+        inv.args.push_back(args[i++]);
     return inv;
 }
 

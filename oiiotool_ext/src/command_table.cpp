@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "statmc/tool/plugin_commands.h"
+
 namespace statmc::tool {
 
 namespace {
@@ -14,6 +16,8 @@ std::string usage_of(const Command& c)
         usage += "[:mod=val...]";
     for (const std::string& arg : c.arg_names)
         usage += " " + arg;
+    if (!c.optional_arg_name.empty())
+        usage += " [" + c.optional_arg_name + "]";
     return usage;
 }
 
@@ -50,8 +54,9 @@ void describe(std::ostringstream& os, const Command& c)
     // The left column shows the default as oiiotool's help does: ":radius=20".
     for (const ModifierSpec& m : c.modifiers) {
         const std::string shown = m.default_value.empty() ? m.value_syntax() : m.default_value;
+        const std::string range = m.range.empty() ? "" : " " + m.range.text();
         help_line(os, "      :" + m.name + "=" + shown, 32,
-                  "(" + m.value_syntax() + ") " + m.help);
+                  "(" + m.value_syntax() + range + ") " + m.help);
     }
 }
 
@@ -60,8 +65,8 @@ void describe(std::ostringstream& os, const Command& c)
 const std::vector<Command>& command_table()
 {
     static const std::vector<Command> table = {
-        input_command(),  output_command(),  denoise_command(), passes_command(),
-        threads_command(), help_command(), version_command(),
+        input_command(),  output_command(),  threads_command(),
+        list_ops_command(), help_command(), version_command(),
     };
     return table;
 }
@@ -71,6 +76,9 @@ const Command* find_command(std::string_view name)
     for (const Command& c : command_table())
         if (c.name == name ||
             std::find(c.aliases.begin(), c.aliases.end(), name) != c.aliases.end())
+            return &c;
+    for (const Command& c : plugin_commands())
+        if (c.name == name)
             return &c;
     return nullptr;
 }
@@ -89,6 +97,9 @@ std::string help_text()
           "Images hold per-pixel statistics as EXR layers (docs/exr-layers.md).\n\n"
           "Commands:\n";
     for (const Command& c : command_table())
+        describe(os, c);
+    os << "\nOperators (plugins; statmc --help OP for details):\n";
+    for (const Command& c : plugin_commands())
         describe(os, c);
     os << "\nExamples:\n"
           "  statmc in.exr --denoise:radius=20:alpha=0.005:guides=albedo,normal -o out.exr\n"

@@ -35,13 +35,26 @@ std::vector<std::string> split_list(const std::string& text)
     }
 }
 
-Modifiers::Value parse_value(const std::string& command, const ModifierSpec& spec,
-                             const std::string& text)
+bool parse_bool(const std::string& text, const std::string& what)
+{
+    for (const char* yes : {"1", "true", "yes", "on"})
+        if (text == yes)
+            return true;
+    for (const char* no : {"0", "false", "no", "off"})
+        if (text == no)
+            return false;
+    throw ToolError(what + ": expected a boolean (1/0, true/false, yes/no, on/off), got '" +
+                    text + "'");
+}
+
+statmc::ParameterValue parse_text(const std::string& command, const ModifierSpec& spec,
+                                  const std::string& text)
 {
     const std::string what = command + ": " + spec.name;
     switch (spec.type) {
     case ModifierType::Int: return parse_int(text, what);
     case ModifierType::Float: return parse_float(text, what);
+    case ModifierType::Bool: return parse_bool(text, what);
     case ModifierType::String:
         if (text.empty())
             throw ToolError(what + ": expected a value");
@@ -66,39 +79,59 @@ Modifiers::Value parse_value(const std::string& command, const ModifierSpec& spe
     throw ToolError(what + ": unsupported modifier type");
 }
 
+// Parses and checks the declared range: "--denoise: radius must be in [0, 1000], got -1".
+statmc::ParameterValue parse_value(const std::string& command, const ModifierSpec& spec,
+                                   const std::string& text)
+{
+    statmc::ParameterValue value = parse_text(command, spec, text);
+    double number = 0;
+    if (const int* i = std::get_if<int>(&value))
+        number = *i;
+    else if (const double* d = std::get_if<double>(&value))
+        number = *d;
+    else
+        return value;
+    if (const std::string why = spec.range.violation(spec.name, number); !why.empty())
+        throw ToolError(command + ": " + why);
+    return value;
+}
+
 }  // namespace
 
-std::string ModifierSpec::value_syntax() const
+void Modifiers::require(const std::string& name) const
 {
-    switch (type) {
-    case ModifierType::Int: return "int";
-    case ModifierType::Float: return "float";
-    case ModifierType::String: return "name";
-    case ModifierType::Choice: return join(choices, "|");
-    case ModifierType::List: return join(choices, ",") + "|" + join(keywords, "|");
-    }
-    return "value";
-}
-
-const Modifiers::Value& Modifiers::at(const std::string& name) const
-{
-    const auto it = values_.find(name);
-    if (it == values_.end())
+    if (!values_.has(name))
         throw ToolError("modifier '" + name + "' has no value");
-    return it->second;
 }
 
-int Modifiers::get_int(const std::string& name) const { return std::get<int>(at(name)); }
-double Modifiers::get_float(const std::string& name) const { return std::get<double>(at(name)); }
-
-const std::string& Modifiers::get_string(const std::string& name) const
+int Modifiers::get_int(const std::string& name) const
 {
-    return std::get<std::string>(at(name));
+    require(name);
+    return values_.get_int(name);
 }
 
-const std::vector<std::string>& Modifiers::get_list(const std::string& name) const
+double Modifiers::get_float(const std::string& name) const
 {
-    return std::get<std::vector<std::string>>(at(name));
+    require(name);
+    return values_.get_float(name);
+}
+
+bool Modifiers::get_bool(const std::string& name) const
+{
+    require(name);
+    return values_.get_bool(name);
+}
+
+std::string Modifiers::get_string(const std::string& name) const
+{
+    require(name);
+    return values_.get_string(name);
+}
+
+std::vector<std::string> Modifiers::get_list(const std::string& name) const
+{
+    require(name);
+    return values_.get_list(name);
 }
 
 Modifiers Modifiers::parse(const std::string& command,
@@ -125,11 +158,11 @@ Modifiers Modifiers::parse(const std::string& command,
         }
         if (m.has(name))
             throw ToolError(command + ": modifier '" + name + "' given twice");
-        m.values_[name] = parse_value(command, *spec, text);
+        m.values_.set(name, parse_value(command, *spec, text));
     }
     for (const ModifierSpec& spec : specs)
         if (!m.has(spec.name) && !spec.default_value.empty())
-            m.values_[spec.name] = parse_value(command, spec, spec.default_value);
+            m.values_.set(spec.name, parse_value(command, spec, spec.default_value));
     return m;
 }
 

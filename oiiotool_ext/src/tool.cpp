@@ -5,6 +5,7 @@
 #include "statmc/layers/file_error.h"
 #include "statmc/tool/command_line.h"
 #include "statmc/tool/command_table.h"
+#include "statmc/tool/plugin_commands.h"
 #include "statmc/tool/tool_context.h"
 #include "statmc/tool/tool_error.h"
 
@@ -16,6 +17,7 @@ namespace {
 // a typo late on the line cannot leave the outputs of earlier commands half done.
 int run_program(const std::vector<std::string>& args, ToolContext& ctx)
 {
+    plugin_commands();  // a broken module is reported before anything else
     if (args.empty()) {
         ctx.out << help_text();
         return 0;

@@ -3,6 +3,7 @@
 
 #include "statmc/tool/command_table.h"
 #include "statmc/tool/number_parsing.h"
+#include "statmc/tool/plugin_commands.h"
 #include "statmc/tool/tool_context.h"
 #include "statmc/tool/tool_error.h"
 
@@ -42,9 +43,22 @@ Command help_command()
     Command c;
     c.name = "--help";
     c.aliases = {"-h"};
-    c.summary = "Print this help and exit";
+    c.optional_arg_name = "OP";
+    c.summary = "Print this help, or an operator's parameters (--help OP), and exit";
     c.immediate = true;
-    c.run = [](ToolContext& ctx, const Invocation&) { ctx.out << help_text(); };
+    c.run = [](ToolContext& ctx, const Invocation& inv) {
+        ctx.out << (inv.args.empty() ? help_text() : operator_help_text(inv.args[0]));
+    };
+    return c;
+}
+
+Command list_ops_command()
+{
+    Command c;
+    c.name = "--list-ops";
+    c.summary = "List the operators the plugins provide and exit";
+    c.immediate = true;
+    c.run = [](ToolContext& ctx, const Invocation&) { ctx.out << operator_list_text(); };
     return c;
 }
 

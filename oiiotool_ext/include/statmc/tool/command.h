@@ -25,6 +25,7 @@ struct Command {
     std::string name;                    ///< "-i", "--denoise"
     std::vector<std::string> aliases;    ///< other spellings: "-h" for "--help"
     std::vector<std::string> arg_names;  ///< positional arguments, e.g. {"FILE"}
+    std::string optional_arg_name;       ///< one more argument taken when present ("--help OP")
     std::string summary;
     std::vector<ModifierSpec> modifiers;
     /// Runs as soon as it is parsed and ends the program (--help, --version).

@@ -1,56 +1,45 @@
 // Typed command modifiers, `--command:name=value:name2=value2`, as oiiotool spells them.
-// Each command declares its modifiers; values are parsed and checked before anything runs.
+// Each command declares its modifiers with the plugin interface's ParameterSpec (so a
+// plugin operator's declaration is used as is); values are parsed and type/range-checked
+// before anything runs.
 #pragma once
 
-#include <map>
 #include <string>
 #include <utility>
-#include <variant>
 #include <vector>
+
+#include "statmc/plugin_api/parameter_spec.h"
+#include "statmc/plugin_api/parameter_values.h"
 
 namespace statmc::tool {
 
-enum class ModifierType {
-    Int,
-    Float,
-    Choice,  ///< one of `choices`
-    List,    ///< comma-separated items from `choices`, or one of `keywords` alone
-    String,
-};
-
-struct ModifierSpec {
-    std::string name;
-    ModifierType type = ModifierType::String;
-    std::string default_value;  ///< empty: absent unless given
-    std::string help;
-    std::vector<std::string> choices;
-    std::vector<std::string> keywords;  ///< List only: values that stand alone ("auto")
-
-    /// "int", "float", "auto|boxcox|untransformed", "albedo,normal|auto|none", "name"
-    std::string value_syntax() const;
-};
+using ModifierSpec = statmc::ParameterSpec;
+using ModifierType = statmc::ParameterType;
 
 /// The modifiers of one invocation, defaults filled in, each parsed to its type.
 class Modifiers {
 public:
-    using Value = std::variant<int, double, std::string, std::vector<std::string>>;
-
-    bool has(const std::string& name) const { return values_.count(name) != 0; }
+    bool has(const std::string& name) const { return values_.has(name); }
+    // These throw ToolError when the modifier has no value (neither given nor defaulted).
     int get_int(const std::string& name) const;
     double get_float(const std::string& name) const;
-    const std::string& get_string(const std::string& name) const;
-    const std::vector<std::string>& get_list(const std::string& name) const;
+    bool get_bool(const std::string& name) const;
+    std::string get_string(const std::string& name) const;
+    std::vector<std::string> get_list(const std::string& name) const;
+
+    /// All values, as a plugin operator reads them.
+    const statmc::ParameterValues& values() const { return values_; }
 
     /// Parses `given` (name, text) pairs of command `command` against `specs`. Throws
-    /// ToolError naming the command and modifier for an unknown or repeated modifier
-    /// and for a malformed value.
+    /// ToolError naming the command and modifier for an unknown or repeated modifier,
+    /// a malformed value and a value outside the declared range.
     static Modifiers parse(const std::string& command,
                            const std::vector<std::pair<std::string, std::string>>& given,
                            const std::vector<ModifierSpec>& specs);
 
 private:
-    const Value& at(const std::string& name) const;
-    std::map<std::string, Value> values_;
+    void require(const std::string& name) const;
+    statmc::ParameterValues values_;
 };
 
 }  // namespace statmc::tool

@@ -1,0 +1,172 @@
+#include "statmc/tool/plugin_commands.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+#include <system_error>
+
+#include "statmc/plugin_api/plugin_loader.h"
+#include "statmc/tool/tool_context.h"
+#include "statmc/tool/tool_error.h"
+
+namespace statmc::tool {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Relative to the running executable, so that a build tree or an installed prefix can be
+// moved as a whole. The build tree's directory is only a fallback for programs that do
+// not sit beside the modules (the tests).
+std::vector<std::string> shipped_plugin_dirs()
+{
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    std::vector<std::string> dirs;
+    if (!ec)
+        for (const fs::path& dir : {exe.parent_path() / "plugins",
+                                    exe.parent_path() / ".." / "lib" / "statmc" / "plugins"})
+            if (fs::is_directory(dir, ec))
+                dirs.push_back(dir.lexically_normal().string());
+#ifdef STATMC_BUILD_PLUGIN_DIR
+    if (dirs.empty() && fs::is_directory(STATMC_BUILD_PLUGIN_DIR, ec))
+        dirs.push_back(STATMC_BUILD_PLUGIN_DIR);
+#endif
+    return dirs;
+}
+
+statmc::PluginRegistry load_registry()
+{
+    statmc::PluginRegistry registry;
+    try {
+        for (const std::string& dir : plugin_search_path())
+            for (const std::string& file : statmc::plugin_files(dir))
+                statmc::load_plugin(file, registry);
+    } catch (const statmc::PluginError& e) {
+        throw ToolError(e.what());
+    }
+    return registry;
+}
+
+std::string input_text(const statmc::OperatorSpec& op)
+{
+    if (op.inputs == statmc::kVariadicInputs)
+        return std::to_string(op.min_inputs) + "+ " + op.input_noun;
+    return std::to_string(op.inputs) + (op.inputs == 1 ? " image" : " images");
+}
+
+std::size_t input_count(const statmc::OperatorSpec& op, const Invocation& inv,
+                        const ToolContext& ctx)
+{
+    if (op.inputs != statmc::kVariadicInputs)
+        return std::size_t(op.inputs);
+    const std::size_t k =
+        inv.modifiers.has("n") ? std::size_t(inv.modifiers.get_int("n")) : ctx.stack.size();
+    if (k < std::size_t(op.min_inputs))
+        throw ToolError(inv.name + ": needs at least " + std::to_string(op.min_inputs) + " " +
+                        op.input_noun + " on the stack, got " + std::to_string(k));
+    return k;
+}
+
+void run_operator(const statmc::OperatorSpec& op, ToolContext& ctx, const Invocation& inv)
+{
+    const std::size_t count = input_count(op, inv, ctx);
+    if (count > 0)
+        ctx.stack.top(inv.name);  // "the image stack is empty" says more than "needs 1"
+    const std::vector<StackImage> popped = ctx.stack.pop(count, inv.name);
+    std::vector<const OIIO::ImageBuf*> images;
+    statmc::RunContext run_context;
+    run_context.nthreads = ctx.nthreads;
+    run_context.out = &ctx.out;
+    for (const StackImage& s : popped) {
+        images.push_back(&s.image);
+        run_context.input_labels.push_back(s.label);
+    }
+    StackImage result{op.run(images, inv.modifiers.values(), run_context), ""};
+    // One input is named in the message; several are named by the operator itself.
+    const std::string where = popped.size() == 1 ? popped[0].label + ": " : "";
+    if (result.image.has_error())
+        throw ToolError(inv.name + ": " + where + result.image.geterror());
+    result.label = popped.size() == 1 ? popped[0].label + " (" + op.name + ")"
+                                      : inv.name + " result";
+    ctx.stack.push(std::move(result));
+}
+
+}  // namespace
+
+std::vector<std::string> plugin_search_path()
+{
+    std::vector<std::string> dirs = shipped_plugin_dirs();
+    if (const char* env = std::getenv("STATMC_PLUGIN_PATH"))
+        for (const std::string& dir : statmc::split_search_path(env))
+            dirs.push_back(dir);
+    return dirs;
+}
+
+const statmc::PluginRegistry& plugin_registry()
+{
+    static const statmc::PluginRegistry registry = load_registry();
+    return registry;
+}
+
+const std::vector<Command>& plugin_commands()
+{
+    static const std::vector<Command> commands = [] {
+        std::vector<Command> list;
+        for (const statmc::OperatorSpec& op : plugin_registry().operators())
+            list.push_back(operator_command(op));
+        return list;
+    }();
+    return commands;
+}
+
+Command operator_command(const statmc::OperatorSpec& op)
+{
+    Command c;
+    c.name = "--" + op.name;
+    c.summary = op.summary;
+    c.modifiers = op.parameters;
+    c.check = [op](const Invocation& inv) {
+        if (op.check)
+            if (const std::string why = op.check(inv.modifiers.values()); !why.empty())
+                throw ToolError(inv.name + ": " + why);
+    };
+    c.run = [op](ToolContext& ctx, const Invocation& inv) { run_operator(op, ctx, inv); };
+    return c;
+}
+
+std::string operator_list_text()
+{
+    std::ostringstream os;
+    for (const statmc::OperatorSpec& op : plugin_registry().operators())
+        os << "  " << std::left << std::setw(14) << ("--" + op.name) << std::setw(12)
+           << input_text(op) << op.summary << "\n";
+    return os.str();
+}
+
+std::string operator_help_text(std::string_view name)
+{
+    if (name.rfind("--", 0) == 0)
+        name.remove_prefix(2);
+    const statmc::OperatorSpec* op = plugin_registry().find(name);
+    if (!op)
+        throw ToolError("--help: unknown operator '" + std::string(name) +
+                        "' (see statmc --list-ops)");
+    std::ostringstream os;
+    os << "--" << op->name << (op->parameters.empty() ? "" : "[:name=value...]") << "   ("
+       << input_text(*op) << ")\n  " << op->summary << "\n\n  " << op->help << "\n";
+    if (!op->parameters.empty()) {
+        os << "\n  " << std::left << std::setw(14) << "parameter" << std::setw(8) << "type"
+           << std::setw(10) << "default" << std::setw(12) << "range" << "meaning\n";
+        for (const statmc::ParameterSpec& p : op->parameters)
+            os << "  " << std::setw(14) << p.name << std::setw(8) << statmc::type_name(p.type)
+               << std::setw(10) << (p.default_value.empty() ? "-" : p.default_value)
+               << std::setw(12) << (p.range.empty() ? "-" : p.range.text()) << p.help
+               << (p.choices.empty() ? "" : " (" + p.value_syntax() + ")") << "\n";
+    }
+    os << "\n  from " << op->module << "\n";
+    return os.str();
+}
+
+}  // namespace statmc::tool

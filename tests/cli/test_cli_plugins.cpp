@@ -1,0 +1,92 @@
+// Plugins seen from the command line: the shipped operators listed and described from
+// their registrations, a module found on STATMC_PLUGIN_PATH, a module refused.
+#include <cstdlib>
+
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imagebuf.h>
+
+#include "cli_images.h"
+#include "cli_runner.h"
+#include "temp_dir.h"
+#include "test_images.h"
+
+namespace statmc::test {
+namespace {
+
+const std::string kModules = STATMC_TEST_MODULE_DIR;
+
+// Sets STATMC_PLUGIN_PATH for the statmc processes this test starts.
+class PluginPath {
+public:
+    explicit PluginPath(const std::string& path) { setenv("STATMC_PLUGIN_PATH", path.c_str(), 1); }
+    ~PluginPath() { unsetenv("STATMC_PLUGIN_PATH"); }
+};
+
+TEST(CliPlugins, ListsTheShippedOperators)
+{
+    const CliResult r = run_cli({"--list-ops"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("--denoise     1 image"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("--passes      2+ renders"), std::string::npos) << r.out;
+}
+
+TEST(CliPlugins, HelpOfAnOperatorIsItsParameterTable)
+{
+    const CliResult r = run_cli({"--help", "denoise"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* row : {"radius        int     20        [0, 1000]",
+                            "alpha         float   0.005     (0, 1)",
+                            "sigma_s       float   10        > 0",
+                            "test          choice  auto      -", "denoise.so"})
+        EXPECT_NE(r.out.find(row), std::string::npos) << row << "\n" << r.out;
+    EXPECT_EQ(run_cli({"--help", "--denoise"}).out, r.out);
+    const CliResult unknown = run_cli({"--help", "denoize"});
+    EXPECT_EQ(unknown.exit_code, 1);
+    EXPECT_NE(unknown.err.find("--help: unknown operator 'denoize'"), std::string::npos);
+}
+
+TEST(CliPlugins, ModuleOnThePluginPathRunsLikeAShippedOne)
+{
+    TempDir dir;
+    write_exr(cli_render(0), dir.file("in.exr"));
+    PluginPath path("/nonexistent:" + kModules + "/good");
+    const CliResult list = run_cli({"--list-ops"});
+    EXPECT_NE(list.out.find("--testscale"), std::string::npos) << list.out << list.err;
+    const CliResult help = run_cli({"--help", "testscale"});
+    EXPECT_NE(help.out.find("factor        float   2         [0.01, 100]"), std::string::npos)
+        << help.out;
+
+    const CliResult run = run_cli({dir.file("in.exr"), "--testscale:factor=3", "-o",
+                                   dir.file("out.exr")});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const OIIO::ImageBuf in = read_exr(dir.file("in.exr"));
+    const OIIO::ImageBuf out = read_exr(dir.file("out.exr"));
+    EXPECT_FLOAT_EQ(out.getchannel(5, 7, 0, 1), 3 * in.getchannel(5, 7, 0, 1));
+
+    const CliResult bad = run_cli({dir.file("in.exr"), "--testscale:factor=500", "-o",
+                                   dir.file("bad.exr")});
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_NE(bad.err.find("--testscale: factor must be in [0.01, 100], got 500"),
+              std::string::npos)
+        << bad.err;
+    const CliResult notbool = run_cli({dir.file("in.exr"), "--testscale:reciprocal=maybe", "-o",
+                                       dir.file("bad.exr")});
+    EXPECT_NE(notbool.err.find("--testscale: reciprocal: expected a boolean"), std::string::npos)
+        << notbool.err;
+}
+
+TEST(CliPlugins, ModuleOfAnotherInterfaceVersionIsRefused)
+{
+    PluginPath path(kModules + "/wrong");
+    const CliResult r = run_cli({"--list-ops"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.signal, 0);
+    EXPECT_NE(r.err.find(kModules + "/wrong/wrong_version.so: plugin interface version"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("needs version"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace statmc::test
