@@ -468,8 +468,7 @@ private:
         } else {
             fail(line, "unsupported: material \"" + type + "\" (supported: matte, metal, glass, mirror)");
         }
-        if (const Param* p = find(ps, "string", "type"))
-            (void)p;
+        find(ps, "string", "type");  // MakeNamedMaterial's own parameter: consumed, not unknown
         warn_unused(ps, "material \"" + name + "\"");
         scene_.materials.push_back(m);
         return int(scene_.materials.size()) - 1;

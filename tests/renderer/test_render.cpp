@@ -268,9 +268,16 @@ TEST(Render, PathRecordDecomposesTheSample)
 {
     // The per-vertex record (the hook for ACRR's per-bounce radiance and SMIS's win
     // counts) adds up to the sample and does not change it.
-    const std::string shared = statmc::render::test::shared_dir();
-    const auto desc = shared.empty() ? parse_scene_string(furnace_scene(1.f, "Material \"matte\"", kPlane), "f.pbrt")
-                                     : parse_scene_file(shared + "/scenes/cornell-box/scene.pbrt");
+    // A grey room (floor, back wall, ceiling) lit by a small quad: light bounces around.
+    const std::string room = "LookAt 0 1 3  0 1 0  0 1 0\nCamera \"perspective\" \"float fov\" 60\n"
+                             "Integrator \"path\" \"integer maxdepth\" 8\nWorldBegin\n"
+                             "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [8 8 8]\n" +
+                             quad("-0.3 1.99 -0.3  0.3 1.99 -0.3  0.3 1.99 0.3  -0.3 1.99 0.3", "0 -1 0") +
+                             "AttributeEnd\nMaterial \"matte\" \"rgb Kd\" [0.7 0.7 0.7]\n" +
+                             quad("-1 0 -1  1 0 -1  1 0 1  -1 0 1", "0 1 0") +
+                             quad("-1 2 -1  1 2 -1  1 2 1  -1 2 1", "0 -1 0") +
+                             quad("-1 0 -1  1 0 -1  1 2 -1  -1 2 -1", "0 0 1") + "WorldEnd\n";
+    const auto desc = parse_scene_string(room, "room.pbrt");
     const Scene scene(desc);
     const Camera camera(desc.camera, 16, 16);
     const PathIntegrator integrator(scene, IntegratorSettings{desc.maxdepth, 3});
