@@ -88,5 +88,31 @@ TEST(CliPlugins, ModuleOfAnotherInterfaceVersionIsRefused)
     EXPECT_NE(r.err.find("needs version"), std::string::npos) << r.err;
 }
 
+TEST(CliPlugins, MergeAddsFarmTasksAndNamesMismatchedFiles)
+{
+    TempDir dir;
+    const std::string a = dir.file("a.exr"), b = dir.file("b.exr"), v = dir.file("v.exr");
+    write_exr(cli_statistics_image(), a);
+    write_exr(cli_statistics_image(), b);
+    write_exr(cli_variance_aov_image(), v);
+    const CliResult r = run_cli({a, b, a, "--merge", "-o", dir.file("all.exr")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const OIIO::ImageBuf in = read_exr(a), all = read_exr(dir.file("all.exr"));
+    EXPECT_EQ(channel_value(all, "sampleCount.Y", 3, 2), 3 * channel_value(in, "sampleCount.Y", 3, 2));
+    EXPECT_NEAR(channel_value(all, "G", 3, 2), channel_value(in, "G", 3, 2), 1e-5);
+
+    const CliResult n = run_cli({v, a, b, "--merge:n=2", "-o", dir.file("two.exr")});
+    EXPECT_EQ(n.exit_code, 0) << n.err;
+    const CliResult bad = run_cli({a, v, "--merge", "-o", dir.file("bad.exr")});
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_NE(bad.err.find("--merge: part 1 (" + v + ") and part 0 (" + a + ") differ in"),
+              std::string::npos)
+        << bad.err;
+    const CliResult denoised = run_cli({a, "--denoise:radius=1", b, "--merge", "-o",
+                                        dir.file("bad.exr")});
+    EXPECT_NE(denoised.err.find("is denoised (statmc:denoised=1)"), std::string::npos)
+        << denoised.err;
+}
+
 }  // namespace
 }  // namespace statmc::test

@@ -1,0 +1,211 @@
+#include "statmc/merge/merge.h"
+
+#include <algorithm>
+#include <array>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "statmc/core/statistics_image.h"
+#include "statmc/layers/float_pixels.h"
+#include "statmc/layers/guide_layers.h"
+#include "statmc/layers/layer_error.h"
+#include "statmc/layers/layer_names.h"
+#include "statmc/layers/statistics_layers.h"
+
+namespace statmc {
+
+namespace {
+
+using Parts = std::vector<const OIIO::ImageBuf*>;
+namespace attr = layers::attr;
+
+std::string label(const Parts& parts, std::size_t k)
+{
+    std::string text = "part " + std::to_string(k);
+    if (!parts[k]->name().empty())
+        text += " (" + std::string(parts[k]->name()) + ")";
+    return text;
+}
+
+std::vector<std::string> sorted_channels(const OIIO::ImageSpec& spec)
+{
+    std::vector<std::string> names = spec.channelnames;
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+void check_part(const Parts& parts, std::size_t k)
+{
+    const OIIO::ImageBuf* p = parts[k];
+    if (!p || !p->initialized())
+        throw std::invalid_argument("part " + std::to_string(k) + " is uninitialized");
+    if (p->spec().get_int_attribute(attr::kDenoised, 0) == 1)
+        throw std::invalid_argument(label(parts, k) +
+                                    " is denoised (statmc:denoised=1); merge takes the "
+                                    "statistics as rendered");
+}
+
+// Everything that must agree for the parts to be samples of one frame.
+void check_match(const Parts& parts, std::size_t k)
+{
+    const OIIO::ImageSpec& a = parts[k]->spec();
+    const OIIO::ImageSpec& b = parts[0]->spec();
+    const std::string these = label(parts, k) + " and " + label(parts, 0);
+    if (a.width != b.width || a.height != b.height)
+        throw std::invalid_argument(OIIO::Strutil::fmt::format(
+            "{} differ in resolution: {}x{} vs {}x{}", these, a.width, a.height, b.width,
+            b.height));
+    if (a.x != b.x || a.y != b.y)
+        throw std::invalid_argument(OIIO::Strutil::fmt::format(
+            "{} differ in data window: origin ({}, {}) vs ({}, {})", these, a.x, a.y, b.x, b.y));
+    if (sorted_channels(a) != sorted_channels(b))
+        throw std::invalid_argument(these + " differ in channels");
+    const int va = a.get_int_attribute(attr::kFormatVersion, 0);
+    const int vb = b.get_int_attribute(attr::kFormatVersion, 0);
+    if (va != vb)
+        throw std::invalid_argument(OIIO::Strutil::fmt::format(
+            "{} differ in statmc:formatVersion: {} vs {}", these, va, vb));
+}
+
+// A view whose absent Box-Cox planes stand in with the untransformed ones, so that core's
+// merge runs on images without them; the stand-ins are dropped from the result.
+StatisticsView complete_view(StatisticsView view, const ConstPlane& zero)
+{
+    for (int c = 0; c < view.channels; ++c)
+        if (!view.bc_mean[c] || !view.bc_variance[c] || !view.bc_moment3[c]) {
+            view.bc_mean[c] = view.mean[c];
+            view.bc_variance[c] = view.variance[c];
+            view.bc_moment3[c] = zero;
+        }
+    return view;
+}
+
+template <int C>
+StatisticsPlanes merge_views(const std::vector<StatisticsView>& views)
+{
+    StatisticsImage<C> all = StatisticsImage<C>::from_view(views[0]);
+    for (std::size_t k = 1; k < views.size(); ++k)
+        all.merge(StatisticsImage<C>::from_view(views[k]));
+    return all.planes();
+}
+
+// Sample-weighted mean of a guide over the parts, in dense planes.
+std::vector<float> merged_guide(const std::vector<const OIIO::ImageBuf*>& floats,
+                                const std::vector<StatisticsView>& views, std::string_view layer,
+                                bool prefer_colour)
+{
+    const int w = views[0].width, h = views[0].height;
+    std::vector<float> sum(std::size_t(3) * w * h, 0.f), weight(std::size_t(w) * h, 0.f);
+    for (std::size_t k = 0; k < floats.size(); ++k) {
+        const auto idx = layers::find_guide_layer(floats[k]->spec(), layer, prefer_colour);
+        if (idx.empty())
+            return {};
+        const auto planes = layers::guide_planes(*floats[k], idx);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const float n = views[k].count(x, y);
+                weight[std::size_t(y) * w + x] += n;
+                for (int c = 0; c < 3; ++c)
+                    sum[(std::size_t(c) * h + y) * w + x] += n * planes[c](x, y);
+            }
+    }
+    for (std::size_t i = 0; i < sum.size(); ++i) {
+        const float n = weight[i % weight.size()];
+        sum[i] = n > 0 ? sum[i] / n : 0.f;
+    }
+    return sum;
+}
+
+std::array<ConstPlane, 3> dense_planes(const std::vector<float>& planes, int w, int h)
+{
+    if (planes.empty())
+        return {};
+    const std::size_t n = std::size_t(w) * h;
+    return {dense_plane(planes.data(), w), dense_plane(planes.data() + n, w),
+            dense_plane(planes.data() + 2 * n, w)};
+}
+
+std::optional<int> summed_spp(const Parts& parts)
+{
+    int total = 0;
+    for (const OIIO::ImageBuf* p : parts) {
+        const OIIO::ParamValue* spp = p->spec().find_attribute(attr::kSpp, OIIO::TypeInt);
+        if (!spp)
+            return std::nullopt;
+        total += spp->get_int();
+    }
+    return total;
+}
+
+OIIO::ImageBuf merge_parts(const Parts& parts)
+{
+    if (parts.size() < 2)
+        throw std::invalid_argument("merge needs at least 2 images, got " +
+                                    std::to_string(parts.size()));
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+        check_part(parts, k);
+        check_match(parts, k);
+    }
+    std::vector<OIIO::ImageBuf> scratch(parts.size());
+    std::vector<const OIIO::ImageBuf*> floats;
+    std::vector<StatisticsView> views;
+    const OIIO::ImageSpec& first = parts[0]->spec();
+    const std::vector<float> zeros(std::size_t(first.width) * first.height, 0.f);
+    bool box_cox = true;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+        floats.push_back(&layers::local_float_pixels(*parts[k], scratch[k]));
+        try {
+            const layers::StatisticsChannels ch = layers::find_statistics(floats[k]->spec());
+            layers::require_statistic(floats[k]->spec(), ch, layers::Statistic::Variance);
+            box_cox = box_cox && ch.has_box_cox();
+            views.push_back(complete_view(layers::statistics_view(*floats[k], ch),
+                                          dense_plane(zeros.data(), first.width)));
+        } catch (const layers::LayerError& e) {
+            throw std::invalid_argument(label(parts, k) + ": " + e.what());
+        }
+    }
+    StatisticsPlanes merged = views[0].channels == 1 ? merge_views<1>(views)
+                                                     : merge_views<3>(views);
+    if (!box_cox)
+        merged.bc_mean.clear(), merged.bc_variance.clear(), merged.bc_moment3.clear();
+
+    const int w = first.width, h = first.height;
+    const std::vector<float> albedo = merged_guide(floats, views, layers::kAlbedoLayer, true);
+    const std::vector<float> normal = merged_guide(floats, views, layers::kNormalLayer, false);
+    layers::GuidePlanes guides;
+    guides.albedo = dense_planes(albedo, w, h);
+    guides.normal = dense_planes(normal, w, h);
+    layers::StatisticsMetadata metadata;
+    metadata.spp = summed_spp(parts);
+    OIIO::ImageBuf out = layers::make_statistics_image(merged, metadata, guides);
+    out.set_origin(first.x, first.y);
+    out.set_full(first.full_x, first.full_x + first.full_width, first.full_y,
+                 first.full_y + first.full_height, first.full_z, first.full_z + first.full_depth);
+    return out;
+}
+
+}  // namespace
+
+bool merge(OIIO::ImageBuf& dst, const Parts& parts, int /*nthreads: merging is memory bound*/)
+{
+    try {
+        dst = merge_parts(parts);
+        return true;
+    } catch (const std::exception& e) {
+        dst.errorfmt("{}", e.what());
+    } catch (...) {
+        dst.errorfmt("merge: unknown error");
+    }
+    return false;
+}
+
+OIIO::ImageBuf merge(const Parts& parts, int nthreads)
+{
+    OIIO::ImageBuf result;
+    if (!merge(result, parts, nthreads) && !result.has_error())
+        result.errorfmt("merge failed");
+    return result;
+}
+
+}  // namespace statmc
