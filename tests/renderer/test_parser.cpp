@@ -234,3 +234,50 @@ TEST(Parser, SharedScenesParse)
         EXPECT_TRUE(s.warnings.empty()) << name << ": " << s.warnings.front();
     }
 }
+
+TEST(Parser, PlyMeshBinaryBothEndiannesses)
+{
+    // One triangle with double coordinates, normals and an int index list (uchar count).
+    auto put = [](std::string& out, const void* p, std::size_t n, bool big) {
+        const auto* b = static_cast<const char*>(p);
+        for (std::size_t i = 0; i < n; ++i)
+            out += big ? b[n - 1 - i] : b[i];
+    };
+    for (const bool big : {false, true}) {
+        std::string ply = std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
+                          " 1.0\ncomment test\nelement vertex 3\nproperty double x\nproperty double y\n"
+                          "property double z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                          "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+        const double pos[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 2, 0}};
+        for (const auto& v : pos) {
+            for (double c : v)
+                put(ply, &c, sizeof c, big);
+            const float n[3] = {0, 0, 1};
+            for (float c : n)
+                put(ply, &c, sizeof c, big);
+        }
+        ply += char(3);
+        for (std::int32_t i : {0, 1, 2})
+            put(ply, &i, sizeof i, big);
+        ScratchDir dir("plybin");
+        dir.write("t.ply", ply);
+        const auto s = parse("WorldBegin\nShape \"plymesh\" \"string filename\" \"t.ply\"\nWorldEnd\n", dir.file(""));
+        ASSERT_EQ(s.shapes.size(), 1u);
+        const TriangleMesh& m = *s.shapes[0].mesh;
+        ASSERT_EQ(m.positions.size(), 3u);
+        expect_near(m.positions[2], {0, 2, 0});
+        ASSERT_EQ(m.normals.size(), 3u);
+        expect_near(m.normals[1], {0, 0, 1});
+        EXPECT_EQ(m.indices, (std::vector<std::uint32_t>{0, 1, 2}));
+    }
+}
+
+TEST(Parser, TruncatedPlyIsAnError)
+{
+    ScratchDir dir("plybad");
+    dir.write("t.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                       "property float y\nproperty float z\nend_header\nabc");
+    const std::string e = error_of("WorldBegin\nShape \"plymesh\" \"string filename\" \"t.ply\"\n", dir.file(""));
+    EXPECT_NE(e.find("t.pbrt:2:"), std::string::npos) << e;
+    EXPECT_NE(e.find("truncated"), std::string::npos) << e;
+}

@@ -325,3 +325,29 @@ TEST(Render, MaxdepthFollowsPbrt)
     EXPECT_EQ(mean_of(mirror, 0), 0.0);       // the mirror itself does not emit
     EXPECT_FLOAT_EQ(float(mean_of(mirror, 1)), 2.f);  // the emitter seen through it
 }
+
+TEST(Render, AreaLightsAreOneSidedUnlessTwoSided)
+{
+    // The camera looks at a light quad whose normal faces away from it: black, as in
+    // pbrt, unless the light says "bool twosided" true; ReverseOrientation has no say
+    // when normals are given (the triangle normal follows N), but flips it otherwise.
+    auto seen = [](const std::string& light, const std::string& shape) {
+        const std::string text = "LookAt 0 0 -3  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 10\n"
+                                 "Integrator \"path\" \"integer maxdepth\" 1\nWorldBegin\n"
+                                 "AreaLightSource \"diffuse\" \"rgb L\" [1 1 1] " + light + "\n" + shape +
+                                 "WorldEnd\n";
+        const auto desc = parse_scene_string(text, "l.pbrt");
+        const auto r = render_scene(desc, 4, 4, 4, 1, 0);
+        return region_mean(r.film->stats.planes(), 0).first;
+    };
+    const std::string away = quad("-1 -1 0  1 -1 0  1 1 0  -1 1 0", "0 0 1");
+    const std::string facing = quad("-1 -1 0  1 -1 0  1 1 0  -1 1 0", "0 0 -1");
+    EXPECT_EQ(seen("", away), 0.0);
+    EXPECT_EQ(seen("", facing), 1.0);
+    EXPECT_EQ(seen("\"bool twosided\" \"true\"", away), 1.0);
+    // Without N: pbrt's normal is cross(p0 − p2, p1 − p2); this winding faces +z (away).
+    const std::string bare = "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3] "
+                             "\"point P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0]\n";
+    const double plain = seen("", bare), reversed = seen("", "ReverseOrientation\n" + bare);
+    EXPECT_EQ(plain + reversed, 1.0);  // exactly one of the two faces the camera
+}
