@@ -1,5 +1,6 @@
 // Plugins seen from the command line: the shipped operators listed and described from
 // their registrations, a module found on STATMC_PLUGIN_PATH, a module refused.
+#include <cmath>
 #include <cstdlib>
 
 #include <gtest/gtest.h>
@@ -112,6 +113,27 @@ TEST(CliPlugins, MergeAddsFarmTasksAndNamesMismatchedFiles)
                                         dir.file("bad.exr")});
     EXPECT_NE(denoised.err.find("is denoised (statmc:denoised=1)"), std::string::npos)
         << denoised.err;
+}
+
+TEST(CliPlugins, ComparePrintsMetricsAndPushesTheErrorImage)
+{
+    TempDir dir;
+    const std::string a = dir.file("a.exr"), ref = dir.file("ref.exr");
+    write_exr(cli_render(0), a);
+    write_exr(cli_render(1), ref);
+    const CliResult r = run_cli({a, ref, "--compare:errorimage=" + dir.file("e1.exr"), "-o",
+                                 dir.file("e2.exr")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* row : {"RMSE", "MAE", "relMSE", "SSIM", "DSSIM"})
+        EXPECT_NE(r.out.find("\n  " + std::string(row) + " "), std::string::npos) << r.out;
+    const OIIO::ImageBuf e1 = read_exr(dir.file("e1.exr")), e2 = read_exr(dir.file("e2.exr"));
+    const OIIO::ImageBuf x = read_exr(a), y = read_exr(ref);
+    EXPECT_FLOAT_EQ(e2.getchannel(4, 5, 0, 1),
+                    std::abs(x.getchannel(4, 5, 0, 1) - y.getchannel(4, 5, 0, 1)));
+    EXPECT_EQ(e1.getchannel(4, 5, 0, 1), e2.getchannel(4, 5, 0, 1));
+    const CliResult same = run_cli({a, a, "--compare"});
+    EXPECT_NE(same.out.find("  RMSE    0\n"), std::string::npos) << same.out;
+    EXPECT_NE(same.out.find("  SSIM    1\n"), std::string::npos) << same.out;
 }
 
 }  // namespace

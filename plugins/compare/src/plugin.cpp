@@ -1,0 +1,71 @@
+// compare: error metrics of an image against a reference, as a statmc plugin.
+//
+// | parameter  | type   | default | range | meaning                                      |
+// |------------|--------|---------|-------|----------------------------------------------|
+// | epsilon    | float  | 0.01    | > 0   | ε of relMSE = mean (x − ref)² / (ref² + ε)   |
+// | errorimage | string | (none)  |       | also write |x − ref| to this file            |
+//
+// Pops the reference (top) and the image (below it); prints one row per metric (RMSE,
+// MAE, relMSE, SSIM, DSSIM) and pushes the per-pixel absolute error image.
+#include <iomanip>
+#include <ostream>
+
+#include "statmc/compare/compare.h"
+#include "statmc/layers/exr_files.h"
+#include "statmc/plugin_api/plugin_interface.h"
+
+namespace {
+
+void print_table(std::ostream& out, const statmc::CompareMetrics& m, const std::string& image,
+                 const std::string& reference)
+{
+    out << "compare: " << image << " against " << reference << "\n";
+    const std::pair<const char*, double> rows[] = {
+        {"RMSE", m.rmse}, {"MAE", m.mae}, {"relMSE", m.relmse}, {"SSIM", m.ssim},
+        {"DSSIM", m.dssim}};
+    for (const auto& [name, value] : rows)
+        out << "  " << std::left << std::setw(8) << name << std::setprecision(6) << value << "\n";
+}
+
+OIIO::ImageBuf run(const std::vector<const OIIO::ImageBuf*>& inputs,
+                   const statmc::ParameterValues& p, const statmc::RunContext& ctx)
+{
+    statmc::CompareOptions options;
+    options.relmse_epsilon = p.get_float("epsilon", options.relmse_epsilon);
+    statmc::CompareMetrics metrics;
+    OIIO::ImageBuf error;
+    if (!statmc::compare(metrics, error, *inputs[0], *inputs[1], options, ctx.nthreads))
+        return error;
+    if (ctx.out)
+        print_table(*ctx.out, metrics, ctx.input_labels.at(0), ctx.input_labels.at(1));
+    if (const std::string path = p.get_string("errorimage"); !path.empty()) {
+        try {
+            statmc::layers::write_image_file(error, path);
+        } catch (const std::exception& e) {
+            error.errorfmt("{}", e.what());
+        }
+    }
+    return error;
+}
+
+void register_compare(statmc::PluginRegistry& registry)
+{
+    statmc::OperatorSpec op;
+    op.name = "compare";
+    op.summary = "Print RMSE, MAE, relMSE, SSIM and DSSIM of an image against a reference "
+                 "(top); push |image - reference|";
+    op.help = "RMSE, MAE and relMSE (Rousselle et al. 2011) are means over pixels and R,G,B "
+              "of the scene-linear values; SSIM (Wang et al. 2004; 11x11 Gaussian window, "
+              "sigma 1.5) is on the luminance of the sRGB-encoded images clamped to [0, 1].";
+    op.parameters = {
+        statmc::float_parameter("epsilon", 0.01, "epsilon of relMSE").above(0),
+        statmc::string_parameter("errorimage", "", "also write the absolute error image here"),
+    };
+    op.inputs = 2;
+    op.run = run;
+    registry.add(std::move(op));
+}
+
+}  // namespace
+
+STATMC_EXPORT_PLUGIN(register_compare)
