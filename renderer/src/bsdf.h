@@ -77,7 +77,11 @@ class Bsdf {
 public:
     using Lobe = std::variant<MatteLobe, MetalLobe, GlassLobe, MirrorLobe>;
 
-    Bsdf(Lobe lobe, Vec3 ns, Vec3 ng) : lobe_(lobe), frame_(Frame::from_normal(ns)), ng_(ng) {}
+    /// `tangent` (dp/du, any length) orients the local s axis; zero picks any frame.
+    Bsdf(Lobe lobe, Vec3 ns, Vec3 ng, Vec3 tangent = {})
+        : lobe_(lobe), frame_(Frame::from_normal_tangent(ns, tangent)), ng_(ng)
+    {
+    }
 
     /// f(wo, wi) in world space, zero across the geometric surface for reflection lobes.
     Rgb f(Vec3 wo, Vec3 wi) const;

@@ -53,7 +53,7 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
         if (bounce >= settings_.maxdepth)
             break;
 
-        const Bsdf bsdf = material_bsdf(scene_.material(hit->material), hit->ns, hit->ng, hit->u, hit->v);
+        const Bsdf bsdf = material_bsdf(scene_.material(hit->material), hit->ns, hit->ng, hit->dpdu, hit->u, hit->v);
         if (!guide_done && !bsdf.is_specular()) {
             guide.albedo = beta * bsdf.albedo();
             guide.normal = face_forward(hit->ns, wo);

@@ -33,7 +33,8 @@ struct Material {
 float roughness_to_alpha(float roughness);
 
 /// The BSDF of `material` at a point with shading normal `ns`, geometric normal `ng`
-/// (both unit, same side) and texture coordinates (u, v).
-Bsdf material_bsdf(const Material& material, Vec3 ns, Vec3 ng, float u, float v);
+/// (both unit, same side), tangent dp/du (orients anisotropic roughness; zero: any)
+/// and texture coordinates (u, v).
+Bsdf material_bsdf(const Material& material, Vec3 ns, Vec3 ng, Vec3 dpdu, float u, float v);
 
 }  // namespace statmc::render

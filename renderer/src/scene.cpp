@@ -204,6 +204,7 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const
             n = -n;
         hit.ng = hit.ns = n;
         const Vec3 local = n;
+        hit.dpdu = {-local.y, local.x, 0};  // along increasing φ about the z axis
         hit.u = (std::atan2(local.y, local.x) + kPi) / (2 * kPi);
         hit.v = std::acos(std::clamp(local.z, -1.f, 1.f)) * kInvPi;
         hit.emitter = rec.emitter_base;
@@ -220,12 +221,23 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const
     }
     hit.ng = triangle_normal(m, tri, ns);
     hit.ns = (m.normals.empty() || length_squared(ns) == 0) ? hit.ng : ns;
-    if (!m.uvs.empty()) {
-        hit.u = m.uvs[2 * i0] * b0 + m.uvs[2 * i1] * b1 + m.uvs[2 * i2] * b2;
-        hit.v = m.uvs[2 * i0 + 1] * b0 + m.uvs[2 * i1 + 1] * b1 + m.uvs[2 * i2 + 1] * b2;
-    } else {  // pbrt-v3's default parameterisation (0,0), (1,0), (1,1)
-        hit.u = b1 + b2;
-        hit.v = b2;
+    // pbrt-v3's default parameterisation when there are no uvs: (0,0), (1,0), (1,1).
+    float uv[3][2] = {{0, 0}, {1, 0}, {1, 1}};
+    if (!m.uvs.empty())
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t vi = k == 0 ? i0 : (k == 1 ? i1 : i2);
+            uv[k][0] = m.uvs[2 * vi];
+            uv[k][1] = m.uvs[2 * vi + 1];
+        }
+    hit.u = uv[0][0] * b0 + uv[1][0] * b1 + uv[2][0] * b2;
+    hit.v = uv[0][1] * b0 + uv[1][1] * b1 + uv[2][1] * b2;
+    // dp/du from the triangle's edges in position and uv (zero when the uvs degenerate).
+    const float du02 = uv[0][0] - uv[2][0], dv02 = uv[0][1] - uv[2][1];
+    const float du12 = uv[1][0] - uv[2][0], dv12 = uv[1][1] - uv[2][1];
+    const float det = du02 * dv12 - dv02 * du12;
+    if (std::abs(det) > 1e-12f) {
+        const Vec3 dp02 = m.positions[i0] - m.positions[i2], dp12 = m.positions[i1] - m.positions[i2];
+        hit.dpdu = (dp02 * dv12 - dp12 * dv02) / det;
     }
     if (rec.emitter_base >= 0)
         hit.emitter = rec.emitter_base + int(tri);

@@ -22,6 +22,7 @@ struct SurfaceHit {
     Vec3 p;
     Vec3 ng;  ///< unit geometric normal, on the side of the shading normal (pbrt's rule)
     Vec3 ns;  ///< unit shading normal
+    Vec3 dpdu;           ///< surface tangent along u (zero when the uvs are degenerate)
     float u = 0, v = 0;  ///< texture coordinates
     int material = 0;
     int emitter = -1;    ///< index into lights(), or −1

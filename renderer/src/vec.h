@@ -53,6 +53,18 @@ struct Frame {
         const float b = n.x * n.y * a;
         return {{1.f + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}, n};
     }
+    /// The frame around `n` whose s axis is `tangent` made orthogonal to n (pbrt's
+    /// shading frame, s along dp/du, so that anisotropic roughness follows the texture
+    /// parameterisation); any frame when the tangent is zero or parallel to n.
+    static Frame from_normal_tangent(Vec3 n, Vec3 tangent)
+    {
+        const Vec3 s0 = tangent - n * dot(n, tangent);
+        const float l = length(s0);
+        if (!(l > 1e-6f * length(tangent)) || !(l > 0))
+            return from_normal(n);
+        const Vec3 s = s0 / l;
+        return {s, cross(n, s), n};
+    }
     Vec3 to_local(Vec3 v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
     Vec3 to_world(Vec3 v) const { return s * v.x + t * v.y + n * v.z; }
 };

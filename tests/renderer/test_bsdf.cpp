@@ -131,3 +131,15 @@ TEST(Furnace, ConductorFresnelMatchesKnownValues)
     EXPECT_NEAR(fresnel_dielectric(1.f, 1.5f), 0.04f, 1e-5f);
     EXPECT_FLOAT_EQ(fresnel_dielectric(-0.2f, 1.5f), 1.f);
 }
+
+TEST(Furnace, AnisotropyFollowsTheTangent)
+{
+    // αu (along the tangent, dp/du) narrow, αv wide: the lobe is stretched across the
+    // tangent. Rotating the tangent by 90° swaps which offset direction is brighter.
+    const MetalLobe lobe{Rgb{0.2f}, Rgb{3.9f}, 0.05f, 0.5f};
+    const Vec3 n{0, 0, 1}, wo{0, 0, 1};
+    const Vec3 along_x = normalize(Vec3{0.3f, 0, 1}), along_y = normalize(Vec3{0, 0.3f, 1});
+    const Bsdf tangent_x(lobe, n, n, {2, 0, 0}), tangent_y(lobe, n, n, {0, 1, 0.5f});
+    EXPECT_LT(tangent_x.f(wo, along_x).g, tangent_x.f(wo, along_y).g);
+    EXPECT_GT(tangent_y.f(wo, along_x).g, tangent_y.f(wo, along_y).g);
+}
