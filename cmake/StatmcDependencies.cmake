@@ -10,6 +10,9 @@ list(FILTER _statmc_oiio_inc EXCLUDE REGEX "opencv4")
 set_target_properties(OpenImageIO::OpenImageIO PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_statmc_oiio_inc}")
 find_package(OpenEXR 3 CONFIG REQUIRED)
 find_package(Imath 3 CONFIG REQUIRED)
+# OCIO's own CMake config is broken on Debian 12 (wrong include dir); pkg-config works.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET OpenColorIO>=2.1)
 # The renderer (renderer/): Embree 3 for rays, CLI11 for its command line.
 find_package(embree 3.13 CONFIG REQUIRED)   # target `embree` (no namespace)
 find_package(CLI11 CONFIG REQUIRED)

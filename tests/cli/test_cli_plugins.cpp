@@ -136,5 +136,26 @@ TEST(CliPlugins, ComparePrintsMetricsAndPushesTheErrorImage)
     EXPECT_NE(same.out.find("  SSIM    1\n"), std::string::npos) << same.out;
 }
 
+TEST(CliPlugins, DisplayUsesTheShippedConfigWithoutOcio)
+{
+    TempDir dir;
+    const std::string in = dir.file("in.exr");
+    write_exr(cli_render(0), in);
+    unsetenv("OCIO");
+    const CliResult r = run_cli({in, "--display", "-o", dir.file("srgb.exr")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const float linear = read_exr(in).getchannel(6, 3, 0, 1);
+    const float encoded = linear <= 0.0031308f ? 12.92f * linear
+                                               : 1.055f * std::pow(linear, 1 / 2.4f) - 0.055f;
+    EXPECT_NEAR(read_exr(dir.file("srgb.exr")).getchannel(6, 3, 0, 1), encoded, 1e-4f);
+    const CliResult bad = run_cli({in, "--display:view=Nope", "-o", dir.file("bad.exr")});
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_NE(bad.err.find("--display: " + in +
+                           ": view 'Nope' of display 'sRGB' is not in OCIO config "),
+              std::string::npos)
+        << bad.err;
+    EXPECT_NE(bad.err.find("(views: sRGB, Filmic, Raw)"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace statmc::test

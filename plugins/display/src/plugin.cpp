@@ -1,0 +1,67 @@
+// display: scene-linear → display encoding through OpenColorIO, as a statmc plugin.
+//
+// | parameter | type   | default           | meaning                                     |
+// |-----------|--------|-------------------|---------------------------------------------|
+// | display   | string | config's default  | OCIO display ("sRGB" in the shipped config) |
+// | view      | string | display's default | OCIO view ("sRGB", "Filmic", "Raw")         |
+// | config    | string | $OCIO, else ours  | OCIO config file                            |
+//
+// One input; pushes the display-encoded R,G,B (A kept).
+#include <cstdlib>
+#include <filesystem>
+
+#include <dlfcn.h>
+
+#include "statmc/display/display.h"
+#include "statmc/plugin_api/plugin_interface.h"
+
+namespace {
+
+// The config that ships with statmc, beside this module, so that an installed tree can
+// be moved as a whole.
+std::string shipped_config()
+{
+    Dl_info info{};
+    if (!dladdr(reinterpret_cast<void*>(&shipped_config), &info) || !info.dli_fname)
+        return {};
+    return (std::filesystem::path(info.dli_fname).parent_path() / "display" / "config.ocio")
+        .string();
+}
+
+// :config= first, then $OCIO (the pipeline's), then ours.
+std::string config_of(const statmc::ParameterValues& p)
+{
+    if (std::string given = p.get_string("config"); !given.empty())
+        return given;
+    if (const char* env = std::getenv("OCIO"); env && *env)
+        return env;
+    return shipped_config();
+}
+
+void register_display(statmc::PluginRegistry& registry)
+{
+    statmc::OperatorSpec op;
+    op.name = "display";
+    op.summary = "Convert the top image from scene-linear to a display through an OCIO view";
+    op.help = "Uses :config=, else $OCIO, else the small config shipped with statmc (display "
+              "sRGB with views sRGB, Filmic and Raw). Only R,G,B change; A is kept.";
+    op.parameters = {
+        statmc::string_parameter("display", "", "OCIO display (default: the config's)"),
+        statmc::string_parameter("view", "", "OCIO view (default: the display's)"),
+        statmc::string_parameter("config", "", "OCIO config file (default: $OCIO, else "
+                                               "statmc's own)"),
+    };
+    op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs,
+                const statmc::ParameterValues& p, const statmc::RunContext& ctx) {
+        statmc::DisplayOptions options;
+        options.config = config_of(p);
+        options.display = p.get_string("display");
+        options.view = p.get_string("view");
+        return statmc::display(*inputs[0], options, ctx.nthreads);
+    };
+    registry.add(std::move(op));
+}
+
+}  // namespace
+
+STATMC_EXPORT_PLUGIN(register_display)
