@@ -80,6 +80,9 @@ Rgb ImageTexture::lookup(float u, float v) const
 {
     if (!std::isfinite(u) || !std::isfinite(v))
         return texel(0, 0);
+    // Repeat wrapping first, so that far-away coordinates never overflow an int.
+    u -= std::floor(u);
+    v -= std::floor(v);
     const float x = u * width_ - 0.5f;
     const float y = (1.f - v) * height_ - 0.5f;
     const float fx = std::floor(x), fy = std::floor(y);
