@@ -103,7 +103,9 @@ std::string help_text()
         describe(os, c);
     os << "\nExamples:\n"
           "  statmc in.exr --denoise:radius=20:alpha=0.005:guides=albedo,normal -o out.exr\n"
-          "  statmc a.exr b.exr c.exr --passes --denoise -o out.exr\n";
+          "  statmc a.exr b.exr c.exr --passes --denoise -o out.exr\n"
+          "  statmc task1.exr task2.exr task3.exr --merge -o frame.exr\n"
+          "  statmc out.exr reference.exr --compare -o error.exr\n";
     return os.str();
 }
 

@@ -93,6 +93,21 @@ void run_operator(const statmc::OperatorSpec& op, ToolContext& ctx, const Invoca
     ctx.stack.push(std::move(result));
 }
 
+// `text` word-wrapped to 88 columns, each line indented by two spaces.
+std::string wrapped(const std::string& text)
+{
+    std::istringstream words(text);
+    std::string word, line, out;
+    while (words >> word) {
+        if (!line.empty() && line.size() + 1 + word.size() > 86) {
+            out += "  " + line + "\n";
+            line.clear();
+        }
+        line += (line.empty() ? "" : " ") + word;
+    }
+    return out + "  " + line + "\n";
+}
+
 }  // namespace
 
 std::vector<std::string> plugin_search_path()
@@ -155,7 +170,7 @@ std::string operator_help_text(std::string_view name)
                         "' (see statmc --list-ops)");
     std::ostringstream os;
     os << "--" << op->name << (op->parameters.empty() ? "" : "[:name=value...]") << "   ("
-       << input_text(*op) << ")\n  " << op->summary << "\n\n  " << op->help << "\n";
+       << input_text(*op) << ")\n" << wrapped(op->summary) << "\n" << wrapped(op->help);
     if (!op->parameters.empty()) {
         os << "\n  " << std::left << std::setw(14) << "parameter" << std::setw(8) << "type"
            << std::setw(10) << "default" << std::setw(12) << "range" << "meaning\n";
