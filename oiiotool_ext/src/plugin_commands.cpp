@@ -79,6 +79,7 @@ void run_operator(const statmc::OperatorSpec& op, ToolContext& ctx, const Invoca
     statmc::RunContext run_context;
     run_context.nthreads = ctx.nthreads;
     run_context.out = &ctx.out;
+    run_context.module = op.module;
     for (const StackImage& s : popped) {
         images.push_back(&s.image);
         run_context.input_labels.push_back(s.label);

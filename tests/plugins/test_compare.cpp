@@ -109,6 +109,32 @@ TEST(Compare, SsimFallsAsNoiseGrows)
     EXPECT_LT(previous, 0.5);
 }
 
+TEST(Compare, SsimSeesTheImagesThroughTheDisplayView)
+{
+    const int w = 32, h = 24;
+    const std::vector<float> ref = textured(w, h);
+    std::vector<float> x = ref;
+    std::mt19937 rng(5);
+    std::normal_distribution<float> noise(0.f, 0.05f);
+    for (float& v : x)
+        v += noise(rng);
+    CompareOptions options;
+    const double plain = metrics(rgb_image(w, h, x), rgb_image(w, h, ref)).ssim;
+    CompareMetrics m;
+    OIIO::ImageBuf error;
+    // statmc's sRGB view is the sRGB encoding, so SSIM is the same through it.
+    options.display = DisplayOptions{STATMC_DISPLAY_CONFIG, "sRGB", "sRGB"};
+    ASSERT_TRUE(compare(m, error, rgb_image(w, h, x), rgb_image(w, h, ref), options))
+        << error.geterror();
+    EXPECT_NEAR(m.ssim, plain, 1e-5);
+    options.display->view = "Filmic";
+    ASSERT_TRUE(compare(m, error, rgb_image(w, h, x), rgb_image(w, h, ref), options));
+    EXPECT_GT(std::abs(m.ssim - plain), 1e-3);
+    options.display->view = "Nope";
+    EXPECT_FALSE(compare(m, error, rgb_image(w, h, x), rgb_image(w, h, ref), options));
+    EXPECT_NE(error.geterror().find("view 'Nope' of display 'sRGB'"), std::string::npos);
+}
+
 TEST(Compare, RefusesDifferentWindowsAndMissingChannels)
 {
     CompareMetrics m;

@@ -40,45 +40,68 @@ void check_match(const OIIO::ImageSpec& a, const OIIO::ImageSpec& b)
             a.width, a.height, a.x, a.y, b.width, b.height, b.x, b.y));
 }
 
+float clamped(float v) { return std::clamp(std::isfinite(v) ? v : 0.f, 0.f, 1.f); }
+
 // sRGB's encoding (IEC 61966-2-1), then clamped: the LDR image SSIM is defined on.
 float display_value(float linear)
 {
     const float v = linear <= 0.0031308f ? 12.92f * linear
                                          : 1.055f * std::pow(linear, 1 / 2.4f) - 0.055f;
-    return std::clamp(std::isfinite(v) ? v : 0.f, 0.f, 1.f);
+    return clamped(v);
 }
 
-float luminance(const float* rgb)
+// Rec.709 luminance of the LDR pixels of `rgb` (3 channels).
+std::vector<float> ldr_luminance(const std::vector<float>& rgb, bool encode)
 {
-    return 0.2126f * display_value(rgb[0]) + 0.7152f * display_value(rgb[1]) +
-           0.0722f * display_value(rgb[2]);
+    std::vector<float> y(rgb.size() / 3);
+    for (std::size_t p = 0; p < y.size(); ++p) {
+        float v[3];
+        for (int c = 0; c < 3; ++c)
+            v[c] = encode ? display_value(rgb[3 * p + c]) : clamped(rgb[3 * p + c]);
+        y[p] = 0.2126f * v[0] + 0.7152f * v[1] + 0.0722f * v[2];
+    }
+    return y;
 }
 
-CompareMetrics metrics_of(const OIIO::ImageBuf& x, const OIIO::ImageBuf& ref, double epsilon)
+std::vector<float> pixels_of(const OIIO::ImageBuf& buf)
+{
+    std::vector<float> p(std::size_t(buf.spec().width) * buf.spec().height * 3);
+    buf.get_pixels(buf.roi(), OIIO::TypeFloat, p.data());
+    return p;
+}
+
+// The luminance SSIM compares: through the display transform when one is given.
+std::vector<float> ldr_of(const OIIO::ImageBuf& rgb, const CompareOptions& options,
+                          int nthreads)
+{
+    if (!options.display)
+        return ldr_luminance(pixels_of(rgb), true);
+    OIIO::ImageBuf shown;
+    if (!statmc::display(shown, rgb, *options.display, nthreads))
+        throw std::invalid_argument(shown.geterror());
+    return ldr_luminance(pixels_of(shown), false);
+}
+
+CompareMetrics metrics_of(const OIIO::ImageBuf& x, const OIIO::ImageBuf& ref,
+                          const CompareOptions& options, int nthreads)
 {
     const OIIO::ImageSpec& spec = x.spec();
     const int w = spec.width, h = spec.height;
-    std::vector<float> px(std::size_t(w) * h * 3), pr(px.size());
-    x.get_pixels(x.roi(), OIIO::TypeFloat, px.data());
-    ref.get_pixels(ref.roi(), OIIO::TypeFloat, pr.data());
+    const std::vector<float> px = pixels_of(x), pr = pixels_of(ref);
+    const double epsilon = options.relmse_epsilon;
     double se = 0, ae = 0, rel = 0;
-    std::vector<float> lx(std::size_t(w) * h), lr(lx.size());
     for (std::size_t i = 0; i < px.size(); ++i) {
         const double d = double(px[i]) - pr[i];
         se += d * d;
         ae += std::abs(d);
         rel += d * d / (double(pr[i]) * pr[i] + epsilon);
     }
-    for (std::size_t p = 0; p < lx.size(); ++p) {
-        lx[p] = luminance(&px[3 * p]);
-        lr[p] = luminance(&pr[3 * p]);
-    }
     CompareMetrics m;
     const double n = double(px.size());
     m.rmse = std::sqrt(se / n);
     m.mae = ae / n;
     m.relmse = rel / n;
-    m.ssim = mean_ssim(lx, lr, w, h);
+    m.ssim = mean_ssim(ldr_of(x, options, nthreads), ldr_of(ref, options, nthreads), w, h);
     m.dssim = (1 - m.ssim) / 2;
     return m;
 }
@@ -96,7 +119,7 @@ bool compare(CompareMetrics& metrics, OIIO::ImageBuf& error, const OIIO::ImageBu
         check_match(image.spec(), reference.spec());
         const OIIO::ImageBuf x = beauty(image, "the image", nthreads);
         const OIIO::ImageBuf ref = beauty(reference, "the reference", nthreads);
-        metrics = metrics_of(x, ref, options.relmse_epsilon);
+        metrics = metrics_of(x, ref, options, nthreads);
         if (!OIIO::ImageBufAlgo::absdiff(error, x, ref, {}, nthreads))
             throw std::invalid_argument(error.geterror());
         return true;

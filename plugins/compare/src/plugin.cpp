@@ -4,6 +4,9 @@
 // |------------|--------|---------|-------|----------------------------------------------|
 // | epsilon    | float  | 0.01    | > 0   | ε of relMSE = mean (x − ref)² / (ref² + ε)   |
 // | errorimage | string | (none)  |       | also write |x − ref| to this file            |
+// | view       | string | default |       | OCIO view SSIM sees the images through       |
+// | display    | string | default |       | OCIO display                                 |
+// | config     | string | $OCIO, else statmc's own | | OCIO config                         |
 //
 // Pops the reference (top) and the image (below it); prints one row per metric (RMSE,
 // MAE, relMSE, SSIM, DSSIM) and pushes the per-pixel absolute error image.
@@ -32,6 +35,9 @@ OIIO::ImageBuf run(const std::vector<const OIIO::ImageBuf*>& inputs,
 {
     statmc::CompareOptions options;
     options.relmse_epsilon = p.get_float("epsilon", options.relmse_epsilon);
+    options.display = statmc::DisplayOptions{
+        statmc::display_config(p.get_string("config"), ctx.module), p.get_string("display"),
+        p.get_string("view")};
     statmc::CompareMetrics metrics;
     OIIO::ImageBuf error;
     if (!statmc::compare(metrics, error, *inputs[0], *inputs[1], options, ctx.nthreads))
@@ -56,10 +62,15 @@ void register_compare(statmc::PluginRegistry& registry)
                  "(top); push |image - reference|";
     op.help = "RMSE, MAE and relMSE (Rousselle et al. 2011) are means over pixels and R,G,B "
               "of the scene-linear values; SSIM (Wang et al. 2004; 11x11 Gaussian window, "
-              "sigma 1.5) is on the luminance of the sRGB-encoded images clamped to [0, 1].";
+              "sigma 1.5) is on the luminance of the images shown through an OCIO view "
+              "(as --display) and clamped to [0, 1].";
     op.parameters = {
         statmc::float_parameter("epsilon", 0.01, "epsilon of relMSE").above(0),
         statmc::string_parameter("errorimage", "", "also write the absolute error image here"),
+        statmc::string_parameter("view", "", "OCIO view SSIM sees the images through "
+                                             "(default: the display's, sRGB in statmc's config)"),
+        statmc::string_parameter("display", "", "OCIO display (default: the config's)"),
+        statmc::string_parameter("config", "", "OCIO config (default: $OCIO, else statmc's own)"),
     };
     op.inputs = 2;
     op.run = run;

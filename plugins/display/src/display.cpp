@@ -1,6 +1,7 @@
 #include "statmc/display/display.h"
 
 #include <cstdlib>
+#include <filesystem>
 #include <stdexcept>
 #include <vector>
 
@@ -135,6 +136,17 @@ OIIO::ImageBuf display_image(const OIIO::ImageBuf& src, const DisplayOptions& op
 }
 
 }  // namespace
+
+std::string display_config(const std::string& given, const std::string& module)
+{
+    if (!given.empty())
+        return given;
+    if (const char* env = std::getenv("OCIO"); env && *env)
+        return env;
+    if (module.empty())
+        return {};
+    return (std::filesystem::path(module).parent_path() / "display" / "config.ocio").string();
+}
 
 bool display(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DisplayOptions& options,
              int nthreads)

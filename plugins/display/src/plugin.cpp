@@ -7,36 +7,10 @@
 // | config    | string | $OCIO, else ours  | OCIO config file                            |
 //
 // One input; pushes the display-encoded R,G,B (A kept).
-#include <cstdlib>
-#include <filesystem>
-
-#include <dlfcn.h>
-
 #include "statmc/display/display.h"
 #include "statmc/plugin_api/plugin_interface.h"
 
 namespace {
-
-// The config that ships with statmc, beside this module, so that an installed tree can
-// be moved as a whole.
-std::string shipped_config()
-{
-    Dl_info info{};
-    if (!dladdr(reinterpret_cast<void*>(&shipped_config), &info) || !info.dli_fname)
-        return {};
-    return (std::filesystem::path(info.dli_fname).parent_path() / "display" / "config.ocio")
-        .string();
-}
-
-// :config= first, then $OCIO (the pipeline's), then ours.
-std::string config_of(const statmc::ParameterValues& p)
-{
-    if (std::string given = p.get_string("config"); !given.empty())
-        return given;
-    if (const char* env = std::getenv("OCIO"); env && *env)
-        return env;
-    return shipped_config();
-}
 
 void register_display(statmc::PluginRegistry& registry)
 {
@@ -54,7 +28,7 @@ void register_display(statmc::PluginRegistry& registry)
     op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs,
                 const statmc::ParameterValues& p, const statmc::RunContext& ctx) {
         statmc::DisplayOptions options;
-        options.config = config_of(p);
+        options.config = statmc::display_config(p.get_string("config"), ctx.module);
         options.display = p.get_string("display");
         options.view = p.get_string("view");
         return statmc::display(*inputs[0], options, ctx.nthreads);

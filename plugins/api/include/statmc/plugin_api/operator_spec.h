@@ -23,6 +23,7 @@ struct RunContext {
     int nthreads = 0;                       ///< 0 = OIIO's global "threads"; 1 = caller only
     std::ostream* out = nullptr;            ///< for reports (compare's table); may be null
     std::vector<std::string> input_labels;  ///< names of the inputs for messages (file names)
+    std::string module;                     ///< the operator's module file: data ships beside it
 };
 
 /// Inputs bottom of the stack first. Returns the image to push; on failure the result

@@ -2,7 +2,11 @@
 // reference, in the metrics denoising papers report.
 #pragma once
 
+#include <optional>
+
 #include <OpenImageIO/imagebuf.h>
+
+#include "statmc/display/display.h"
 
 namespace statmc {
 
@@ -16,11 +20,15 @@ struct CompareMetrics {
 
 struct CompareOptions {
     double relmse_epsilon = 0.01;  ///< ε of relMSE, > 0
+    /// The display transform SSIM sees the images through (display.h); without one, the
+    /// plain sRGB encoding.
+    std::optional<DisplayOptions> display;
 };
 
 /// Compares the beauty (R,G,B by name) of `image` with that of `reference`; every mean
 /// is over pixels and the three channels. RMSE, MAE and relMSE are on the scene-linear
-/// values; SSIM is on the luminance of the LDR images (sRGB OETF, clamped to [0, 1]), with
+/// values; SSIM is on the luminance of the LDR images (`options.display` or the sRGB
+/// encoding, then clamped to [0, 1]), with
 /// an 11×11 Gaussian window (σ = 1.5, truncated and renormalized at the borders), K1 =
 /// 0.01, K2 = 0.03, L = 1.
 ///

@@ -14,6 +14,10 @@ struct DisplayOptions {
     std::string view;     ///< "" is the display's default view
 };
 
+/// The config to use: `given` when not empty, else $OCIO when set, else the config that
+/// ships with statmc, `display/config.ocio` in the directory of `module` (the plugin file).
+std::string display_config(const std::string& given, const std::string& module);
+
 /// Applies the config's scene_linear → (display, view) transform to R,G,B of `src`
 /// (found by name). `dst` is a float R,G,B image (plus A, untouched, when `src` has one)
 /// with `src`'s data window; metadata is kept, `oiio:ColorSpace` set to the view.
