@@ -1,5 +1,6 @@
 #include "statmc/tool/plugin_commands.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <iomanip>
@@ -114,9 +115,20 @@ std::string wrapped(const std::string& text)
 std::vector<std::string> plugin_search_path()
 {
     std::vector<std::string> dirs = shipped_plugin_dirs();
+    std::vector<fs::path> seen;
+    for (const std::string& dir : dirs)
+        seen.push_back(fs::weakly_canonical(dir));
+    // A directory named twice (say, the shipped one on $STATMC_PLUGIN_PATH too) is searched
+    // once, rather than failing on its modules' names being taken.
     if (const char* env = std::getenv("STATMC_PLUGIN_PATH"))
-        for (const std::string& dir : statmc::split_search_path(env))
+        for (const std::string& dir : statmc::split_search_path(env)) {
+            std::error_code ec;
+            const fs::path canonical = fs::weakly_canonical(dir, ec);
+            if (std::find(seen.begin(), seen.end(), canonical) != seen.end())
+                continue;
+            seen.push_back(canonical);
             dirs.push_back(dir);
+        }
     return dirs;
 }
 
@@ -156,7 +168,7 @@ std::string operator_list_text()
 {
     std::ostringstream os;
     for (const statmc::OperatorSpec& op : plugin_registry().operators())
-        os << "  " << std::left << std::setw(14) << ("--" + op.name) << std::setw(12)
+        os << "  " << std::left << std::setw(14) << ("--" + op.name) << std::setw(22)
            << input_text(op) << op.summary << "\n";
     return os.str();
 }

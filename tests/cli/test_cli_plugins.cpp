@@ -51,7 +51,9 @@ TEST(CliPlugins, ModuleOnThePluginPathRunsLikeAShippedOne)
 {
     TempDir dir;
     write_exr(cli_render(0), dir.file("in.exr"));
-    PluginPath path("/nonexistent:" + kModules + "/good");
+    // The shipped directory named again is searched once, not refused as duplicates.
+    PluginPath path("/nonexistent:" + kModules + "/good:" + kModules + "/good/:" +
+                    std::string(STATMC_PLUGIN_DIR));
     const CliResult list = run_cli({"--list-ops"});
     EXPECT_NE(list.out.find("--testscale"), std::string::npos) << list.out << list.err;
     const CliResult help = run_cli({"--help", "testscale"});
