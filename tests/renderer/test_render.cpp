@@ -165,6 +165,38 @@ TEST(Render, DiffusePlaneInUniformEmitterMatchesClosedForm)
     }
 }
 
+TEST(Render, VarianceLayersAreCalibrated)
+{
+    // Every pixel of the plane has the same truth ρ·L, so z = (mean − truth)/sqrt(s²/n)
+    // over the region should be Student-t with n − 1 = 63 df: mean 0, variance
+    // 63/61 ≈ 1.03. Over N = 768 pixel-channels the sample mean of z has a standard error
+    // of 1/√N ≈ 0.036 and its sample variance ≈ √(2/N) ≈ 0.05; the bounds are 4 of those
+    // (a correct renderer fails with probability ≈ 1e-4; the seed is fixed).
+    const float L = 2.f;
+    const float rho[3] = {0.2f, 0.5f, 0.8f};
+    const auto desc = parse_scene_string(furnace_scene(L, "Material \"matte\" \"rgb Kd\" [0.2 0.5 0.8]", kPlane), "furnace.pbrt");
+    const auto r = render_scene(desc, 16, 16, 64, 11, 0);
+    const statmc::StatisticsPlanes p = r.film->stats.planes();
+    const std::size_t m = std::size_t(p.width) * p.height;
+    std::vector<double> z;
+    for (int c = 0; c < 3; ++c)
+        for (std::size_t i = 0; i < m; ++i) {
+            ASSERT_EQ(p.count[i], 64.f);
+            ASSERT_GT(p.variance[c * m + i], 0.f);
+            z.push_back((p.mean[c * m + i] - rho[c] * L) / std::sqrt(p.variance[c * m + i] / p.count[i]));
+        }
+    double mean = 0, var = 0;
+    for (double v : z)
+        mean += v;
+    mean /= double(z.size());
+    for (double v : z)
+        var += (v - mean) * (v - mean);
+    var /= double(z.size() - 1);
+    const double n = double(z.size());
+    EXPECT_LT(std::abs(mean), 4 / std::sqrt(n)) << "mean of z";
+    EXPECT_NEAR(var, 63.0 / 61.0, 4 * std::sqrt(2 / n)) << "variance of z";
+}
+
 TEST(Render, BitwiseIdenticalForAnyThreadCountAndSeedDependent)
 {
     const std::string shared = statmc::render::test::shared_dir();
