@@ -1,7 +1,9 @@
 // statmc-render: renders a pbrt-v3 scene with statmc's path tracer and writes the
 // per-pixel statistics EXR (docs/exr-layers.md), optionally denoised as well.
 #include <atomic>
+#include <chrono>
 #include <csignal>
+#include <functional>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -40,7 +42,7 @@ int main(int argc, char** argv)
     std::string scene_path, output;
     int spp = 0, iterations = 0, seed = 0, threads = 0, maxdepth = -1;
     std::string resolution;
-    bool denoise = false, quiet = false, profile = false;
+    bool denoise = false, quiet = false, profile = false, every_iteration = false;
     app.add_option("scene", scene_path, "pbrt-v3 scene file")->required();
     app.add_option("-o,--output", output, "output statistics EXR")->required();
     auto* spp_opt = app.add_option("--spp", spp,
@@ -60,6 +62,9 @@ int main(int argc, char** argv)
     app.add_option("--maxdepth", maxdepth, "maximum path depth [default: the scene's Integrator maxdepth]")
         ->check(CLI::NonNegativeNumber);
     app.add_flag("--denoise", denoise, "also write the denoised image to OUT.denoised.exr [default: off]");
+    app.add_flag("--write-every-iteration", every_iteration,
+                 "rewrite OUT (and OUT.denoised.exr with --denoise) after every progressive iteration, "
+                 "each time atomically, to watch the render refine [default: off]");
     app.add_flag("-q,--quiet", quiet, "no progress bar and no summary [default: off]");
     app.add_flag("--profile", profile,
                  "print samples/s, rays/s and the share of render time spent in Embree traversal "
@@ -100,23 +105,32 @@ int main(int argc, char** argv)
         scene.enable_profiling(profile);
         const Camera camera(desc.camera, width, height);
         Film film(width, height);
+        const auto start = std::chrono::steady_clock::now();
+        auto write_outputs = [&](const Film& f, double seconds) {
+            OutputInfo info;
+            info.spp = f.min_samples();
+            info.seed = seed;
+            info.render_seconds = float(seconds);
+            info.scene = scene_path;
+            const OIIO::ImageBuf image = make_output_image(f, info);
+            write_exr(image, output);
+            if (denoise) {
+                OIIO::ImageBuf denoised;
+                if (!statmc::denoise(denoised, image, statmc::DenoiseImageOptions{}))
+                    throw std::runtime_error("denoise: " + denoised.geterror());
+                write_exr(denoised, denoised_path(output));
+            }
+            return info;
+        };
+        std::function<void(int, const Film&)> after_iteration;
+        if (every_iteration)
+            after_iteration = [&](int, const Film& f) {
+                write_outputs(f, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            };
         std::signal(SIGINT, on_sigint);
-        const RenderStats stats = render(scene, camera, settings, film, &g_interrupted);
+        const RenderStats stats = render(scene, camera, settings, film, &g_interrupted, after_iteration);
         std::signal(SIGINT, SIG_DFL);
-
-        OutputInfo info;
-        info.spp = film.min_samples();
-        info.seed = seed;
-        info.render_seconds = float(stats.seconds);
-        info.scene = scene_path;
-        const OIIO::ImageBuf image = make_output_image(film, info);
-        write_exr(image, output);
-        if (denoise) {
-            OIIO::ImageBuf denoised;
-            if (!statmc::denoise(denoised, image, statmc::DenoiseImageOptions{}))
-                throw std::runtime_error("denoise: " + denoised.geterror());
-            write_exr(denoised, denoised_path(output));
-        }
+        const OutputInfo info = write_outputs(film, stats.seconds);
         if (!quiet)
             std::fprintf(stderr, "%s: %dx%d, %d spp%s, %.2f s, %.2f Msamples/s\n", output.c_str(), width, height,
                          info.spp, stats.interrupted ? " (interrupted)" : "", stats.seconds,

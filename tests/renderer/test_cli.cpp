@@ -4,10 +4,12 @@
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <thread>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include <fcntl.h>
 #include <sys/wait.h>
@@ -70,6 +72,31 @@ TEST(Cli, WritesStatisticsLayersAndHeader)
     OIIO::ImageBuf den(dir.file("out.denoised.exr"));
     ASSERT_TRUE(den.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << den.geterror();
     EXPECT_EQ(den.spec().get_int_attribute("statmc:denoised"), 1);
+}
+
+TEST(Cli, WriteEveryIterationEndsWithTheSameImage)
+{
+    // Rewriting the outputs after each iteration must not change what the render
+    // accumulates: the final file equals a run that writes once.
+    ScratchDir dir("cli-iter");
+    const std::string scene = dir.write("s.pbrt", kScene);
+    const ProgramRun once = run("\"" + scene + "\" -o \"" + dir.file("once.exr") + "\" --iterations 3 --quiet", dir);
+    ASSERT_EQ(once.status, 0) << once.output;
+    const ProgramRun each = run("\"" + scene + "\" -o \"" + dir.file("each.exr") +
+                                "\" --iterations 3 --quiet --denoise --write-every-iteration", dir);
+    ASSERT_EQ(each.status, 0) << each.output;
+    OIIO::ImageBuf a(dir.file("once.exr")), b(dir.file("each.exr"));
+    ASSERT_TRUE(a.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << a.geterror();
+    ASSERT_TRUE(b.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << b.geterror();
+    EXPECT_EQ(b.spec().get_int_attribute("statmc:spp"), 16);  // 4 + 4 + 8
+    ASSERT_EQ(a.spec().nchannels, b.spec().nchannels);
+    std::vector<float> pa(a.spec().image_pixels() * a.spec().nchannels), pb(pa.size());
+    ASSERT_TRUE(a.get_pixels(a.roi(), OIIO::TypeDesc::FLOAT, pa.data()));
+    ASSERT_TRUE(b.get_pixels(b.roi(), OIIO::TypeDesc::FLOAT, pb.data()));
+    EXPECT_EQ(0, std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(float)));
+    EXPECT_TRUE(std::filesystem::exists(dir.file("each.denoised.exr")));
+    for (const auto& entry : std::filesystem::directory_iterator(dir.file("")))
+        EXPECT_EQ(entry.path().filename().string().find("statmc-tmp"), std::string::npos) << entry.path();
 }
 
 TEST(Cli, ResolutionAndSppOverrides)
