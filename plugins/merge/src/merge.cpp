@@ -8,6 +8,7 @@
 
 #include "statmc/core/statistics_image.h"
 #include "statmc/layers/float_pixels.h"
+#include "statmc/layers/frame_match.h"
 #include "statmc/layers/guide_layers.h"
 #include "statmc/layers/layer_error.h"
 #include "statmc/layers/layer_names.h"
@@ -52,13 +53,7 @@ void check_match(const Parts& parts, std::size_t k)
     const OIIO::ImageSpec& a = parts[k]->spec();
     const OIIO::ImageSpec& b = parts[0]->spec();
     const std::string these = label(parts, k) + " and " + label(parts, 0);
-    if (a.width != b.width || a.height != b.height)
-        throw std::invalid_argument(OIIO::Strutil::fmt::format(
-            "{} differ in resolution: {}x{} vs {}x{}", these, a.width, a.height, b.width,
-            b.height));
-    if (a.x != b.x || a.y != b.y)
-        throw std::invalid_argument(OIIO::Strutil::fmt::format(
-            "{} differ in data window: origin ({}, {}) vs ({}, {})", these, a.x, a.y, b.x, b.y));
+    layers::require_same_frame(a, b, these);
     if (sorted_channels(a) != sorted_channels(b))
         throw std::invalid_argument(these + " differ in channels");
     const int va = a.get_int_attribute(attr::kFormatVersion, 0);

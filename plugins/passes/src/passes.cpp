@@ -8,6 +8,7 @@
 
 #include "statmc/core/passes.h"
 #include "statmc/layers/float_pixels.h"
+#include "statmc/layers/frame_match.h"
 #include "statmc/layers/layer_lookup.h"
 #include "statmc/layers/layer_names.h"
 #include "statmc/layers/statistics_layers.h"
@@ -65,13 +66,7 @@ void check_match(const Renders& renders, std::size_t k)
     const OIIO::ImageSpec& a = renders[k]->spec();
     const OIIO::ImageSpec& b = renders[0]->spec();
     const std::string these = label(renders, k) + " and " + label(renders, 0);
-    if (a.width != b.width || a.height != b.height)
-        throw std::invalid_argument(OIIO::Strutil::fmt::format(
-            "{} differ in resolution: {}x{} vs {}x{}", these, a.width, a.height, b.width,
-            b.height));
-    if (a.x != b.x || a.y != b.y)
-        throw std::invalid_argument(OIIO::Strutil::fmt::format(
-            "{} differ in data window: origin ({}, {}) vs ({}, {})", these, a.x, a.y, b.x, b.y));
+    layers::require_same_frame(a, b, these);
     const auto only_a = missing_from(a.channelnames, b.channelnames);
     const auto only_b = missing_from(b.channelnames, a.channelnames);
     if (!only_a.empty() || !only_b.empty())
