@@ -43,13 +43,14 @@ void filter_reference(const EstimatorImage& est, const Guides& guides,
             for (int c = 0; c < est.channels; ++c)
                 sum[c] = est.value[est.index(c, xi, yi)];
             const bool centre_testable = est.testable(xi, yi);
+            const double gi = centre_testable ? gamma(xi, yi) : 0.0;
             for (int yj = yi - r; yj <= yi + r && centre_testable; ++yj)
                 for (int xj = xi - r; xj <= xi + r; ++xj) {
                     const double p2 = double(xj - xi) * (xj - xi) + double(yj - yi) * (yj - yi);
                     if (xj < 0 || yj < 0 || xj >= est.width || yj >= est.height || p2 > double(r) * r ||
                         (xj == xi && yj == yi) || !est.testable(xj, yj))
                         continue;
-                    const double gi = gamma(xi, yi), gj = gamma(xj, yj);
+                    const double gj = gamma(xj, yj);
                     bool member = true;
                     for (int c = 0; c < est.channels; ++c) {
                         const double d = double(est.test_mean[est.index(c, xi, yi)]) -

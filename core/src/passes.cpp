@@ -1,5 +1,6 @@
 #include "statmc/core/passes.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -31,33 +32,31 @@ StatisticsPlanes statistics_from_passes(const std::vector<std::vector<ConstPlane
     out.mean.assign(n * channels, 0.f);
     out.variance.assign(n * channels, 0.f);
 
-    std::vector<float> sample(channels);
-    auto read = [&](const std::vector<ConstPlane>& pass, int x, int y) {
-        for (int c = 0; c < channels; ++c)
-            sample[c] = pass[c](x, y);
-        if (!sample_is_usable(sample.data(), channels))
-            std::fill(sample.begin(), sample.end(), 0.f);
-    };
-    double sum[4], sum_sq[4];
+    // The K samples of one pixel, read and sanitised once, then summed in two passes
+    // (mean, then squared deviations) so the variance has no cancellation.
+    std::vector<float> samples(std::size_t(k) * channels);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            std::fill(sum, sum + 4, 0.0);
-            for (const auto& pass : passes) {
-                read(pass, x, y);
+            for (int r = 0; r < k; ++r) {
+                float* sample = &samples[std::size_t(r) * channels];
                 for (int c = 0; c < channels; ++c)
-                    sum[c] += sample[c];
-            }
-            // A second pass over the K values avoids cancellation in the variance.
-            std::fill(sum_sq, sum_sq + 4, 0.0);
-            for (const auto& pass : passes) {
-                read(pass, x, y);
-                for (int c = 0; c < channels; ++c)
-                    sum_sq[c] += (sample[c] - sum[c] / k) * (sample[c] - sum[c] / k);
+                    sample[c] = passes[r][c](x, y);
+                if (!sample_is_usable(sample, channels))
+                    std::fill(sample, sample + channels, 0.f);
             }
             const std::size_t i = std::size_t(y) * width + x;
             for (int c = 0; c < channels; ++c) {
-                out.mean[c * n + i] = float(sum[c] / k);
-                out.variance[c * n + i] = float(sum_sq[c] / (k - 1));
+                double sum = 0;
+                for (int r = 0; r < k; ++r)
+                    sum += samples[std::size_t(r) * channels + c];
+                const double mean = sum / k;
+                double sum_sq = 0;
+                for (int r = 0; r < k; ++r) {
+                    const double d = samples[std::size_t(r) * channels + c] - mean;
+                    sum_sq += d * d;
+                }
+                out.mean[c * n + i] = float(mean);
+                out.variance[c * n + i] = float(sum_sq / (k - 1));
             }
         }
     return out;

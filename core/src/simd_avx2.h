@@ -10,7 +10,6 @@ struct Avx2 {
     using F = __m256;
     using M = __m256;  // all-ones lanes where true, as _mm256_cmp_ps produces
     static constexpr int kWidth = 8;
-    static constexpr const char* kName = "avx2";
 
     static F load(const float* p) { return _mm256_loadu_ps(p); }
     static F set1(float x) { return _mm256_set1_ps(x); }

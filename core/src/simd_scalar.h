@@ -10,7 +10,6 @@ struct Scalar {
     using F = float;
     using M = bool;
     static constexpr int kWidth = 1;
-    static constexpr const char* kName = "scalar";
 
     static F load(const float* p) { return *p; }
     static F set1(float x) { return x; }

@@ -146,15 +146,8 @@ TEST(Render, DiffusePlaneInUniformEmitterMatchesClosedForm)
     // The stored statistics (as written to the EXR): per-pixel mean, per-sample
     // variance s², count n. The region mean's standard error is sqrt(Σ s²/n) / m.
     const statmc::StatisticsPlanes p = r.film->stats.planes();
-    const std::size_t m = std::size_t(p.width) * p.height;
     for (int c = 0; c < 3; ++c) {
-        double mean = 0, var = 0;
-        for (std::size_t i = 0; i < m; ++i) {
-            mean += p.mean[c * m + i];
-            var += p.variance[c * m + i] / p.count[i];
-        }
-        mean /= double(m);
-        const double se = std::sqrt(var) / double(m);
+        const auto [mean, se] = region_mean(p, c);
         const double truth = rho[c] * L;
         EXPECT_GT(se, 0.0) << "the estimator should be noisy (light sampling of six walls)";
         // 4 standard errors: a correct renderer fails this with probability ≈ 6.3e-5 per

@@ -34,7 +34,6 @@ struct EstimatorImage {
     {
         return std::size_t(c) * pixels() + std::size_t(y) * width + x;
     }
-    ConstPlane value_plane(int c) const { return {value.data() + c * pixels(), 1, width}; }
     bool testable(int x, int y) const;
 };
 
