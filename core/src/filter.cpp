@@ -1,6 +1,11 @@
 #include "statmc/core/filter.h"
 
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <stdexcept>
+#include <string>
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
@@ -11,14 +16,46 @@
 
 namespace statmc {
 
+namespace {
+
+SimdLevel hardware_simd_level()
+{
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f"))
+        return SimdLevel::Avx512;
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+        return SimdLevel::Avx2;
+    return SimdLevel::Scalar;
+}
+
+/// $STATMC_SIMD lowers the level (never raises it past what the CPU runs).
+SimdLevel requested_cap()
+{
+    const char* env = std::getenv("STATMC_SIMD");
+    if (!env || !*env)
+        return SimdLevel::Avx512;
+    for (SimdLevel level : {SimdLevel::Scalar, SimdLevel::Avx2, SimdLevel::Avx512})
+        if (std::strcmp(env, simd_level_name(level)) == 0)
+            return level;
+    std::fprintf(stderr, "statmc: ignoring STATMC_SIMD=%s (expected scalar, avx2 or avx512)\n", env);
+    return SimdLevel::Avx512;
+}
+
+}  // namespace
+
 SimdLevel detected_simd_level()
 {
-    static const SimdLevel level = [] {
-        __builtin_cpu_init();
-        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")
-            ? SimdLevel::Avx2 : SimdLevel::Scalar;
-    }();
+    static const SimdLevel level = std::min(hardware_simd_level(), requested_cap());
     return level;
+}
+
+std::vector<SimdLevel> supported_simd_levels()
+{
+    std::vector<SimdLevel> levels;
+    for (SimdLevel level : {SimdLevel::Scalar, SimdLevel::Avx2, SimdLevel::Avx512})
+        if (level <= hardware_simd_level())
+            levels.push_back(level);
+    return levels;
 }
 
 const char* simd_level_name(SimdLevel level)
@@ -27,13 +64,34 @@ const char* simd_level_name(SimdLevel level)
     case SimdLevel::Auto: return "auto";
     case SimdLevel::Scalar: return "scalar";
     case SimdLevel::Avx2: return "avx2";
+    case SimdLevel::Avx512: return "avx512";
     }
     return "?";
 }
 
 namespace detail {
-int kernel_width(SimdLevel level) { return level == SimdLevel::Avx2 ? 8 : 1; }
+int kernel_width(SimdLevel level)
+{
+    switch (level) {
+    case SimdLevel::Avx512: return 16;
+    case SimdLevel::Avx2: return 8;
+    default: return 1;
+    }
+}
 }  // namespace detail
+
+namespace {
+
+detail::FilterRowsFn kernel(SimdLevel level)
+{
+    switch (level) {
+    case SimdLevel::Avx512: return detail::filter_rows_avx512();
+    case SimdLevel::Avx2: return detail::filter_rows_avx2();
+    default: return detail::filter_rows_scalar();
+    }
+}
+
+}  // namespace
 
 namespace {
 
@@ -73,10 +131,9 @@ void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOption
     check_arguments(est, options, out);
     if (level == SimdLevel::Auto)
         level = detected_simd_level();
-    if (level == SimdLevel::Avx2 && detected_simd_level() != SimdLevel::Avx2)
-        throw std::invalid_argument("this CPU lacks AVX2/FMA");
-    const detail::FilterRowsFn rows =
-        level == SimdLevel::Avx2 ? detail::filter_rows_avx2() : detail::filter_rows_scalar();
+    if (level > hardware_simd_level())
+        throw std::invalid_argument(std::string("this CPU cannot run the ") + simd_level_name(level) + " kernel");
+    const detail::FilterRowsFn rows = kernel(level);
     const int lanes = detail::kernel_width(level);
 
     run_with_threads(nthreads, [&] {

@@ -25,12 +25,13 @@ struct Centre {
 template <class V, int NC>
 inline typename V::M members(const FilterLayout& L, const Centre<V, NC>& ctr, std::ptrdiff_t off)
 {
-    typename V::M m{};
-    for (int c = 0; c < NC; ++c) {
+    auto excess = [&](int c) {
         const auto d = V::sub(ctr.mean[c], V::load(L.mean[c] + off));
-        const auto pass = V::le(V::fmsub(d, d, V::load(L.threshold[c] + off)), ctr.threshold[c]);
-        m = c == 0 ? pass : V::both(m, pass);
-    }
+        return V::fmsub(d, d, V::load(L.threshold[c] + off));
+    };
+    typename V::M m = V::le(excess(0), ctr.threshold[0]);
+    for (int c = 1; c < NC; ++c)
+        m = V::le_and(m, excess(c), ctr.threshold[c]);
     return m;
 }
 
@@ -84,12 +85,11 @@ void add_band(const FilterLayout& L, int y, int x0, int dy0, int dy1, Partial<V,
             }
             w = V::exp(arg);
         }
-        w = V::select(m, w);
         for (int c = 0; c < NC; ++c)
-            acc[c] = V::fmadd(w, V::sub(V::load(L.value[c] + off), value[c]), acc[c]);
-        weight_sum = V::add(weight_sum, w);
+            acc[c] = V::masked_fmadd(m, w, V::sub(V::load(L.value[c] + off), value[c]), acc[c]);
+        weight_sum = V::masked_add(m, weight_sum, w);
         if constexpr (kDiagnostics)
-            member_count = V::add(member_count, V::select(m, V::set1(1.f)));
+            member_count = V::masked_add(m, member_count, V::set1(1.f));
     };
 
     for (int dy = dy0; dy <= dy1; ++dy) {

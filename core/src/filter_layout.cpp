@@ -52,7 +52,7 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
     L.pad_x = std::min(options.radius, est.width - 1);
     L.pad_y = std::min(options.radius, est.height - 1);
     // Room for the last SIMD chunk of a row to read past the width.
-    constexpr int kMaxLanes = 8;
+    constexpr int kMaxLanes = 16;
     const int padded_width = est.width + 2 * L.pad_x + kMaxLanes;
     L.stride = padded_width;
     L.plane_size = std::size_t(padded_width) * (est.height + 2 * L.pad_y);

@@ -48,6 +48,7 @@ using FilterRowsFn = void (*)(const FilterLayout& layout, const std::vector<Plan
                               int chunk0, int chunk1);
 FilterRowsFn filter_rows_scalar();
 FilterRowsFn filter_rows_avx2();
+FilterRowsFn filter_rows_avx512();
 int kernel_width(SimdLevel level);
 
 }  // namespace statmc::detail

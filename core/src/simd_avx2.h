@@ -23,8 +23,11 @@ struct Avx2 {
     static F fnmadd(F a, F b, F c) { return _mm256_fnmadd_ps(a, b, c); }
     // Ordered compare: a NaN operand gives false, so NaN never makes a member.
     static M le(F a, F b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
-    static M both(M a, M b) { return _mm256_and_ps(a, b); }
+    static M le_and(M m, F a, F b) { return _mm256_and_ps(m, le(a, b)); }
     static F select(M m, F a) { return _mm256_and_ps(m, a); }
+    // Masked lanes add 0·b, which leaves c as it is for the finite b the kernel passes.
+    static F masked_fmadd(M m, F a, F b, F c) { return fmadd(select(m, a), b, c); }
+    static F masked_add(M m, F acc, F a) { return add(acc, select(m, a)); }
     static bool none(M m) { return _mm256_movemask_ps(m) == 0; }
     static void store(float* p, F v) { _mm256_storeu_ps(p, v); }
 

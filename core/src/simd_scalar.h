@@ -1,4 +1,4 @@
-// One-lane "vector" with the interface of simd_avx2.h, so the filter kernel compiles as
+// One-lane "vector" with the interface of simd_avx2.h and simd_avx512.h, so the filter kernel compiles as
 // a portable fallback from the same source.
 #pragma once
 
@@ -23,8 +23,10 @@ struct Scalar {
     static F fmsub(F a, F b, F c) { return a * b - c; }
     static F fnmadd(F a, F b, F c) { return c - a * b; }
     static M le(F a, F b) { return a <= b; }
-    static M both(M a, M b) { return a && b; }
+    static M le_and(M m, F a, F b) { return m && a <= b; }
     static F select(M m, F a) { return m ? a : 0.f; }
+    static F masked_fmadd(M m, F a, F b, F c) { return fmadd(select(m, a), b, c); }
+    static F masked_add(M m, F acc, F a) { return add(acc, select(m, a)); }
     static bool none(M m) { return !m; }
     static F exp(F x) { return std::exp(x); }
     static void store(float* p, F v) { *p = v; }

@@ -99,9 +99,10 @@ TEST_P(FilterVsReference, Agree)
     opt.sigma_spatial = 3.f;
     opt.sigma_albedo = 0.05f;
     opt.sigma_normal = 0.2f;
-    expect_matches_reference(est, g.guides, opt, SimdLevel::Scalar);
-    if (detected_simd_level() == SimdLevel::Avx2)
-        expect_matches_reference(est, g.guides, opt, SimdLevel::Avx2);
+    for (SimdLevel level : supported_simd_levels()) {
+        SCOPED_TRACE(simd_level_name(level));
+        expect_matches_reference(est, g.guides, opt, level);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -136,6 +137,36 @@ TEST(Filter, BitwiseIdenticalForAnyThreadCount)
     EXPECT_EQ(std::memcmp(one.values.data(), two.values.data(), one.values.size() * 4), 0);
     EXPECT_EQ(std::memcmp(one.values.data(), all.values.data(), one.values.size() * 4), 0);
     EXPECT_EQ(std::memcmp(one.weights.data(), two.weights.data(), one.weights.size() * 4), 0);
+}
+
+TEST(Filter, VectorKernelsAgree)
+{
+    // Without guides AVX2 and AVX-512 run the same operations per lane (masked forms
+    // included), so they must agree bit for bit. With guides only the exp's final power of
+    // two is applied differently: same members, weights within a few ulp.
+    const std::vector<SimdLevel> levels = supported_simd_levels();
+    if (levels.back() != SimdLevel::Avx512)
+        GTEST_SKIP() << "this CPU has no AVX-512";
+    const EstimatorImage est = random_estimators(77, 41, 3, 11);
+    for (bool guided : {false, true}) {
+        SCOPED_TRACE(guided ? "guided" : "unguided");
+        GuideImages g(77, 41, guided, guided, 5);
+        DenoiseOptions opt;
+        opt.radius = 7;
+        Output avx2(77, 41, 3), avx512(77, 41, 3);
+        filter(est, g.guides, opt, avx2.planes(), avx2.diagnostics(), 0, SimdLevel::Avx2);
+        filter(est, g.guides, opt, avx512.planes(), avx512.diagnostics(), 0, SimdLevel::Avx512);
+        EXPECT_EQ(avx2.members, avx512.members);
+        if (!guided) {
+            EXPECT_EQ(std::memcmp(avx2.values.data(), avx512.values.data(), avx2.values.size() * 4), 0);
+            EXPECT_EQ(std::memcmp(avx2.weights.data(), avx512.weights.data(), avx2.weights.size() * 4), 0);
+            continue;
+        }
+        for (std::size_t i = 0; i < avx2.weights.size(); ++i)
+            ASSERT_NEAR(avx512.weights[i], avx2.weights[i], 1e-6f * avx2.weights[i]) << "weight " << i;
+        for (std::size_t i = 0; i < avx2.values.size(); ++i)
+            ASSERT_NEAR(avx512.values[i], avx2.values[i], 1e-6f * (1 + std::abs(avx2.values[i]))) << "value " << i;
+    }
 }
 
 TEST(Filter, WritesThroughStridedInterleavedOutput)

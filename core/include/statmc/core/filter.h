@@ -27,10 +27,13 @@ struct FilterDiagnostics {
 };
 
 /// Instruction sets the filter kernel is built for.
-enum class SimdLevel { Auto, Scalar, Avx2 };
+enum class SimdLevel { Auto, Scalar, Avx2, Avx512 };
 
-/// The best level this CPU runs (Avx2 needs AVX2 and FMA).
+/// The best level this CPU runs (Avx2 needs AVX2 and FMA; Avx512 needs AVX-512F).
+/// $STATMC_SIMD=scalar|avx2|avx512 caps it, for comparisons and for debugging.
 SimdLevel detected_simd_level();
+/// Every level this CPU runs, Scalar first: what the tests compare against each other.
+std::vector<SimdLevel> supported_simd_levels();
 const char* simd_level_name(SimdLevel level);
 
 /// Filters `est` into `out` (one plane per channel). Bitwise identical for any thread

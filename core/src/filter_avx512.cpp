@@ -1,0 +1,12 @@
+// The AVX-512F build of the filter kernel; this file alone is compiled with -mavx512f.
+
+// GCC 12's AVX-512 intrinsics seed results with _mm512_undefined_ps(), which its own
+// -Wmaybe-uninitialized then reports (GCC bug 105593); the warning is false here.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
+#include "filter_kernel.h"
+#include "simd_avx512.h"
+
+namespace statmc::detail {
+FilterRowsFn filter_rows_avx512() { return &filter_rows<simd::Avx512>; }
+}  // namespace statmc::detail
