@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <random>
+#include <string>
 
 #include <benchmark/benchmark.h>
 
@@ -81,7 +82,7 @@ EstimatorImage crop(const EstimatorImage& full, int w, int h)
     return out;
 }
 
-void run(benchmark::State& state, bool with_guides, SimdLevel level, bool reference)
+void run(benchmark::State& state, bool with_guides, SimdLevel level, bool reference, float firefly_ratio = DenoiseOptions{}.firefly_ratio)
 {
     EstimatorImage est = estimators_from_statistics(frame().view(), TestDomain::BoxCox);
     if (reference)
@@ -92,7 +93,8 @@ void run(benchmark::State& state, bool with_guides, SimdLevel level, bool refere
     std::vector<Plane> planes;
     for (int c = 0; c < 3; ++c)
         planes.push_back(dense_plane(out.data() + c * est.pixels(), est.width));
-    const DenoiseOptions options;  // r = 20, α = 0.005
+    DenoiseOptions options;  // r = 20, α = 0.005
+    options.firefly_ratio = firefly_ratio;
     for (auto _ : state) {
         if (reference)
             filter_reference(est, guides, options, planes);
@@ -102,11 +104,15 @@ void run(benchmark::State& state, bool with_guides, SimdLevel level, bool refere
     }
     state.counters["taps/s"] = benchmark::Counter(taps_per_image(est.width, est.height, options.radius) * state.iterations(),
                                                   benchmark::Counter::kIsRate);
-    state.SetLabel(reference ? "reference (double, 1 thread, 320x180 crop)" : simd_level_name(level));
+    std::string label = reference ? "reference (double, 1 thread, 320x180 crop)" : simd_level_name(level);
+    if (firefly_ratio == 0)
+        label += ", no firefly guard";
+    state.SetLabel(label);
 }
 
 void BM_Filter(benchmark::State& s) { run(s, false, detected_simd_level(), false); }
 void BM_FilterGuides(benchmark::State& s) { run(s, true, detected_simd_level(), false); }
+void BM_FilterNoGuard(benchmark::State& s) { run(s, false, detected_simd_level(), false, 0.f); }
 void BM_FilterScalarKernel(benchmark::State& s) { run(s, false, SimdLevel::Scalar, false); }
 void BM_FilterReference(benchmark::State& s) { run(s, false, SimdLevel::Scalar, true); }
 void BM_FilterReferenceGuides(benchmark::State& s) { run(s, true, SimdLevel::Scalar, true); }
@@ -114,6 +120,7 @@ void BM_FilterReferenceGuides(benchmark::State& s) { run(s, true, SimdLevel::Sca
 // Arg = threads (0 = all cores). Medians over 5 repetitions (3 for the slow paths).
 BENCHMARK(BM_Filter)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterGuides)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
+BENCHMARK(BM_FilterNoGuard)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterScalarKernel)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(3)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterReference)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Repetitions(3)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterReferenceGuides)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Repetitions(3)->ReportAggregatesOnly();

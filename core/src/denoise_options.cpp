@@ -31,6 +31,8 @@ std::string DenoiseOptions::validate() const
         return "sigma_albedo must be > 0, got " + number(sigma_albedo);
     if (!positive(sigma_normal))
         return "sigma_normal must be > 0, got " + number(sigma_normal);
+    if (!(std::isfinite(firefly_ratio) && (firefly_ratio == 0 || firefly_ratio >= 1)))
+        return "fireflies must be 0 (off) or a variance ratio >= 1, got " + number(firefly_ratio);
     return {};
 }
 

@@ -56,7 +56,7 @@ void add_band(const FilterLayout& L, int y, int x0, int dy0, int dy1, Partial<V,
     F value[NC], acc[NC];
     for (int c = 0; c < NC; ++c) {
         ctr.mean[c] = V::load(L.mean[c] + centre);
-        ctr.threshold[c] = V::load(L.threshold[c] + centre);
+        ctr.threshold[c] = V::load(L.centre_threshold[c] + centre);
         value[c] = V::load(L.value[c] + centre);
         acc[c] = partial.acc[c];
     }

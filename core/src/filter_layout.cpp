@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "statmc/core/critical_values.h"
+#include "statmc/core/firefly_guard.h"
 
 namespace statmc::detail {
 
@@ -66,13 +67,21 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
             guide_planes.emplace_back(p, float(1.0 / (std::sqrt(2.0) * options.sigma_normal)));
     L.guide_count = int(guide_planes.size());
 
-    const int planes = 3 * L.channels + L.guide_count;
+    // A firefly is nobody's member but still a centre, so it needs thresholds of its own
+    // as a centre; without fireflies both views share one plane.
+    const std::vector<std::uint8_t> firefly = find_fireflies(est, options.firefly_ratio);
+    for (std::size_t i = 0; i < firefly.size(); ++i)
+        if (firefly[i])
+            L.fireflies.push_back(i);
+    const bool any_firefly = !L.fireflies.empty();
+    const int planes = (any_firefly ? 4 : 3) * L.channels + L.guide_count;
     L.storage.assign(L.plane_size * planes, 0.f);
     const std::ptrdiff_t origin = std::ptrdiff_t(L.pad_y) * L.stride + L.pad_x;
     auto plane_origin = [&](int k) { return L.storage.data() + k * L.plane_size + origin; };
     float* mean[4];
     float* threshold[4];
     float* value[4];
+    float* centre_threshold[4];
     for (int c = 0; c < L.channels; ++c) {
         mean[c] = plane_origin(c);
         threshold[c] = plane_origin(L.channels + c);
@@ -81,6 +90,8 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         L.mean[c] = mean[c];
         L.threshold[c] = threshold[c];
         L.value[c] = value[c];
+        centre_threshold[c] = any_firefly ? plane_origin(3 * L.channels + L.guide_count + c) : threshold[c];
+        L.centre_threshold[c] = centre_threshold[c];
     }
     float* guide[6];
     for (int g = 0; g < L.guide_count; ++g) {
@@ -105,9 +116,11 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                     const std::size_t i = est.index(c, x, y);
                     value[c][p] = est.value[i];
                     mean[c][p] = testable ? est.test_mean[i] : 0.f;
-                    threshold[c][p] = testable
+                    const float t = testable
                         ? float(std::min(gamma * gamma * est.test_variance[i], double(FLT_MAX)))
                         : kNever;
+                    centre_threshold[c][p] = t;
+                    threshold[c][p] = firefly[std::size_t(y) * est.width + x] ? kNever : t;
                 }
                 for (int g = 0; g < L.guide_count; ++g)
                     guide[g][p] = finite_or_zero(guide_planes[g].first(x, y)) * guide_planes[g].second;

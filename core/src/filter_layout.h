@@ -17,10 +17,12 @@ struct FilterLayout {
     std::ptrdiff_t stride = 0;    // floats per padded row
     std::size_t plane_size = 0;   // floats per padded plane
     std::vector<float> storage;   // all padded planes, back to back
+    std::vector<std::size_t> fireflies;  // row-major pixel indices, ascending (firefly_guard.h)
 
     // Pointers to pixel (0, 0) inside the padding.
     const float* mean[4] = {};       // μ̃, the tested quantity
-    const float* threshold[4] = {};  // T = γ²(df = 2n − 2)·v, or −∞ when untestable
+    const float* threshold[4] = {};  // T = γ²(df = 2n − 2)·v, or −∞ when untestable or a firefly
+    const float* centre_threshold[4] = {};  // T as the centre sees itself: fireflies keep theirs
     const float* value[4] = {};      // F, what is averaged
     int guide_count = 0;             // 0, 3 (albedo or normal) or 6 (both)
     const float* guide[6] = {};      // scaled by 1/(√2·σ): Σ (Δg)² is the log-weight

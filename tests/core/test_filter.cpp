@@ -1,4 +1,5 @@
 // The optimised filter against the plain reference of method.md §5, and its invariants.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -7,6 +8,7 @@
 
 #include "estimator_fixtures.h"
 #include "statmc/core/filter.h"
+#include "statmc/core/firefly_guard.h"
 
 namespace statmc {
 namespace {
@@ -25,7 +27,8 @@ struct Output {
     FilterDiagnostics diagnostics() { return {dense_plane(members.data(), w), dense_plane(weights.data(), w)}; }
 };
 
-// Random estimators with region structure, so that the test both accepts and rejects.
+// Random estimators with region structure, so that the test both accepts and rejects,
+// and a few fireflies, so that the firefly guard's second step is compared too.
 EstimatorImage random_estimators(int w, int h, int channels, std::uint64_t seed)
 {
     std::mt19937_64 rng(seed);
@@ -43,6 +46,12 @@ EstimatorImage random_estimators(int w, int h, int channels, std::uint64_t seed)
             }
             if (rng() % 23 == 0)  // a few untestable pixels
                 est.test_variance[est.index(0, x, y)] = NAN;
+            else if (rng() % 31 == 0)  // a few fireflies
+                for (int c = 0; c < channels; ++c) {
+                    est.value[est.index(c, x, y)] += 40.f;
+                    est.test_mean[est.index(c, x, y)] += 0.5f;
+                    est.test_variance[est.index(c, x, y)] *= 3000.f;
+                }
         }
     return est;
 }
@@ -123,6 +132,13 @@ INSTANTIATE_TEST_SUITE_P(
         return std::to_string(k.w) + "x" + std::to_string(k.h) + "_c" + std::to_string(k.channels) +
                "_r" + std::to_string(k.radius) + (k.albedo ? "_albedo" : "") + (k.normal ? "_normal" : "");
     });
+
+TEST(Filter, TheFixtureHasFireflies)
+{
+    const EstimatorImage est = random_estimators(37, 23, 3, 105);
+    const std::vector<std::uint8_t> flags = find_fireflies(est, DenoiseOptions{}.firefly_ratio);
+    EXPECT_GT(std::count(flags.begin(), flags.end(), 1), 5);
+}
 
 TEST(Filter, BitwiseIdenticalForAnyThreadCount)
 {

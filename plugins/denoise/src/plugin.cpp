@@ -7,6 +7,7 @@
 // | sigma_s      | float  | 10      | > 0       | spatial Gaussian falloff in pixels          |
 // | sigma_albedo | float  | 0.02    | > 0       | albedo guide falloff                        |
 // | sigma_normal | float  | 0.1     | > 0       | normal guide falloff                        |
+// | fireflies    | float  | 16      | 0 or >= 1 | firefly guard variance ratio; 0 = paper's   |
 // | guides       | list   | auto    |           | albedo,normal (required) / auto / none      |
 // | albedo_layer | string | albedo  |           | layer of the albedo guide                   |
 // | normal_layer | string | normal  |           | layer of the normal guide                   |
@@ -49,6 +50,7 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.filter.sigma_spatial = float(p.get_float("sigma_s", opt.filter.sigma_spatial));
     opt.filter.sigma_albedo = float(p.get_float("sigma_albedo", opt.filter.sigma_albedo));
     opt.filter.sigma_normal = float(p.get_float("sigma_normal", opt.filter.sigma_normal));
+    opt.filter.firefly_ratio = float(p.get_float("fireflies", opt.filter.firefly_ratio));
     const std::vector<std::string> guides = p.get_list("guides", {"auto"});
     opt.guides.albedo = guide_use(guides, "albedo");
     opt.guides.normal = guide_use(guides, "normal");
@@ -69,6 +71,10 @@ std::vector<statmc::ParameterSpec> parameters()
         float_parameter("sigma_s", 10, "spatial Gaussian falloff in pixels").above(0),
         float_parameter("sigma_albedo", 0.02, "albedo guide falloff").above(0),
         float_parameter("sigma_normal", 0.1, "normal guide falloff").above(0),
+        float_parameter("fireflies", 16,
+                        "firefly guard: a pixel whose sample variance exceeds this many "
+                        "times its neighbours' median hands out at most its own value; "
+                        "0 = the paper's filter").at_least(0),
         list_parameter("guides", {"albedo", "normal"}, {"auto", "none"}, "auto",
                        "guide layers: a list is required to be present, auto uses those "
                        "present, none none"),
