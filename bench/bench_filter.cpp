@@ -70,6 +70,7 @@ double taps_per_image(int width, int height, int radius)
 EstimatorImage crop(const EstimatorImage& full, int w, int h)
 {
     EstimatorImage out(w, h, full.channels);
+    out.domain = full.domain;
     for (int c = 0; c < full.channels; ++c)
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {

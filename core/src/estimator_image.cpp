@@ -71,6 +71,7 @@ EstimatorImage estimators_from_statistics(const StatisticsView& stats, TestDomai
         throw std::invalid_argument("statistics lack the Box-Cox planes");
 
     EstimatorImage est(stats.width, stats.height, stats.channels);
+    est.domain = domain;
     for (int y = 0; y < stats.height; ++y)
         for (int x = 0; x < stats.width; ++x) {
             const float n = stats.count(x, y);

@@ -13,7 +13,6 @@
 #include <tbb/task_arena.h>
 
 #include "filter_layout.h"
-#include "firefly_spread.h"
 
 namespace statmc {
 
@@ -138,14 +137,7 @@ void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOption
     const int lanes = detail::kernel_width(level);
 
     run_with_threads(nthreads, [&] {
-        const detail::FilterLayout layout = detail::make_filter_layout(est, guides, options, nthreads);
-        // Spreading fireflies afterwards needs every centre's weight sum.
-        FilterDiagnostics diag = diagnostics;
-        std::vector<float> weight_sums;
-        if (!layout.fireflies.empty() && !diag.weight_sum) {
-            weight_sums.resize(est.pixels());
-            diag.weight_sum = dense_plane(weight_sums.data(), est.width);
-        }
+        const detail::FilterLayout layout = detail::make_filter_layout(est, guides, options, nthreads, lanes);
         const int chunks = (est.width + lanes - 1) / lanes;
         // Tiles of a few rows by 64 columns keep the window's planes in L2. Each pixel
         // is computed alone, so the tiling cannot change the result.
@@ -153,12 +145,10 @@ void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOption
         tbb::parallel_for(
             tbb::blocked_range2d<int>(0, est.height, 4, 0, chunks, chunk_grain),
             [&](const tbb::blocked_range2d<int>& r) {
-                rows(layout, out, diag, r.rows().begin(), r.rows().end(),
+                rows(layout, out, diagnostics, r.rows().begin(), r.rows().end(),
                      r.cols().begin(), r.cols().end());
             },
             tbb::simple_partitioner());
-        if (!layout.fireflies.empty())
-            detail::spread_fireflies(layout, out, diag.weight_sum, diag.members);
     });
 }
 

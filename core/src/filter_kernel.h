@@ -16,20 +16,27 @@ namespace {
 template <class V, int NC>
 struct Centre {
     typename V::F mean[NC], threshold[NC];
+    typename V::F noise_limit;
 };
 
 /// Lanes' membership of the neighbour at offset `off`: all channels pass
 /// (μ̃_i − μ̃_j)² − T_j ≤ T_i. This is the fast form of method.md §4,
 /// (μ̃_i − μ̃_j)² ≤ γ_i²v_i + γ_j²v_j, kept in difference form: expanding it into
 /// D_i + D_j ≤ 2μ̃_iμ̃_j cancels catastrophically in float once v ≪ μ̃² (high spp).
-template <class V, int NC>
+template <class V, int NC, bool kGuard>
 inline typename V::M members(const FilterLayout& L, const Centre<V, NC>& ctr, std::ptrdiff_t off)
 {
     auto excess = [&](int c) {
         const auto d = V::sub(ctr.mean[c], V::load(L.mean[c] + off));
         return V::fmsub(d, d, V::load(L.threshold[c] + off));
     };
-    typename V::M m = V::le(excess(0), ctr.threshold[0]);
+    typename V::M m;
+    if constexpr (kGuard) {  // the firefly guard starts the mask chain
+        m = V::le(V::load(L.noise + off), ctr.noise_limit);
+        m = V::le_and(m, excess(0), ctr.threshold[0]);
+    } else {
+        m = V::le(excess(0), ctr.threshold[0]);
+    }
     for (int c = 1; c < NC; ++c)
         m = V::le_and(m, excess(c), ctr.threshold[c]);
     return m;
@@ -44,7 +51,7 @@ struct Partial {
 };
 
 /// Adds the taps of window rows [dy0, dy1] to the chunk of lanes starting at (x0, y).
-template <class V, int NC, int NG, bool kDiagnostics>
+template <class V, int NC, int NG, bool kDiagnostics, bool kGuard>
 void add_band(const FilterLayout& L, int y, int x0, int dy0, int dy1, Partial<V, NC>& partial)
 {
     using F = typename V::F;
@@ -56,10 +63,11 @@ void add_band(const FilterLayout& L, int y, int x0, int dy0, int dy1, Partial<V,
     F value[NC], acc[NC];
     for (int c = 0; c < NC; ++c) {
         ctr.mean[c] = V::load(L.mean[c] + centre);
-        ctr.threshold[c] = V::load(L.centre_threshold[c] + centre);
+        ctr.threshold[c] = V::load(L.threshold[c] + centre);
         value[c] = V::load(L.value[c] + centre);
         acc[c] = partial.acc[c];
     }
+    ctr.noise_limit = V::load(L.noise_limit + centre);
     F guide[NG > 0 ? NG : 1];
     for (int g = 0; g < NG; ++g)
         guide[g] = V::load(L.guide[g] + centre);
@@ -68,7 +76,7 @@ void add_band(const FilterLayout& L, int y, int x0, int dy0, int dy1, Partial<V,
 
     auto tap = [&](int dx, int dy) {
         const std::ptrdiff_t off = centre + std::ptrdiff_t(dy) * L.stride + dx;
-        const auto m = members<V, NC>(L, ctr, off);
+        const auto m = members<V, NC, kGuard>(L, ctr, off);
         if constexpr (NG > 0) {
             // The guide weight costs an exp; a tap no lane accepts adds nothing anyway.
             if (V::none(m))
@@ -154,8 +162,12 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
         // tiling, so results stay bitwise identical for any thread count.
         for (int dy0 = -L.pad_y; dy0 <= L.pad_y; dy0 += kBandRows) {
             const int dy1 = std::min(dy0 + kBandRows - 1, L.pad_y);
-            for (int k = chunk0; k < chunk1; ++k)
-                add_band<V, NC, NG, kDiagnostics>(L, y, k * V::kWidth, dy0, dy1, partials[k - chunk0]);
+            for (int k = chunk0; k < chunk1; ++k) {
+                if (L.needs_guard(y, k))
+                    add_band<V, NC, NG, kDiagnostics, true>(L, y, k * V::kWidth, dy0, dy1, partials[k - chunk0]);
+                else
+                    add_band<V, NC, NG, kDiagnostics, false>(L, y, k * V::kWidth, dy0, dy1, partials[k - chunk0]);
+            }
         }
         for (int k = chunk0; k < chunk1; ++k)
             write_chunk<V, NC, kDiagnostics>(L, out, diag, y, k * V::kWidth, partials[k - chunk0]);

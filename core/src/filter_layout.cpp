@@ -39,15 +39,50 @@ void build_window(FilterLayout& L, const DenoiseOptions& options)
     }
 }
 
+/// Marks the chunks whose window may hold a level above some centre's limit. The
+/// largest level near a chunk is bounded through the maxima of 16×16 blocks: coarse, so
+/// it marks a little more than needed, and one pass over the levels.
+void mark_guarded_chunks(FilterLayout& L, const NoiseLevels& noise)
+{
+    L.chunks = (L.width + L.lanes - 1) / L.lanes;
+    L.guarded.assign(std::size_t(L.chunks) * L.height, 0);
+    constexpr float kAny = std::numeric_limits<float>::infinity();
+    if (std::all_of(noise.limit.begin(), noise.limit.end(), [](float l) { return l == kAny; }))
+        return;
+    constexpr int kBlock = 16;
+    const int bw = (L.width + kBlock - 1) / kBlock, bh = (L.height + kBlock - 1) / kBlock;
+    std::vector<float> block_max(std::size_t(bw) * bh, 0.f);
+    for (int y = 0; y < L.height; ++y)
+        for (int x = 0; x < L.width; ++x) {
+            float& m = block_max[std::size_t(y / kBlock) * bw + x / kBlock];
+            m = std::max(m, noise.level[std::size_t(y) * L.width + x]);
+        }
+    for (int y = 0; y < L.height; ++y)
+        for (int k = 0; k < L.chunks; ++k) {
+            const int x0 = k * L.lanes, x1 = std::min(L.width, x0 + L.lanes) - 1;
+            float least = kAny;
+            for (int x = x0; x <= x1; ++x)
+                least = std::min(least, noise.limit[std::size_t(y) * L.width + x]);
+            if (least == kAny)
+                continue;
+            float most = 0;
+            for (int by = std::max(0, (y - L.pad_y) / kBlock); by <= std::min(bh - 1, (y + L.pad_y) / kBlock); ++by)
+                for (int bx = std::max(0, (x0 - L.pad_x) / kBlock); bx <= std::min(bw - 1, (x1 + L.pad_x) / kBlock); ++bx)
+                    most = std::max(most, block_max[std::size_t(by) * bw + bx]);
+            L.guarded[std::size_t(y) * L.chunks + k] = most > least;
+        }
+}
+
 }  // namespace
 
 FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
-                                const DenoiseOptions& options, int nthreads)
+                                const DenoiseOptions& options, int nthreads, int lanes)
 {
     FilterLayout L;
     L.width = est.width;
     L.height = est.height;
     L.channels = est.channels;
+    L.lanes = lanes;
     // No neighbour lies further than the image extends; clamping keeps padding small
     // for a radius larger than the image.
     L.pad_x = std::min(options.radius, est.width - 1);
@@ -67,21 +102,14 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
             guide_planes.emplace_back(p, float(1.0 / (std::sqrt(2.0) * options.sigma_normal)));
     L.guide_count = int(guide_planes.size());
 
-    // A firefly is nobody's member but still a centre, so it needs thresholds of its own
-    // as a centre; without fireflies both views share one plane.
-    const std::vector<std::uint8_t> firefly = find_fireflies(est, options.firefly_ratio);
-    for (std::size_t i = 0; i < firefly.size(); ++i)
-        if (firefly[i])
-            L.fireflies.push_back(i);
-    const bool any_firefly = !L.fireflies.empty();
-    const int planes = (any_firefly ? 4 : 3) * L.channels + L.guide_count;
+    const NoiseLevels noise = noise_levels(est, options.firefly_ratio);
+    const int planes = 3 * L.channels + L.guide_count + 2;
     L.storage.assign(L.plane_size * planes, 0.f);
     const std::ptrdiff_t origin = std::ptrdiff_t(L.pad_y) * L.stride + L.pad_x;
     auto plane_origin = [&](int k) { return L.storage.data() + k * L.plane_size + origin; };
     float* mean[4];
     float* threshold[4];
     float* value[4];
-    float* centre_threshold[4];
     for (int c = 0; c < L.channels; ++c) {
         mean[c] = plane_origin(c);
         threshold[c] = plane_origin(L.channels + c);
@@ -90,14 +118,16 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         L.mean[c] = mean[c];
         L.threshold[c] = threshold[c];
         L.value[c] = value[c];
-        centre_threshold[c] = any_firefly ? plane_origin(3 * L.channels + L.guide_count + c) : threshold[c];
-        L.centre_threshold[c] = centre_threshold[c];
     }
     float* guide[6];
     for (int g = 0; g < L.guide_count; ++g) {
         guide[g] = plane_origin(3 * L.channels + g);
         L.guide[g] = guide[g];
     }
+    float* noise_level = plane_origin(3 * L.channels + L.guide_count);
+    float* noise_limit = plane_origin(3 * L.channels + L.guide_count + 1);
+    L.noise = noise_level;
+    L.noise_limit = noise_limit;
 
     float max_count = 0;
     for (std::size_t i = 0; i < est.pixels(); ++i)
@@ -119,11 +149,12 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                     const float t = testable
                         ? float(std::min(gamma * gamma * est.test_variance[i], double(FLT_MAX)))
                         : kNever;
-                    centre_threshold[c][p] = t;
-                    threshold[c][p] = firefly[std::size_t(y) * est.width + x] ? kNever : t;
+                    threshold[c][p] = t;
                 }
                 for (int g = 0; g < L.guide_count; ++g)
                     guide[g][p] = finite_or_zero(guide_planes[g].first(x, y)) * guide_planes[g].second;
+                noise_level[p] = noise.level[std::size_t(y) * est.width + x];
+                noise_limit[p] = noise.limit[std::size_t(y) * est.width + x];
             }
     };
     if (nthreads == 1)
@@ -132,6 +163,7 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         tbb::parallel_for(tbb::blocked_range<int>(0, est.height, 16), fill_rows);
 
     build_window(L, options);
+    mark_guarded_chunks(L, noise);
     return L;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "statmc/core/filter.h"
@@ -17,12 +18,18 @@ struct FilterLayout {
     std::ptrdiff_t stride = 0;    // floats per padded row
     std::size_t plane_size = 0;   // floats per padded plane
     std::vector<float> storage;   // all padded planes, back to back
-    std::vector<std::size_t> fireflies;  // row-major pixel indices, ascending (firefly_guard.h)
 
     // Pointers to pixel (0, 0) inside the padding.
     const float* mean[4] = {};       // μ̃, the tested quantity
-    const float* threshold[4] = {};  // T = γ²(df = 2n − 2)·v, or −∞ when untestable or a firefly
-    const float* centre_threshold[4] = {};  // T as the centre sees itself: fireflies keep theirs
+    const float* threshold[4] = {};  // T = γ²(df = 2n − 2)·v, or −∞ when untestable
+    const float* noise = nullptr;        // the level a neighbour presents (firefly_guard.h)
+    const float* noise_limit = nullptr;  // the largest level a centre accepts
+    // Per output row and chunk of `lanes` pixels: 1 where some window pixel's level may
+    // exceed some centre's limit, so the kernel must test the guard there. Elsewhere —
+    // nearly everywhere — it runs without the extra compare.
+    int lanes = 1, chunks = 0;
+    std::vector<std::uint8_t> guarded;
+    bool needs_guard(int y, int chunk) const { return guarded[std::size_t(y) * chunks + chunk] != 0; }
     const float* value[4] = {};      // F, what is averaged
     int guide_count = 0;             // 0, 3 (albedo or normal) or 6 (both)
     const float* guide[6] = {};      // scaled by 1/(√2·σ): Σ (Δg)² is the log-weight
@@ -41,8 +48,9 @@ struct FilterLayout {
     }
 };
 
+/// `lanes`: the kernel's SIMD width, which sets the chunks of `guarded`.
 FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
-                                const DenoiseOptions& options, int nthreads);
+                                const DenoiseOptions& options, int nthreads, int lanes);
 
 /// Filters output rows [y0, y1), chunks of kernel-width columns [chunk0, chunk1).
 using FilterRowsFn = void (*)(const FilterLayout& layout, const std::vector<Plane>& out,

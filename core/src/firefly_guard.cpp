@@ -11,82 +11,93 @@ namespace statmc {
 namespace {
 
 constexpr int kMinNeighbours = 3;  // a median of fewer says nothing about the neighbourhood
+constexpr float kAny = std::numeric_limits<float>::infinity();
 
-float sample_variance(const EstimatorImage& est, int c, int x, int y)
+template <class Body>
+void for_each_row(int height, Body&& body)
 {
-    return est.test_variance[est.index(c, x, y)] * est.count[est.index(0, x, y)];
+    tbb::parallel_for(tbb::blocked_range<int>(0, height, 16), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y)
+            body(y);
+    });
 }
 
-bool is_firefly(const EstimatorImage& est, float ratio, int x, int y)
+/// The upper median of k values (the k/2-th smallest), robust to a noisy pixel or two
+/// next door. All eight neighbours, the common case, go through a sorting network.
+float upper_median(float* v, int k)
 {
-    if (!est.testable(x, y))
-        return false;
-    float around[8];
-    for (int c = 0; c < est.channels; ++c) {
-        int k = 0;
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                const int u = x + dx, v = y + dy;
-                if ((dx || dy) && u >= 0 && v >= 0 && u < est.width && v < est.height && est.testable(u, v))
-                    around[k++] = sample_variance(est, c, u, v);
-            }
-        if (k < kMinNeighbours)
-            return false;
-        // The upper median, robust to another firefly next door.
-        std::nth_element(around, around + k / 2, around + k);
-        const float median = around[k / 2];
-        if (median > 0 && sample_variance(est, c, x, y) > ratio * median)
-            return true;
+    if (k != 8) {
+        std::nth_element(v, v + k / 2, v + k);
+        return v[k / 2];
     }
-    return false;
+    auto order = [&](int a, int b) {
+        const float lo = std::min(v[a], v[b]), hi = std::max(v[a], v[b]);
+        v[a] = lo;
+        v[b] = hi;
+    };
+    // Batcher's odd-even merge sort of eight values.
+    order(0, 1); order(2, 3); order(4, 5); order(6, 7);
+    order(0, 2); order(1, 3); order(4, 6); order(5, 7);
+    order(1, 2); order(5, 6);
+    order(0, 4); order(1, 5); order(2, 6); order(3, 7);
+    order(2, 4); order(3, 5);
+    order(1, 2); order(3, 4); order(5, 6);
+    return v[4];
+}
+
+bool all_zero(const EstimatorImage& est, int x, int y)
+{
+    for (int c = 0; c < est.channels; ++c)
+        if (est.value[est.index(c, x, y)] != 0)
+            return false;
+    return true;
 }
 
 }  // namespace
 
-std::vector<std::uint8_t> find_fireflies(const EstimatorImage& est, float ratio)
+NoiseLevels noise_levels(const EstimatorImage& est, float ratio)
 {
-    std::vector<std::uint8_t> flags(est.pixels(), 0);
-    if (!(ratio > 0))
-        return flags;
-    // The median of the neighbours is at least their minimum, so a pixel within `ratio`
-    // of its smallest testable neighbour in every channel is no firefly. That test is a
-    // streaming minimum over padded planes (untestable and outside = +∞); only the rare
-    // pixels it cannot clear take the median.
-    const int w = est.width, h = est.height, pw = w + 2;
-    constexpr float kAbsent = std::numeric_limits<float>::infinity();
-    std::vector<float> padded(std::size_t(pw) * (h + 2) * est.channels, kAbsent);
-    auto padded_at = [&](int c, int x, int y) -> float& {
-        return padded[(std::size_t(c) * (h + 2) + (y + 1)) * pw + (x + 1)];
-    };
-    tbb::parallel_for(tbb::blocked_range<int>(0, h, 16), [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y < rows.end(); ++y)
-            for (int x = 0; x < w; ++x)
-                if (est.testable(x, y))
-                    for (int c = 0; c < est.channels; ++c)
-                        padded_at(c, x, y) = sample_variance(est, c, x, y);
-    });
-
-    tbb::parallel_for(tbb::blocked_range<int>(0, h, 16), [&](const tbb::blocked_range<int>& rows) {
-        std::vector<std::uint8_t> suspect(w);
-        for (int y = rows.begin(); y < rows.end(); ++y) {
-            std::fill(suspect.begin(), suspect.end(), 0);
-            for (int c = 0; c < est.channels; ++c) {
-                const float* up = &padded_at(c, -1, y - 1);
-                const float* mid = &padded_at(c, -1, y);
-                const float* down = &padded_at(c, -1, y + 1);
-                for (int x = 0; x < w; ++x) {
-                    const float lowest = std::min({up[x], up[x + 1], up[x + 2], mid[x], mid[x + 2],
-                                                   down[x], down[x + 1], down[x + 2]});
-                    // A +∞ centre (untestable) compares false and is never suspect.
-                    suspect[x] |= mid[x + 1] > ratio * lowest && mid[x + 1] != kAbsent;
-                }
-            }
-            for (int x = 0; x < w; ++x)
-                if (suspect[x])
-                    flags[std::size_t(y) * w + x] = is_firefly(est, ratio, x, y);
+    const int w = est.width, h = est.height;
+    NoiseLevels out{std::vector<float>(est.pixels(), 0.f), std::vector<float>(est.pixels(), kAny)};
+    std::vector<std::uint8_t> testable(est.pixels());
+    for_each_row(h, [&](int y) {
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = std::size_t(y) * w + x;
+            testable[i] = est.testable(x, y);
+            if (!testable[i])
+                continue;
+            float level = 0;
+            for (int c = 0; c < est.channels; ++c)
+                level = std::max(level, est.test_variance[est.index(c, x, y)] * est.count[i]);
+            out.level[i] = level;
         }
     });
-    return flags;
+    if (!(ratio > 0) || est.domain != TestDomain::BoxCox)
+        return out;
+    for_each_row(h, [&](int y) {
+        float around[8];
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = std::size_t(y) * w + x;
+            if (!testable[i])
+                continue;
+            int k = 0;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int u = x + dx, v = y + dy;
+                    if ((dx || dy) && u >= 0 && v >= 0 && u < w && v < h &&
+                        testable[std::size_t(v) * w + u])
+                        around[k++] = out.level[std::size_t(v) * w + u];
+                }
+            if (k < kMinNeighbours)
+                continue;
+            const float reference = std::max(out.level[i], upper_median(around, k));
+            if (reference > 0)
+                out.limit[i] = ratio * reference;
+            else if (!all_zero(est, x, y))
+                out.limit[i] = 0;  // noise-free and lit (an emitter): certain, takes only its equals
+        }
+    });
+    return out;
 }
 
 }  // namespace statmc

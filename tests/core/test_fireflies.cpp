@@ -2,7 +2,7 @@
 // whose variance is huge, join nearly every neighbour's average; where neighbours are
 // confident (detail at high spp, few members each) its value is copied into the whole
 // disk and the denoised error rises above the noisy input's. The firefly guard
-// (firefly_guard.h, firefly_spread.h) bounds what a firefly hands out by its own value.
+// (firefly_guard.h) keeps a centre from averaging neighbours far noisier than itself.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -117,62 +117,104 @@ TEST_F(ConfidentFrame, ThePapersFilterCopiesTheFireflyIntoItsDisk)
     EXPECT_GT(testing::mse(with, kSize, kSize, 3, kTexture), 2 * noisy_mse);
 }
 
-TEST_F(ConfidentFrame, TheGuardHandsOutNoMoreThanTheFireflysExcess)
+TEST_F(ConfidentFrame, TheGuardKeepsTheFireflyFromItsNeighbours)
 {
-    // Measured: 1.11× the excess around the firefly, no pixel beyond it raised by more than
-    // 0.34 (0.8% of the per-channel excess), denoised MSE 1/560 of the noisy input's.
-    const std::vector<float> with = denoise(fire, 16), without = denoise(clean, 16);
-    EXPECT_LT(energy_added_around(with, without), 1.25 * excess);
-    EXPECT_LT(largest_rise_beyond(with, without, 1), 0.02 * excess / 3);
-    EXPECT_LT(testing::mse(with, kSize, kSize, 3, kTexture), noisy_mse / 100);
-    // Everything the firefly does not hand out stays at the firefly: no other pixel drops.
-    for (std::size_t i = 0; i < with.size(); ++i) {
-        if (i % (kSize * kSize) != std::size_t(kFy) * kSize + kFx) {
-            ASSERT_GE(with[i], without[i] - 1e-6f) << i;
-        }
+    // Measured: no pixel but the firefly's moves by more than 0.002 (the truth is 0.2…1);
+    // the denoised MSE is 1/2700 of the noisy input's.
+    const std::vector<float> with = denoise(fire, 256), without = denoise(clean, 256);
+    double moved = 0;
+    for (std::size_t i = 0; i < with.size(); ++i)
+        if (i % (kSize * kSize) != std::size_t(kFy) * kSize + kFx)
+            moved = std::max(moved, std::abs(double(with[i]) - without[i]));
+    EXPECT_LT(moved, 0.01);
+    EXPECT_LT(std::abs(energy_added_around(with, without)), 0.01 * excess);
+    EXPECT_LT(testing::mse(with, kSize, kSize, 3, kTexture), noisy_mse / 300);
+}
+
+TEST(Fireflies, AFireflyOfTheDistributionItselfCostsLittle)
+{
+    // Here the rare bright samples belong to every pixel's distribution (1 in 5000 at
+    // 1000× the mean: 17% of the energy), so the paper's spreading is right and excluding
+    // them is a bias. At the default ratio the guard stays within 5% of the paper's MSE at
+    // every n (measured: at most +8% RMSE at n = 16, equal from n = 64); a ratio of 16 would
+    // cost up to 2.8× the RMSE — why the default is 256.
+    const double p = 2e-4, k = 1000;
+    const TruthFn truth = [&](int, int, int c) { return float((0.5 + 0.1 * c) * (1 + p * k)); };
+    const testing::DrawFn draw = [&](std::mt19937_64& rng, float mean) {
+        float s = testing::draw_exponential(rng, mean);
+        if (std::uniform_real_distribution<double>()(rng) < p)
+            s += float(k) * mean;
+        return s;
+    };
+    const TruthFn base = [](int, int, int c) { return 0.5f + 0.1f * c; };
+    for (int n : {16, 64, 256, 1024}) {
+        const StatisticsPlanes stats = testing::sample_statistics(kSize, kSize, n, base, draw, 7);
+        const double paper = testing::mse(denoise(stats, 0), kSize, kSize, 3, truth);
+        const double guard = testing::mse(denoise(stats, 256), kSize, kSize, 3, truth);
+        EXPECT_LT(guard, 1.2 * paper) << "n = " << n;
     }
 }
 
-TEST(Fireflies, WhereAveragingIsWideTheGuardIsThePapersFilter)
+TEST(Fireflies, EmittersStayExactNextToNoise)
 {
-    // A flat region: every neighbour averages hundreds of members, so the paper's filter
-    // already hands out ≈ the firefly's value (c_f ≈ 1) and the guard changes little.
-    const StatisticsPlanes clean = render(kFlat, 64, 0, 9), fire = render(kFlat, 64, 2e4f, 9);
-    const std::vector<float> paper = denoise(fire, 0), guard = denoise(fire, 16);
-    const std::vector<float> paper_clean = denoise(clean, 0), guard_clean = denoise(clean, 16);
-    const double paper_energy = energy_added_around(paper, paper_clean);
-    const double guard_energy = energy_added_around(guard, guard_clean);
-    EXPECT_NEAR(guard_energy, paper_energy, 0.1 * paper_energy);
-    EXPECT_NEAR(paper_energy, firefly_excess(fire, kFlat), 0.2 * paper_energy);
+    // A noise-free lit region (an emitter: every sample 5) beside a noisy one whose pixels
+    // straddle its edge (half the samples 5, half a dimmer surface). The paper's test lets those edge
+    // pixels into the emitter's average; the guard keeps every emitter pixel exact.
+    std::mt19937_64 rng(2);
+    StatisticsImage<3> img(kSize, 24);
+    for (int y = 0; y < 24; ++y)
+        for (int x = 0; x < kSize; ++x)
+            for (int i = 0; i < 16; ++i) {
+                float s = x < 32 ? 5.f : testing::draw_exponential(rng, 0.3f);
+                if (x == 32)  // straddles the edge: half the samples on the emitter
+                    s = i % 2 == 0 ? 5.f : testing::draw_exponential(rng, 3.f);
+                const float v[3] = {s, s, s};
+                img.add(x, y, v);
+            }
+    const StatisticsPlanes stats = img.planes();
+    const std::vector<float> guard = denoise(stats, 256), paper = denoise(stats, 0);
+    int paper_changed = 0;
+    for (int c = 0; c < 3; ++c)
+        for (int y = 0; y < 24; ++y)
+            for (int x = 0; x < 32; ++x) {
+                const std::size_t i = std::size_t(c) * kSize * 24 + std::size_t(y) * kSize + x;
+                ASSERT_EQ(guard[i], 5.f) << x << "," << y;
+                paper_changed += paper[i] != 5.f;
+            }
+    EXPECT_GT(paper_changed, 0) << "the case must be one the paper's filter gets wrong";
 }
 
-TEST(Fireflies, TheGuardFindsTheFireflyAndRarelyAnythingElse)
+TEST(Fireflies, SparseSamplesInBlackRegionsStillSpread)
 {
-    // The injected pixel is flagged; on clean renders flags are rare: measured 0 at
-    // n ≥ 64, 0.3% at n = 16 (log-normal) and n = 4 (exponential), and 4.9% for heavy-tailed
-    // log-normal noise at n = 4. A false flag costs only time: where the flagged pixel's
-    // neighbours average widely the second step hands out what the paper's filter would.
-    const StatisticsPlanes fire = render(kTexture, 64, 2e4f, 5);
-    const std::vector<std::uint8_t> flags =
-        find_fireflies(estimators_from_statistics(fire.view(), TestDomain::BoxCox), 16);
-    EXPECT_EQ(flags[std::size_t(kFy) * kSize + kFx], 1);
-    for (const testing::DrawFn& draw : {testing::DrawFn(testing::draw_exponential),
-                                        testing::DrawFn(testing::draw_lognormal)})
-        for (int n : {4, 16, 64, 256}) {
-            const StatisticsPlanes stats = testing::sample_statistics(kSize, kSize, n, kTexture, draw, 11);
-            const std::vector<std::uint8_t> f =
-                find_fireflies(estimators_from_statistics(stats.view(), TestDomain::BoxCox), 16);
-            const double rate = double(std::count(f.begin(), f.end(), 1)) / f.size();
-            EXPECT_LT(rate, n >= 16 ? 0.005 : 0.06) << "n = " << n;
-        }
+    // A dim region seen through few samples: most pixels have only zero samples (noise-free
+    // and black), some have one hit. Black noise-free pixels take any neighbour, as in the
+    // paper, so the hits' energy is spread and not lost.
+    const TruthFn truth = [](int, int, int) { return 0.05f; };
+    const testing::DrawFn draw = [](std::mt19937_64& rng, float mean) {
+        return std::uniform_real_distribution<float>()(rng) < 0.02f ? mean / 0.02f : 0.f;
+    };
+    const StatisticsPlanes stats = testing::sample_statistics(kSize, kSize, 8, truth, draw, 5);
+    const std::vector<float> guard = denoise(stats, 256), paper = denoise(stats, 0);
+    EXPECT_NEAR(testing::mse(guard, kSize, kSize, 3, truth), testing::mse(paper, kSize, kSize, 3, truth),
+                0.05 * testing::mse(paper, kSize, kSize, 3, truth));
 }
 
 TEST(Fireflies, ZeroTurnsTheGuardOff)
 {
     const StatisticsPlanes fire = render(kTexture, 16, 2e4f, 5);
-    const std::vector<std::uint8_t> flags =
-        find_fireflies(estimators_from_statistics(fire.view(), TestDomain::BoxCox), 0);
-    EXPECT_EQ(std::count(flags.begin(), flags.end(), 1), 0);
+    const NoiseLevels noise = noise_levels(estimators_from_statistics(fire.view(), TestDomain::BoxCox), 0);
+    for (float limit : noise.limit)
+        ASSERT_EQ(limit, INFINITY);
+}
+
+TEST(Fireflies, TheGuardNeedsBoxCoxStatistics)
+{
+    // Raw variances grow with brightness; compared across an edge they would exclude the
+    // bright side. With the untransformed test the guard is off.
+    const StatisticsPlanes fire = render(kTexture, 16, 2e4f, 5);
+    const NoiseLevels noise = noise_levels(estimators_from_statistics(fire.view(), TestDomain::Untransformed), 256);
+    for (float limit : noise.limit)
+        ASSERT_EQ(limit, INFINITY);
 }
 
 }  // namespace

@@ -124,23 +124,28 @@ const TruthFn kRegions = [](int x, int y, int c) {
 TEST(Degenerate, ZeroVarianceRegionsStayExact)
 {
     // Left half noise-free (every sample equals the truth: zero variance), right half
-    // exponential noise. Pixels whose window holds only noise-free pixels must come back
-    // bit for bit; nearer the noisy half a noisy neighbour whose own uncertainty covers
-    // the difference may be averaged in (the test is symmetric), but only within bounds.
+    // exponential noise. With the firefly guard a lit noise-free pixel takes only its
+    // equals, so the whole left half comes back bit for bit. The paper's symmetric test
+    // may average a noisy neighbour in where that neighbour's own uncertainty covers the
+    // difference; there only pixels whose window is all noise-free stay exact.
     const TruthFn truth = [](int x, int y, int c) { return (x < 32 ? 0.25f : 1.0f) * (y < 12 ? 1.f : 2.f) * (1.f + 0.1f * c); };
     testing::DrawFn draw = [](std::mt19937_64& rng, float mean) {
         return mean < 0.9f ? mean : testing::draw_exponential(rng, mean);
     };
     const StatisticsPlanes stats = testing::sample_statistics(64, 24, 16, truth, draw, 4);
-    const std::vector<float> out = denoise(stats, 64);
-    expect_finite_and_bounded(stats, out);
-    const int radius = DenoiseOptions{}.radius;
-    for (int c = 0; c < 3; ++c)
-        for (int y = 0; y < 24; ++y)
-            for (int x = 0; x < 32 - radius; ++x) {
-                const std::size_t i = std::size_t(c) * 64 * 24 + std::size_t(y) * 64 + x;
-                ASSERT_EQ(out[i], stats.mean[i]) << x << "," << y;
-            }
+    DenoiseOptions paper;
+    paper.firefly_ratio = 0;
+    for (const DenoiseOptions& opt : {DenoiseOptions{}, paper}) {
+        const std::vector<float> out = denoise(stats, 64, opt);
+        expect_finite_and_bounded(stats, out);
+        const int exact_columns = opt.firefly_ratio > 0 ? 32 : 32 - opt.radius;
+        for (int c = 0; c < 3; ++c)
+            for (int y = 0; y < 24; ++y)
+                for (int x = 0; x < exact_columns; ++x) {
+                    const std::size_t i = std::size_t(c) * 64 * 24 + std::size_t(y) * 64 + x;
+                    ASSERT_EQ(out[i], stats.mean[i]) << x << "," << y << " guard " << opt.firefly_ratio;
+                }
+    }
 }
 
 TEST(Degenerate, OneAndTwoSamplesGiveFiniteBoundedOutput)

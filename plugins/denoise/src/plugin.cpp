@@ -7,7 +7,7 @@
 // | sigma_s      | float  | 10      | > 0       | spatial Gaussian falloff in pixels          |
 // | sigma_albedo | float  | 0.02    | > 0       | albedo guide falloff                        |
 // | sigma_normal | float  | 0.1     | > 0       | normal guide falloff                        |
-// | fireflies    | float  | 16      | 0 or >= 1 | firefly guard variance ratio; 0 = paper's   |
+// | fireflies    | float  | 256     | 0 or >= 1 | firefly guard variance ratio; 0 = paper's   |
 // | guides       | list   | auto    |           | albedo,normal (required) / auto / none      |
 // | albedo_layer | string | albedo  |           | layer of the albedo guide                   |
 // | normal_layer | string | normal  |           | layer of the normal guide                   |
@@ -71,10 +71,10 @@ std::vector<statmc::ParameterSpec> parameters()
         float_parameter("sigma_s", 10, "spatial Gaussian falloff in pixels").above(0),
         float_parameter("sigma_albedo", 0.02, "albedo guide falloff").above(0),
         float_parameter("sigma_normal", 0.1, "normal guide falloff").above(0),
-        float_parameter("fireflies", 16,
-                        "firefly guard: a pixel whose sample variance exceeds this many "
-                        "times its neighbours' median hands out at most its own value; "
-                        "0 = the paper's filter").at_least(0),
+        float_parameter("fireflies", 256,
+                        "firefly guard (Box-Cox test only): no pixel averages a neighbour "
+                        "whose sample variance exceeds this many times its own noise level "
+                        "(halos of highlights, fireflies); 0 = the paper's filter").at_least(0),
         list_parameter("guides", {"albedo", "normal"}, {"auto", "none"}, "auto",
                        "guide layers: a list is required to be present, auto uses those "
                        "present, none none"),

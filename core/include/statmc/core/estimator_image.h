@@ -10,6 +10,12 @@
 
 namespace statmc {
 
+/// Which samples the test compares.
+enum class TestDomain {
+    BoxCox,         ///< Box-Cox (λ = ½) with Johnson's skewness correction: StatMC proper
+    Untransformed,  ///< the plain means, as a variance AOV or Moon et al.'s test allows
+};
+
 /// What the filter needs of each pixel: the value it averages (the untransformed mean),
 /// the quantity it tests (test_mean) with the variance of that estimate, and the sample
 /// count that sets the degrees of freedom. All planes are dense and channel-major.
@@ -25,6 +31,9 @@ struct EstimatorImage {
     std::vector<float> value;
     std::vector<float> test_mean;
     std::vector<float> test_variance;
+    /// The domain of test_mean and test_variance. Only Box-Cox variances are steady enough
+    /// across brightness for the firefly guard (firefly_guard.h) to compare them.
+    TestDomain domain = TestDomain::Untransformed;
 
     EstimatorImage() = default;
     EstimatorImage(int width, int height, int channels);
@@ -35,12 +44,6 @@ struct EstimatorImage {
         return std::size_t(c) * pixels() + std::size_t(y) * width + x;
     }
     bool testable(int x, int y) const;
-};
-
-/// Which samples the test compares.
-enum class TestDomain {
-    BoxCox,         ///< Box-Cox (λ = ½) with Johnson's skewness correction: StatMC proper
-    Untransformed,  ///< the plain means, as a variance AOV or Moon et al.'s test allows
 };
 
 /// Full statistics (mode 1) or mean + variance + count (mode 2, TestDomain::Untransformed).

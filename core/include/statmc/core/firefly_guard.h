@@ -1,28 +1,42 @@
-// Fireflies: pixels holding a sample that their neighbourhood's noise essentially never
-// produces. The paper's symmetric test lets such a pixel, whose variance is huge, join
-// nearly every neighbour's average, so its energy spreads as a faint disk of radius r and
-// confident neighbours (few members) take a large share of it. The guard keeps a firefly
-// out of its neighbours' averages while it still averages them itself.
+// The firefly guard. The paper's symmetric test lets an estimator whose variance is huge —
+// a firefly, or a pixel straddling a light's edge or a highlight — pass against nearly
+// every neighbour, because its own uncertainty covers any difference. Such a member adds
+// little but noise to a confident centre's average, and where it is also biased (the
+// highlight next to a dark surface) its value spreads as a halo of radius r.
+//
+// For a centre whose average has many members, adding a member of variance v_f lowers the
+// average's MSE only if v_f is within a small factor of the members' variance (the
+// inverse-variance argument, docs/filter-design.md). The guard therefore lets centre i
+// accept neighbour j only if j's noise level is at most `ratio` times i's reference level.
 #pragma once
 
-#include <cstdint>
 #include <vector>
 
 #include "statmc/core/estimator_image.h"
 
 namespace statmc {
 
-/// Per pixel (row-major), 1 where the pixel is a firefly: in some channel its per-sample
-/// variance in the test domain (test_variance × count: the Box-Cox variance for full
-/// statistics, which is nearly independent of brightness for shot-like noise) exceeds
-/// `ratio` times the median of its testable 8-neighbours', and that median is positive.
-/// A zero median means the neighbourhood has no measurable noise: a lone non-zero pixel
-/// there is a sparse but legitimate sample, and the paper's averaging is kept for it.
-/// Untestable pixels and pixels with fewer than three testable neighbours are never
-/// fireflies. ratio = 0 flags nothing.
-///
-/// Consistency: as n grows, a legitimate rare path is sampled by the neighbours too and
-/// the variances converge, so the guard stops flagging and the filter becomes the paper's.
-std::vector<std::uint8_t> find_fireflies(const EstimatorImage& est, float ratio);
+/// Per pixel (row-major): the noise level that a neighbour presents, and the largest
+/// level that a centre accepts.
+struct NoiseLevels {
+    /// The per-sample variance in the test domain (test_variance × count: the Box-Cox
+    /// variance for full statistics, nearly independent of brightness for shot-like
+    /// noise), the largest over channels; 0 where the pixel is untestable.
+    std::vector<float> level;
+    /// ratio × max(own level, median of the testable 8-neighbours' levels). Where both are
+    /// 0 the neighbourhood is noise-free: a lit pixel there (an emitter, a directly seen
+    /// constant) is certain and takes only neighbours as certain (limit 0); a black one
+    /// may be a run of zero samples in a sparsely lit region, and takes any level (+∞,
+    /// the paper's filter) so that the rare samples still spread. +∞ too with fewer than
+    /// three testable neighbours, and everywhere when ratio = 0 or the test is not on
+    /// Box-Cox statistics (raw variances grow with brightness: a bright pixel would look
+    /// like a firefly next to a dark one).
+    std::vector<float> limit;
+};
+
+/// Consistency: as n grows, the per-sample variances of pixels with equal expectations
+/// converge to the same value, the ratio test stops excluding them and the filter is
+/// the paper's.
+NoiseLevels noise_levels(const EstimatorImage& est, float ratio);
 
 }  // namespace statmc
