@@ -135,9 +135,9 @@ TEST(Fireflies, AFireflyOfTheDistributionItselfCostsLittle)
 {
     // Here the rare bright samples belong to every pixel's distribution (1 in 5000 at
     // 1000× the mean: 17% of the energy), so the paper's spreading is right and excluding
-    // them is a bias. At the default ratio the guard stays within 5% of the paper's MSE at
-    // every n (measured: at most +8% RMSE at n = 16, equal from n = 64); a ratio of 16 would
-    // cost up to 2.8× the RMSE — why the default is 256.
+    // them is a bias. At the default ratio the guard's RMSE stays within 5% of the paper's
+    // at every n (measured +4% at n = 16, equal from n = 64; bound: MSE within 20%); a
+    // ratio of 16 would cost up to 2.8× the RMSE — why the default is 256.
     const double p = 2e-4, k = 1000;
     const TruthFn truth = [&](int, int, int c) { return float((0.5 + 0.1 * c) * (1 + p * k)); };
     const testing::DrawFn draw = [&](std::mt19937_64& rng, float mean) {
