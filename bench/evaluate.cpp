@@ -1,0 +1,203 @@
+// statmc-evaluate: every method of docs/evaluation.md on noisy statistics EXRs of one
+// scene, timed and compared with a reference. One CSV row per (input, method); the
+// charts and the report are drawn from that CSV by scripts/plot_evaluation.py.
+//
+//   statmc-evaluate --reference REF.exr --scene NAME --csv out.csv NOISY.exr...
+//   statmc-evaluate --radius-sweep 2,5,10,20 ...   (statmc's time against radius)
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "baselines/baselines.h"
+#include "statmc/compare/compare.h"
+#include "statmc/denoise/denoise.h"
+#include "statmc/layers/exr_files.h"
+#include "statmc/layers/float_pixels.h"
+#include "statmc/layers/guide_layers.h"
+#include "statmc/layers/statistics_layers.h"
+
+namespace {
+
+using namespace statmc;
+
+/// Median wall time of `runs` calls.
+double median_seconds(int runs, const std::function<void()>& body)
+{
+    std::vector<double> t;
+    for (int i = 0; i < runs; ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        body();
+        t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+    std::sort(t.begin(), t.end());
+    return t[t.size() / 2];
+}
+
+/// A float R,G,B image shaped like `like`, filled by `fill(planes)`.
+OIIO::ImageBuf rgb_image(const OIIO::ImageBuf& like, const std::function<void(std::array<Plane, 3>&)>& fill)
+{
+    OIIO::ImageSpec spec(like.spec().width, like.spec().height, 3, OIIO::TypeDesc::FLOAT);
+    spec.x = like.spec().x;
+    spec.y = like.spec().y;
+    spec.channelnames = {"R", "G", "B"};
+    OIIO::ImageBuf out(spec);
+    std::array<Plane, 3> planes;
+    for (int c = 0; c < 3; ++c)
+        planes[c] = layers::channel_plane(out, c);
+    fill(planes);
+    return out;
+}
+
+/// The baselines' inputs: mean, variance of the mean and guides, viewed in place.
+struct BaselineInputs {
+    std::array<ConstPlane, 3> mean, variance;
+    std::vector<float> variance_storage;
+    Guides guides;
+    int w = 0, h = 0;
+
+    explicit BaselineInputs(const OIIO::ImageBuf& in)
+    {
+        const StatisticsView stats = layers::read_statistics(in);
+        w = stats.width;
+        h = stats.height;
+        variance_storage.resize(std::size_t(3) * w * h);
+        for (int c = 0; c < 3; ++c) {
+            mean[c] = stats.mean[c];
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const float n = std::max(1.f, stats.count(x, y));
+                    const float var = stats.variance[c] ? stats.variance[c](x, y) : 0.f;
+                    variance_storage[std::size_t(c) * w * h + std::size_t(y) * w + x] =
+                        stats.variance_of_mean ? var : var / n;
+                }
+            variance[c] = dense_plane(variance_storage.data() + std::size_t(c) * w * h, w);
+        }
+        const auto albedo = layers::find_guide_layer(in.spec(), "albedo", true);
+        const auto normal = layers::find_guide_layer(in.spec(), "normal", false);
+        if (!albedo.empty())
+            guides.albedo = layers::guide_planes(in, albedo);
+        if (!normal.empty())
+            guides.normal = layers::guide_planes(in, normal);
+    }
+};
+
+struct Method {
+    std::string name;
+    std::function<OIIO::ImageBuf(const OIIO::ImageBuf&)> run;
+};
+
+DenoiseImageOptions statmc_options(bool guides, float fireflies = DenoiseOptions{}.firefly_ratio)
+{
+    DenoiseImageOptions o;
+    o.guides.albedo = o.guides.normal = guides ? GuideUse::Required : GuideUse::Off;
+    o.filter.firefly_ratio = fireflies;
+    return o;
+}
+
+OIIO::ImageBuf run_statmc(const OIIO::ImageBuf& in, const DenoiseImageOptions& o)
+{
+    OIIO::ImageBuf out;
+    if (!denoise(out, in, o))
+        throw std::runtime_error(out.geterror());
+    return out;
+}
+
+std::vector<Method> methods()
+{
+    DenoiseImageOptions moon = statmc_options(false, 0.f);  // Moon et al. 2013-style test
+    moon.test = TestDomainChoice::Untransformed;
+    moon.filter.alpha = 0.002;
+    return {
+        {"noisy", [](const OIIO::ImageBuf& in) { return in; }},
+        {"statmc", [](const OIIO::ImageBuf& in) { return run_statmc(in, statmc_options(false)); }},
+        {"statmc-guides", [](const OIIO::ImageBuf& in) { return run_statmc(in, statmc_options(true)); }},
+        {"statmc-paper", [](const OIIO::ImageBuf& in) { return run_statmc(in, statmc_options(false, 0.f)); }},
+        {"moon-ci", [moon](const OIIO::ImageBuf& in) { return run_statmc(in, moon); }},
+        {"nlm", [](const OIIO::ImageBuf& in) {
+             const BaselineInputs b(in);
+             return rgb_image(in, [&](std::array<Plane, 3>& out) { baselines::nlm(b.mean, b.variance, b.w, b.h, {}, out); });
+         }},
+        {"cross-bilateral", [](const OIIO::ImageBuf& in) {
+             const BaselineInputs b(in);
+             return rgb_image(in, [&](std::array<Plane, 3>& out) {
+                 baselines::cross_bilateral(b.mean, b.guides, b.w, b.h, {}, out);
+             });
+         }},
+    };
+}
+
+int attribute(const OIIO::ImageBuf& in, const char* name)
+{
+    return in.spec().get_int_attribute(name, -1);
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    CLI::App app{"statmc-evaluate: time and score every method on noisy statistics EXRs"};
+    std::string reference_path, scene, csv_path, display_config = STATMC_DISPLAY_CONFIG;
+    std::vector<std::string> inputs;
+    std::vector<int> radii;
+    int runs = 3;
+    app.add_option("--reference", reference_path, "reference EXR (R,G,B)")->required();
+    app.add_option("--scene", scene, "scene name for the CSV")->required();
+    app.add_option("--csv", csv_path, "CSV to append to (a header is written if new)")->required();
+    app.add_option("--runs", runs, "timed runs per method (the median is kept)")->check(CLI::PositiveNumber);
+    app.add_option("--radius-sweep", radii, "instead: time statmc at these radii")->delimiter(',');
+    app.add_option("--display-config", display_config, "OCIO config for DSSIM (Filmic view)");
+    app.add_option("inputs", inputs, "noisy statistics EXRs")->required();
+    CLI11_PARSE(app, argc, argv);
+
+    try {
+        const OIIO::ImageBuf reference = layers::read_image_file(reference_path);
+        CompareOptions compare_options;
+        compare_options.display = DisplayOptions{display_config, "", "Filmic"};
+        const bool fresh = !std::ifstream(csv_path).good();
+        std::ofstream csv(csv_path, std::ios::app);
+        if (fresh)
+            csv << "scene,width,height,spp,seed,method,radius,render_seconds,denoise_seconds,rmse,mae,relmse,dssim\n";
+        for (const std::string& path : inputs) {
+            const OIIO::ImageBuf in = layers::read_image_file(path);
+            const float render_seconds = in.spec().get_float_attribute("statmc:renderTime", -1.f);
+            auto row = [&](const std::string& method, int radius, double seconds, const OIIO::ImageBuf& result) {
+                CompareMetrics m;
+                OIIO::ImageBuf error;
+                if (!compare(m, error, result, reference, compare_options))
+                    throw std::runtime_error(path + ": " + error.geterror());
+                csv << scene << ',' << in.spec().width << ',' << in.spec().height << ','
+                    << attribute(in, "statmc:spp") << ',' << attribute(in, "statmc:seed") << ',' << method
+                    << ',' << radius << ',' << render_seconds << ',' << seconds << ',' << m.rmse << ','
+                    << m.mae << ',' << m.relmse << ',' << m.dssim << '\n';
+                std::printf("%s %s r=%d: %.3f s, RMSE %.4g relMSE %.4g DSSIM %.4g\n", path.c_str(),
+                            method.c_str(), radius, seconds, m.rmse, m.relmse, m.dssim);
+            };
+            if (!radii.empty()) {
+                for (int r : radii) {
+                    DenoiseImageOptions o = statmc_options(false);
+                    o.filter.radius = r;
+                    OIIO::ImageBuf out;
+                    const double s = median_seconds(runs, [&] { out = run_statmc(in, o); });
+                    row("statmc", r, s, out);
+                }
+                continue;
+            }
+            for (const Method& method : methods()) {
+                OIIO::ImageBuf out;
+                const double s = method.name == "noisy" ? 0.0 : median_seconds(runs, [&] { out = method.run(in); });
+                row(method.name, method.name == "noisy" ? 0 : 20, s, method.name == "noisy" ? in : out);
+            }
+        }
+    } catch (const std::exception& e) {
+        std::cerr << "statmc-evaluate: " << e.what() << '\n';
+        return 1;
+    }
+    return 0;
+}
