@@ -1,7 +1,10 @@
 #include "statmc/layers/statistics_validation.h"
 
 #include <cmath>
-#include <functional>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <OpenImageIO/strutil.h>
 
@@ -18,63 +21,87 @@ struct Region {
     int origin_x, origin_y;
 };
 
-struct Rule {
-    std::function<bool(float)> bad;
-    std::function<std::string(float)> what;
-};
+enum class Check { NonFinite, Negative, BelowBoxCoxMinimum, CountBelowOne };
 
 std::string format_value(float v) { return OIIO::Strutil::fmt::format("{}", v); }
 
-Rule nonfinite_rule()
+std::string describe(Check check, float v)
 {
-    return {[](float v) { return !std::isfinite(v); },
-            [](float v) { return std::isnan(v) ? std::string("NaN") : v > 0 ? "Inf" : "-Inf"; }};
+    switch (check) {
+    case Check::NonFinite: return std::isnan(v) ? std::string("NaN") : v > 0 ? "Inf" : "-Inf";
+    case Check::Negative: return "negative value " + format_value(v);
+    // 2√x − 2 ≥ −2 for every sample, so a smaller mean cannot come from the transform.
+    case Check::BelowBoxCoxMinimum: return "value " + format_value(v) + " below -2, the Box-Cox minimum";
+    case Check::CountBelowOne: return "n = " + format_value(v);
+    }
+    return {};
 }
 
-Rule negative_rule()
+bool is_bad(Check check, float v)
 {
-    return {[](float v) { return v < 0; },
-            [](float v) { return "negative value " + format_value(v); }};
+    switch (check) {
+    case Check::NonFinite: return !std::isfinite(v);
+    case Check::Negative: return v < 0;
+    case Check::BelowBoxCoxMinimum: return v < -2.f;
+    case Check::CountBelowOne: return v < 1.f;
+    }
+    return false;
 }
 
-// 2√x − 2 ≥ −2 for every sample, so a smaller mean cannot come from the transform.
-Rule box_cox_minimum_rule()
-{
-    return {[](float v) { return v < -2.f; },
-            [](float v) { return "value " + format_value(v) + " below -2, the Box-Cox minimum"; }};
-}
+/// One check of one channel, and what it found: how many bad pixels, and the first.
+struct Task {
+    ConstPlane plane;
+    std::string channel;
+    Check check;
+};
 
-Rule count_rule()
-{
-    return {[](float n) { return n < 1.f; }, [](float n) { return "n = " + format_value(n); }};
-}
+struct Found {
+    int count = 0;
+    int first_x = -1;
+};
 
-void apply(const ConstPlane& plane, const std::string& channel, const Region& r, const Rule& rule,
-           std::vector<StatisticsProblem>& problems)
+// One pass over the pixels checks every channel: the channels of a pixel are adjacent
+// in memory, so a pass per channel would read the whole image once for each. Rows run
+// in parallel and are combined in order, so the pixel reported is always the first bad
+// one in raster order.
+void run(const std::vector<Task>& tasks, const Region& r, std::vector<StatisticsProblem>& problems)
 {
-    StatisticsProblem p;
-    p.channel = channel;
-    for (int y = r.y0; y < r.y1; ++y)
-        for (int x = r.x0; x < r.x1; ++x) {
-            const float v = plane(x, y);
-            if (!rule.bad(v))
-                continue;
-            if (p.pixels++ == 0) {
-                p.what = rule.what(v);
-                p.x = x + r.origin_x;
+    const int rows = r.y1 - r.y0, n = int(tasks.size());
+    if (rows <= 0 || n == 0)
+        return;
+    std::vector<Found> found(std::size_t(rows) * n);
+    tbb::parallel_for(tbb::blocked_range<int>(r.y0, r.y1, 16), [&](const tbb::blocked_range<int>& range) {
+        for (int y = range.begin(); y < range.end(); ++y) {
+            Found* row = &found[std::size_t(y - r.y0) * n];
+            for (int x = r.x0; x < r.x1; ++x)
+                for (int t = 0; t < n; ++t)
+                    if (is_bad(tasks[t].check, tasks[t].plane(x, y)) && row[t].count++ == 0)
+                        row[t].first_x = x;
+        }
+    });
+    for (int t = 0; t < n; ++t) {
+        StatisticsProblem p;
+        p.channel = tasks[t].channel;
+        for (int y = r.y0; y < r.y1; ++y) {
+            const Found& f = found[std::size_t(y - r.y0) * n + t];
+            if (f.count && p.pixels == 0) {
+                p.what = describe(tasks[t].check, tasks[t].plane(f.first_x, y));
+                p.x = f.first_x + r.origin_x;
                 p.y = y + r.origin_y;
             }
+            p.pixels += f.count;
         }
-    if (p.pixels)
-        problems.push_back(std::move(p));
+        if (p.pixels)
+            problems.push_back(std::move(p));
+    }
 }
 
-std::vector<Rule> rules_for(Statistic stat)
+std::vector<Check> checks_for(Statistic stat)
 {
     switch (stat) {
     case Statistic::Variance:
-    case Statistic::BoxCoxVariance: return {negative_rule()};
-    case Statistic::BoxCoxMean: return {box_cox_minimum_rule()};
+    case Statistic::BoxCoxVariance: return {Check::Negative};
+    case Statistic::BoxCoxMean: return {Check::BelowBoxCoxMinimum};
     default: return {};
     }
 }
@@ -102,18 +129,19 @@ std::vector<StatisticsProblem> validate_statistics(const OIIO::ImageBuf& buf,
                                                    const ValidationOptions& options)
 {
     const Region region = region_of(buf, options.roi);
-    std::vector<StatisticsProblem> problems;
-    auto check = [&](int index, const std::string& name, std::vector<Rule> rules) {
+    std::vector<Task> tasks;
+    auto check = [&](int index, const std::string& name, std::vector<Check> checks) {
         if (options.nonfinite_is_problem)
-            rules.insert(rules.begin(), nonfinite_rule());
-        const ConstPlane plane = channel_plane(buf, index);
-        for (const Rule& rule : rules)
-            apply(plane, name, region, rule, problems);
+            checks.insert(checks.begin(), Check::NonFinite);
+        for (Check c : checks)
+            tasks.push_back({channel_plane(buf, index), name, c});
     };
-    check(channels.count, kSampleCountChannel, {count_rule()});
+    check(channels.count, kSampleCountChannel, {Check::CountBelowOne});
     for (Statistic stat : all_statistics())
         for (std::size_t c = 0; c < channels.indices(stat).size(); ++c)
-            check(channels.indices(stat)[c], channels.channel(stat, int(c)), rules_for(stat));
+            check(channels.indices(stat)[c], channels.channel(stat, int(c)), checks_for(stat));
+    std::vector<StatisticsProblem> problems;
+    run(tasks, region, problems);
     return problems;
 }
 
