@@ -6,6 +6,9 @@
 #include <stdexcept>
 #include <string>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "statmc/core/box_cox.h"
 
 namespace statmc {
@@ -28,6 +31,39 @@ void mark_untestable(EstimatorImage& est, int x, int y)
         est.test_mean[est.index(c, x, y)] = 0;
         est.test_variance[est.index(c, x, y)] = kUntestable;
     }
+}
+
+// Pixel (x, y) of `est` from the statistics, in the chosen test domain.
+void fill_estimator(EstimatorImage& est, const StatisticsView& stats, TestDomain domain, int x, int y)
+{
+    const float n = stats.count(x, y);
+    est.count[est.index(0, x, y)] = n;
+    const bool enough_samples = n >= 2;  // else s² and every ratio below are undefined
+    bool finite_value = true;
+    for (int c = 0; c < stats.channels; ++c) {
+        const float f = stats.mean[c](x, y);
+        finite_value = finite_value && std::isfinite(f);
+        est.value[est.index(c, x, y)] = std::isfinite(f) ? f : 0.f;
+        float mu = 0.f, v = 0.f;
+        if (!enough_samples) {
+            // left untestable below
+        } else if (domain == TestDomain::BoxCox) {
+            const float s2 = stats.bc_variance[c](x, y);
+            const float m3 = stats.bc_moment3[c](x, y);
+            // Johnson's (1978) first-order skewness correction of the mean.
+            const float skew = s2 > FLT_EPSILON ? m3 / (6.f * s2 * n) : 0.f;
+            mu = stats.bc_mean[c](x, y) + skew;
+            v = s2 / n;
+        } else {
+            mu = f;
+            const float var = stats.variance[c](x, y);
+            v = stats.variance_of_mean ? var : var / n;
+        }
+        est.test_mean[est.index(c, x, y)] = mu;
+        est.test_variance[est.index(c, x, y)] = v;
+    }
+    if (!finite_value || !est.testable(x, y))
+        mark_untestable(est, x, y);
 }
 
 }  // namespace
@@ -72,37 +108,12 @@ EstimatorImage estimators_from_statistics(const StatisticsView& stats, TestDomai
 
     EstimatorImage est(stats.width, stats.height, stats.channels);
     est.domain = domain;
-    for (int y = 0; y < stats.height; ++y)
-        for (int x = 0; x < stats.width; ++x) {
-            const float n = stats.count(x, y);
-            est.count[est.index(0, x, y)] = n;
-            const bool enough_samples = n >= 2;  // else s² and every ratio below are undefined
-            bool finite_value = true;
-            for (int c = 0; c < stats.channels; ++c) {
-                const float f = stats.mean[c](x, y);
-                finite_value = finite_value && std::isfinite(f);
-                est.value[est.index(c, x, y)] = std::isfinite(f) ? f : 0.f;
-                float mu = 0.f, v = 0.f;
-                if (!enough_samples) {
-                    // left untestable below
-                } else if (domain == TestDomain::BoxCox) {
-                    const float s2 = stats.bc_variance[c](x, y);
-                    const float m3 = stats.bc_moment3[c](x, y);
-                    // Johnson's (1978) first-order skewness correction of the mean.
-                    const float skew = s2 > FLT_EPSILON ? m3 / (6.f * s2 * n) : 0.f;
-                    mu = stats.bc_mean[c](x, y) + skew;
-                    v = s2 / n;
-                } else {
-                    mu = f;
-                    const float var = stats.variance[c](x, y);
-                    v = stats.variance_of_mean ? var : var / n;
-                }
-                est.test_mean[est.index(c, x, y)] = mu;
-                est.test_variance[est.index(c, x, y)] = v;
-            }
-            if (!finite_value || !est.testable(x, y))
-                mark_untestable(est, x, y);
-        }
+    // Rows are independent; threads only split the work.
+    tbb::parallel_for(tbb::blocked_range<int>(0, stats.height, 16), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y)
+            for (int x = 0; x < stats.width; ++x)
+                fill_estimator(est, stats, domain, x, y);
+    });
     return est;
 }
 
