@@ -122,6 +122,28 @@ def time_table(rows, scene):
     return "\n".join(lines)
 
 
+def equal_time(rows, scene, budget_spp):
+    """Each method at the most samples it can afford within the render time of budget_spp
+    samples for the noisy input (render + denoise ≤ 1.05 × that)."""
+    g = grouped(rows)
+    spps = sorted({k[2] for k in g if k[0] == scene})
+    if (scene, "noisy", budget_spp) not in g:
+        return ""
+    budget = total_seconds(g[(scene, "noisy", budget_spp)])
+    lines = [f"Equal time: each method at the most samples whose render + denoise fits in "
+             f"{budget:.2f} s (the {budget_spp}-spp render):", "",
+             "| method | spp | time (s) | relMSE | DSSIM |", "| --- | --- | --- | --- | --- |"]
+    for m in METHODS:
+        fits = [s for s in spps if (scene, m, s) in g and total_seconds(g[(scene, m, s)]) <= 1.05 * budget]
+        if not fits:
+            lines.append(f"| {LABELS[m]} | — | — | — | — |")
+            continue
+        s_ = max(fits)
+        r = g[(scene, m, s_)]
+        lines.append(f"| {LABELS[m]} | {s_} | {total_seconds(r):.2f} | {mean_of(r, 'relmse'):.4g} | {mean_of(r, 'dssim'):.4g} |")
+    return "\n".join(lines)
+
+
 def wins(rows):
     """Per scene and spp, which method has the lowest relMSE and DSSIM."""
     g = grouped(rows)
@@ -188,6 +210,8 @@ def main():
         for metric, label in METRICS:
             doc += [f"{label} (lowest denoised value in bold):", "", table(rows, scene, metric), ""]
         doc += ["Time:", "", time_table(rows, scene), ""]
+        spps = sorted({int(r["spp"]) for r in rows if r["scene"] == scene})
+        doc += [equal_time(rows, scene, spps[len(spps) // 2]), ""]
     timing_chart(timing, os.path.join(a.images, "eval-timing.png"))
     doc += ["## Denoise time against resolution and radius", "",
             f"![denoise time]({rel}/eval-timing.png)", "",
