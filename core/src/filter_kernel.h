@@ -67,7 +67,8 @@ void add_band(const FilterLayout& L, int y, int x0, int dy0, int dy1, Partial<V,
         value[c] = V::load(L.value[c] + centre);
         acc[c] = partial.acc[c];
     }
-    ctr.noise_limit = V::load(L.noise_limit + centre);
+    if constexpr (kGuard)
+        ctr.noise_limit = V::load(L.noise_limit + centre);
     F guide[NG > 0 ? NG : 1];
     for (int g = 0; g < NG; ++g)
         guide[g] = V::load(L.guide[g] + centre);

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "statmc/core/filter.h"
@@ -17,7 +18,8 @@ struct FilterLayout {
     int pad_x = 0, pad_y = 0;     // the window never reaches further than the image
     std::ptrdiff_t stride = 0;    // floats per padded row
     std::size_t plane_size = 0;   // floats per padded plane
-    std::vector<float> storage;   // all padded planes, back to back
+    struct Release { void operator()(float* p) const; };
+    std::unique_ptr<float[], Release> storage;  // all padded planes, back to back (page_memory)
 
     // Pointers to pixel (0, 0) inside the padding.
     const float* mean[4] = {};       // μ̃, the tested quantity

@@ -55,6 +55,11 @@ bool all_zero(const EstimatorImage& est, int x, int y)
 
 }  // namespace
 
+bool firefly_guard_applies(const EstimatorImage& est, float ratio)
+{
+    return ratio > 0 && est.domain == TestDomain::BoxCox;
+}
+
 NoiseLevels noise_levels(const EstimatorImage& est, float ratio)
 {
     const int w = est.width, h = est.height;
@@ -72,7 +77,7 @@ NoiseLevels noise_levels(const EstimatorImage& est, float ratio)
             out.level[i] = level;
         }
     });
-    if (!(ratio > 0) || est.domain != TestDomain::BoxCox)
+    if (!firefly_guard_applies(est, ratio))
         return out;
     for_each_row(h, [&](int y) {
         float around[8];

@@ -34,6 +34,9 @@ struct NoiseLevels {
     std::vector<float> limit;
 };
 
+/// Whether the guard can exclude anything: ratio > 0 and Box-Cox statistics.
+bool firefly_guard_applies(const EstimatorImage& est, float ratio);
+
 /// Consistency: as n grows, the per-sample variances of pixels with equal expectations
 /// converge to the same value, the ratio test stops excluding them and the filter is
 /// the paper's.
