@@ -247,7 +247,9 @@ TEST_F(CliError, UnknownModifier)
     expect_failure({in, "--denoise:radius=3:sigma=2", "-o", out()},
                    "--denoise: unknown modifier 'sigma' (modifiers: radius, alpha, sigma_s");
     expect_failure({in, "-o:compression=zip", out()},
-                   "-o: unknown modifier 'compression' (it takes no modifiers)");
+                   "-o: unknown modifier 'compression' (modifiers: type, datatype)");
+    expect_failure({in, "--siappend:n=2", out()},
+                   "--siappend: unknown modifier 'n' (it takes no modifiers)");
 }
 
 TEST_F(CliError, UnknownCommand)

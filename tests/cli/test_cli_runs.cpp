@@ -143,7 +143,7 @@ TEST(CliRun, HelpListsEveryCommandAndModifier)
     const CliResult r = run_cli({"--help"});
     expect_success(r);
     for (const char* text :
-         {"-i FILE", "-o FILE", "--denoise", "--passes", "--threads N", "--help", "--version",
+         {"-i[:mod=val...] FILE", "-o[:mod=val...] FILE", "--denoise", "--passes", "--threads N", "--help", "--version",
           ":radius=20 ", ":alpha=0.005 ", ":sigma_s=10 ", ":sigma_albedo=0.02 ",
           ":sigma_normal=0.1 ", ":guides=auto ", "(albedo,normal|auto|none)",
           ":albedo_layer=albedo ", ":normal_layer=normal ", ":test=auto ",

@@ -1,0 +1,81 @@
+// --ch, --chnames, --chappend: selecting, renaming and joining channels.
+#include <OpenImageIO/imagebufalgo.h>
+
+#include "statmc/tool/channel_selection.h"
+#include "statmc/tool/command_table.h"
+#include "statmc/tool/subimage_loop.h"
+#include "statmc/tool/tool_context.h"
+
+namespace statmc::tool {
+
+namespace {
+
+std::vector<std::string> comma_items(const std::string& text)
+{
+    std::vector<std::string> items;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', start), text.size());
+        items.push_back(text.substr(start, comma - start));
+        start = comma + 1;
+    }
+    return items;
+}
+
+}  // namespace
+
+Command ch_command()
+{
+    Command c;
+    c.name = "--ch";
+    c.arg_names = {"CHANLIST"};
+    c.summary = "Keep, reorder, rename or add channels: names, indices, new=old, new=value "
+                "(e.g. R,G,B,A=1 or var.R=variance.R)";
+    c.modifiers = {subimages_modifier()};
+    c.run = [](ToolContext& ctx, const Invocation& inv) {
+        apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
+            const ChannelSelection sel = parse_channel_selection(inv.args[0], in[0]->spec(),
+                                                                 inv.name);
+            return OIIO::ImageBufAlgo::channels(*in[0], int(sel.order.size()), sel.order,
+                                                sel.values, sel.names, false, ctx.nthreads);
+        });
+    };
+    return c;
+}
+
+Command chnames_command()
+{
+    Command c;
+    c.name = "--chnames";
+    c.arg_names = {"NAMELIST"};
+    c.summary = "Rename the channels in order; an empty entry keeps a name (e.g. ,,,A)";
+    c.modifiers = {subimages_modifier()};
+    c.run = [](ToolContext& ctx, const Invocation& inv) {
+        const std::vector<std::string> names = comma_items(inv.args[0]);
+        apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
+            OIIO::ImageBuf renamed = *in[0];
+            OIIO::ImageSpec& spec = renamed.specmod();
+            for (std::size_t ch = 0; ch < names.size() && ch < spec.channelnames.size(); ++ch)
+                if (!names[ch].empty())
+                    spec.channelnames[ch] = names[ch];
+            return renamed;
+        });
+    };
+    return c;
+}
+
+Command chappend_command()
+{
+    Command c;
+    c.name = "--chappend";
+    c.summary = "Append the channels of the top image to those of the one below it";
+    c.modifiers = {subimages_modifier()};
+    c.run = [](ToolContext& ctx, const Invocation& inv) {
+        apply_to_subimages(ctx, inv, 2, [&](const auto& in) {
+            return OIIO::ImageBufAlgo::channel_append(*in[0], *in[1], OIIO::ROI(), ctx.nthreads);
+        });
+    };
+    return c;
+}
+
+}  // namespace statmc::tool

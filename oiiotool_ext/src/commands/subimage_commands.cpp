@@ -1,0 +1,85 @@
+// -a, --subimage, --siappend: the subimages (EXR parts) of stack images.
+#include "statmc/tool/command_table.h"
+#include "statmc/tool/number_parsing.h"
+#include "statmc/tool/tool_context.h"
+#include "statmc/tool/tool_error.h"
+
+namespace statmc::tool {
+
+namespace {
+
+// The subimage `which` names: its part name (oiio:subimagename) or its index.
+std::size_t find_subimage(const StackImage& image, const std::string& which,
+                          const std::string& command)
+{
+    for (std::size_t s = 0; s < image.subimages.size(); ++s)
+        if (image.subimages[s].spec().get_string_attribute("oiio:subimagename") == which)
+            return s;
+    const bool digits = !which.empty() && which.find_first_not_of("0123456789") == std::string::npos;
+    if (digits) {
+        const int s = parse_int(which, command);
+        if (std::size_t(s) < image.subimages.size())
+            return std::size_t(s);
+    }
+    std::string names;
+    for (const OIIO::ImageBuf& sub : image.subimages)
+        names += (names.empty() ? "" : ", ") +
+                 std::string(sub.spec().get_string_attribute("oiio:subimagename", "(unnamed)"));
+    throw ToolError(command + ": " + image.label + " has no subimage '" + which + "' (it has " +
+                    std::to_string(image.subimages.size()) + ": " + names + ")");
+}
+
+}  // namespace
+
+Command all_subimages_command()
+{
+    Command c;
+    c.name = "-a";
+    c.summary = "Apply the commands that follow to every subimage, not only the first";
+    c.run = [](ToolContext& ctx, const Invocation&) { ctx.all_subimages = true; };
+    return c;
+}
+
+Command subimage_command()
+{
+    Command c;
+    c.name = "--subimage";
+    c.arg_names = {"N|NAME"};
+    c.summary = "Keep only one subimage of the top image, by index or part name; "
+                ":delete=1 removes it instead";
+    c.modifiers = {statmc::bool_parameter("delete", false, "remove the subimage, keep the rest")};
+    c.run = [](ToolContext& ctx, const Invocation& inv) {
+        StackImage image = ctx.stack.pop(inv.name);
+        const std::size_t s = find_subimage(image, inv.args[0], inv.name);
+        if (inv.modifiers.get_bool("delete")) {
+            if (image.subimages.size() == 1)
+                throw ToolError(inv.name + ": " + image.label +
+                                " has one subimage; deleting it would leave no image");
+            image.subimages.erase(image.subimages.begin() + std::ptrdiff_t(s));
+        } else {
+            image.subimages = {image.subimages[s]};
+        }
+        image.label += " (" + inv.name + " " + inv.args[0] + ")";
+        ctx.stack.push(std::move(image));
+    };
+    return c;
+}
+
+Command siappend_command()
+{
+    Command c;
+    c.name = "--siappend";
+    c.summary = "Join the top two images into one image with the subimages of both";
+    c.run = [](ToolContext& ctx, const Invocation& inv) {
+        ctx.stack.top(inv.name);
+        std::vector<StackImage> both = ctx.stack.pop(2, inv.name);
+        StackImage joined = std::move(both[0]);
+        for (OIIO::ImageBuf& sub : both[1].subimages)
+            joined.subimages.push_back(std::move(sub));
+        joined.label += " (" + inv.name + ")";
+        ctx.stack.push(std::move(joined));
+    };
+    return c;
+}
+
+}  // namespace statmc::tool
