@@ -41,7 +41,8 @@ void build_window(FilterLayout& L, const DenoiseOptions& options)
 }  // namespace
 
 FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
-                                const DenoiseOptions& options, int nthreads)
+                                const DenoiseOptions& options, int nthreads,
+                                bool with_inverse_count)
 {
     FilterLayout L;
     L.width = est.width;
@@ -66,7 +67,7 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
             guide_planes.emplace_back(p, float(1.0 / (std::sqrt(2.0) * options.sigma_normal)));
     L.guide_count = int(guide_planes.size());
 
-    const int planes = 3 * L.channels + L.guide_count;
+    const int planes = 3 * L.channels + L.guide_count + (with_inverse_count ? 1 : 0);
     L.storage.assign(L.plane_size * planes, 0.f);
     const std::ptrdiff_t origin = std::ptrdiff_t(L.pad_y) * L.stride + L.pad_x;
     auto plane_origin = [&](int k) { return L.storage.data() + k * L.plane_size + origin; };
@@ -87,6 +88,9 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         guide[g] = plane_origin(3 * L.channels + g);
         L.guide[g] = guide[g];
     }
+    float* inverse_count =
+        with_inverse_count ? plane_origin(3 * L.channels + L.guide_count) : nullptr;
+    L.inverse_count = inverse_count;
 
     float max_count = 0;
     for (std::size_t i = 0; i < est.pixels(); ++i)
@@ -111,6 +115,10 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                 }
                 for (int g = 0; g < L.guide_count; ++g)
                     guide[g][p] = finite_or_zero(guide_planes[g].first(x, y)) * guide_planes[g].second;
+                if (inverse_count) {
+                    const float n = finite_or_zero(est.count[est.index(0, x, y)]);
+                    inverse_count[p] = n > 0 ? 1.f / n : 0.f;
+                }
             }
     };
     if (nthreads == 1)

@@ -22,6 +22,7 @@ struct FilterLayout {
     const float* mean[4] = {};       // μ̃, the tested quantity
     const float* threshold[4] = {};  // T = γ²(df = 2n − 2)·v, or −∞ when untestable
     const float* value[4] = {};      // F, what is averaged
+    const float* inverse_count = nullptr;  // 1/n (0 in the padding), for diagnostics only
     int guide_count = 0;             // 0, 3 (albedo or normal) or 6 (both)
     const float* guide[6] = {};      // scaled by 1/(√2·σ): Σ (Δg)² is the log-weight
 
@@ -39,8 +40,10 @@ struct FilterLayout {
     }
 };
 
+/// `with_inverse_count` adds the 1/n plane the effective sample count needs.
 FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
-                                const DenoiseOptions& options, int nthreads);
+                                const DenoiseOptions& options, int nthreads,
+                                bool with_inverse_count = false);
 
 /// Filters output rows [y0, y1), chunks of kernel-width columns [chunk0, chunk1).
 using FilterRowsFn = void (*)(const FilterLayout& layout, const std::vector<Plane>& out,
