@@ -1,6 +1,7 @@
 // --colorconfig, --colorconvert, --ociodisplay: colour management through OIIO's OCIO
 // support. The config is --colorconfig's file, else $OCIO, else OIIO's built-in spaces
 // (linear, sRGB, Rec709), as oiiotool chooses.
+#include <cstdlib>
 #include <memory>
 
 #include <OpenImageIO/color.h>
@@ -18,7 +19,13 @@ namespace {
 std::shared_ptr<OIIO::ColorConfig> color_config(const ToolContext& ctx, const std::string& command)
 {
     auto config = std::make_shared<OIIO::ColorConfig>(ctx.colorconfig);
-    if (config->has_error())
+    // With neither a file nor $OCIO, OIIO reports the missing file but works with its
+    // built-in spaces, as oiiotool does; only a named config must load.
+    const char* env = std::getenv("OCIO");
+    const bool named = !ctx.colorconfig.empty() || (env && *env);
+    if (!named)
+        config->geterror();
+    else if (config->has_error())
         throw ToolError(command + ": colour config " +
                         (ctx.colorconfig.empty() ? std::string("from $OCIO") : ctx.colorconfig) +
                         ": " + config->geterror());
