@@ -3,6 +3,7 @@
 #include <charconv>
 #include <system_error>
 
+#include "statmc/tool/text_split.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {
@@ -36,11 +37,7 @@ ChannelSelection parse_channel_selection(const std::string& list, const OIIO::Im
                                          const std::string& what)
 {
     ChannelSelection sel;
-    std::size_t start = 0;
-    while (start <= list.size()) {
-        const std::size_t comma = std::min(list.find(',', start), list.size());
-        std::string entry = list.substr(start, comma - start);
-        start = comma + 1;
+    for (std::string entry : split_text(list)) {
         std::string name;
         const std::size_t eq = entry.find('=');
         const bool renamed = eq != std::string::npos;

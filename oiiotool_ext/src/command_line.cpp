@@ -2,24 +2,12 @@
 
 #include "statmc/tool/command_table.h"
 #include "statmc/tool/oiiotool_commands.h"
+#include "statmc/tool/text_split.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {
 
 namespace {
-
-std::vector<std::string> split(const std::string& text, char separator)
-{
-    std::vector<std::string> parts;
-    std::size_t start = 0;
-    while (true) {
-        const std::size_t at = text.find(separator, start);
-        parts.push_back(text.substr(start, at - start));
-        if (at == std::string::npos)
-            return parts;
-        start = at + 1;
-    }
-}
 
 bool is_command_word(const std::string& word) { return word.size() > 1 && word[0] == '-'; }
 
@@ -58,7 +46,7 @@ void refuse_expression(const std::string& word)
 std::pair<std::string, std::vector<std::pair<std::string, std::string>>>
 split_command(const std::string& word)
 {
-    std::vector<std::string> parts = split(word, ':');
+    std::vector<std::string> parts = split_text(word, ':');
     std::vector<std::pair<std::string, std::string>> modifiers;
     for (std::size_t i = 1; i < parts.size(); ++i) {
         const std::string& part = parts[i];

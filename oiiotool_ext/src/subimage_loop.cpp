@@ -1,44 +1,15 @@
 #include "statmc/tool/subimage_loop.h"
 
-#include <algorithm>
 #include <string>
 
 #include "statmc/tool/number_parsing.h"
+#include "statmc/tool/text_split.h"
 #include "statmc/tool/tool_context.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {
 
 namespace {
-
-std::vector<std::string> split_commas(const std::string& text)
-{
-    std::vector<std::string> items;
-    std::size_t start = 0;
-    while (true) {
-        const std::size_t comma = text.find(',', start);
-        items.push_back(text.substr(start, comma - start));
-        if (comma == std::string::npos)
-            return items;
-        start = comma + 1;
-    }
-}
-
-// The subimage an index or part name in `:subimages=` means.
-int subimage_index(const std::string& item, const StackImage& image, const std::string& command)
-{
-    const auto& subimages = image.subimages;
-    for (std::size_t s = 0; s < subimages.size(); ++s)
-        if (subimages[s].spec().get_string_attribute("oiio:subimagename") == item)
-            return int(s);
-    if (!item.empty() && std::all_of(item.begin(), item.end(), ::isdigit)) {
-        const int s = parse_int(item, command + ": subimages");
-        if (s < int(subimages.size()))
-            return s;
-    }
-    throw ToolError(command + ": " + image.label + " has no subimage '" + item + "' (it has " +
-                    std::to_string(subimages.size()) + ")");
-}
 
 // Whether each subimage of `first` gets the operation; an empty result means subimage 0
 // alone, as oiiotool works without -a.
@@ -48,8 +19,8 @@ std::vector<bool> selected_subimages(const ToolContext& ctx, const Invocation& i
     const std::size_t n = first.subimages.size();
     if (inv.modifiers.has("subimages")) {
         std::vector<bool> selected(n, false);
-        for (const std::string& item : split_commas(inv.modifiers.get_string("subimages")))
-            selected[std::size_t(subimage_index(item, first, inv.name))] = true;
+        for (const std::string& item : split_text(inv.modifiers.get_string("subimages")))
+            selected[find_subimage(first, item, inv.name)] = true;
         return selected;
     }
     if (ctx.all_subimages)
@@ -58,6 +29,27 @@ std::vector<bool> selected_subimages(const ToolContext& ctx, const Invocation& i
 }
 
 }  // namespace
+
+std::size_t find_subimage(const StackImage& image, const std::string& which,
+                          const std::string& command)
+{
+    for (std::size_t s = 0; s < image.subimages.size(); ++s)
+        if (image.subimages[s].spec().get_string_attribute("oiio:subimagename") == which)
+            return s;
+    const bool digits =
+        !which.empty() && which.find_first_not_of("0123456789") == std::string::npos;
+    if (digits) {
+        const int s = parse_int(which, command);
+        if (std::size_t(s) < image.subimages.size())
+            return std::size_t(s);
+    }
+    std::string names;
+    for (const OIIO::ImageBuf& sub : image.subimages)
+        names += (names.empty() ? "" : ", ") +
+                 std::string(sub.spec().get_string_attribute("oiio:subimagename", "(unnamed)"));
+    throw ToolError(command + ": " + image.label + " has no subimage '" + which + "' (it has " +
+                    std::to_string(image.subimages.size()) + ": " + names + ")");
+}
 
 ModifierSpec subimages_modifier()
 {

@@ -5,6 +5,7 @@
 #include "statmc/tool/command_table.h"
 #include "statmc/tool/number_parsing.h"
 #include "statmc/tool/subimage_loop.h"
+#include "statmc/tool/text_split.h"
 #include "statmc/tool/tool_context.h"
 
 namespace statmc::tool {
@@ -16,12 +17,8 @@ using ImageOp = OIIO::ImageBuf (*)(OIIO::Image_or_Const, OIIO::Image_or_Const, O
 std::vector<float> constant_list(const std::string& text, const std::string& command)
 {
     std::vector<float> values;
-    std::size_t start = 0;
-    while (start <= text.size()) {
-        const std::size_t comma = std::min(text.find(',', start), text.size());
-        values.push_back(float(parse_float(text.substr(start, comma - start), command)));
-        start = comma + 1;
-    }
+    for (const std::string& item : split_text(text))
+        values.push_back(float(parse_float(item, command)));
     return values;
 }
 

@@ -4,25 +4,10 @@
 #include "statmc/tool/channel_selection.h"
 #include "statmc/tool/command_table.h"
 #include "statmc/tool/subimage_loop.h"
+#include "statmc/tool/text_split.h"
 #include "statmc/tool/tool_context.h"
 
 namespace statmc::tool {
-
-namespace {
-
-std::vector<std::string> comma_items(const std::string& text)
-{
-    std::vector<std::string> items;
-    std::size_t start = 0;
-    while (start <= text.size()) {
-        const std::size_t comma = std::min(text.find(',', start), text.size());
-        items.push_back(text.substr(start, comma - start));
-        start = comma + 1;
-    }
-    return items;
-}
-
-}  // namespace
 
 Command ch_command()
 {
@@ -51,7 +36,7 @@ Command chnames_command()
     c.summary = "Rename the channels in order; an empty entry keeps a name (e.g. ,,,A)";
     c.modifiers = {subimages_modifier()};
     c.run = [](ToolContext& ctx, const Invocation& inv) {
-        const std::vector<std::string> names = comma_items(inv.args[0]);
+        const std::vector<std::string> names = split_text(inv.args[0]);
         apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
             OIIO::ImageBuf renamed = *in[0];
             OIIO::ImageSpec& spec = renamed.specmod();

@@ -32,6 +32,11 @@ std::shared_ptr<OIIO::ColorConfig> color_config(const ToolContext& ctx, const st
     return config;
 }
 
+ModifierSpec unpremult_modifier()
+{
+    return statmc::bool_parameter("unpremult", true, "divide by alpha around the conversion");
+}
+
 }  // namespace
 
 Command colorconfig_command()
@@ -55,8 +60,7 @@ Command colorconvert_command()
     c.arg_names = {"FROM", "TO"};
     c.summary = "Convert the colour channels (the first three, and alpha) from one colour "
                 "space to another";
-    c.modifiers = {statmc::bool_parameter("unpremult", true, "divide by alpha around the "
-                                                             "conversion"),
+    c.modifiers = {unpremult_modifier(),
                    subimages_modifier()};
     c.run = [](ToolContext& ctx, const Invocation& inv) {
         const auto config = color_config(ctx, inv.name);
@@ -79,8 +83,7 @@ Command ociodisplay_command()
     c.modifiers = {statmc::string_parameter("from", "", "the image's colour space (default: "
                                                         "its oiio:ColorSpace, else scene_linear)"),
                    statmc::string_parameter("looks", "", "OCIO looks to apply"),
-                   statmc::bool_parameter("unpremult", true, "divide by alpha around the "
-                                                             "conversion"),
+                   unpremult_modifier(),
                    subimages_modifier()};
     c.run = [](ToolContext& ctx, const Invocation& inv) {
         const auto config = color_config(ctx, inv.name);
@@ -89,9 +92,8 @@ Command ociodisplay_command()
             display = config->getDefaultDisplayName();
         if (view.empty())  // IBA refuses an empty view (ecosystem.md pitfall 8)
             view = config->getDefaultViewName(display);
-        const std::string from = inv.modifiers.has("from") ? inv.modifiers.get_string("from") : "";
-        const std::string looks =
-            inv.modifiers.has("looks") ? inv.modifiers.get_string("looks") : "";
+        const std::string from = inv.modifiers.values().get_string("from");
+        const std::string looks = inv.modifiers.values().get_string("looks");
         const bool unpremult = inv.modifiers.get_bool("unpremult");
         apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
             return OIIO::ImageBufAlgo::ociodisplay(*in[0], display, view, from, looks, unpremult,

@@ -84,8 +84,7 @@ Command resize_command()
                                                           "to enlarge)")};
     c.modifiers.push_back(subimages_modifier());
     c.run = [](ToolContext& ctx, const Invocation& inv) {
-        const std::string filter =
-            inv.modifiers.has("filter") ? inv.modifiers.get_string("filter") : "";
+        const std::string filter = inv.modifiers.values().get_string("filter");
         apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
             const OIIO::ImageSpec& old = in[0]->spec();
             const Geometry g = parse_geometry(inv.args[0], old, true, inv.name);

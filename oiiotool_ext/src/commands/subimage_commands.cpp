@@ -1,35 +1,10 @@
 // -a, --subimage, --siappend: the subimages (EXR parts) of stack images.
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/number_parsing.h"
+#include "statmc/tool/subimage_loop.h"
 #include "statmc/tool/tool_context.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {
-
-namespace {
-
-// The subimage `which` names: its part name (oiio:subimagename) or its index.
-std::size_t find_subimage(const StackImage& image, const std::string& which,
-                          const std::string& command)
-{
-    for (std::size_t s = 0; s < image.subimages.size(); ++s)
-        if (image.subimages[s].spec().get_string_attribute("oiio:subimagename") == which)
-            return s;
-    const bool digits = !which.empty() && which.find_first_not_of("0123456789") == std::string::npos;
-    if (digits) {
-        const int s = parse_int(which, command);
-        if (std::size_t(s) < image.subimages.size())
-            return std::size_t(s);
-    }
-    std::string names;
-    for (const OIIO::ImageBuf& sub : image.subimages)
-        names += (names.empty() ? "" : ", ") +
-                 std::string(sub.spec().get_string_attribute("oiio:subimagename", "(unnamed)"));
-    throw ToolError(command + ": " + image.label + " has no subimage '" + which + "' (it has " +
-                    std::to_string(image.subimages.size()) + ": " + names + ")");
-}
-
-}  // namespace
 
 Command all_subimages_command()
 {

@@ -5,11 +5,13 @@
 
 #include <cstddef>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <OpenImageIO/imagebuf.h>
 
 #include "statmc/tool/command.h"
+#include "statmc/tool/image_stack.h"
 
 namespace statmc::tool {
 
@@ -18,6 +20,11 @@ struct ToolContext;
 /// One subimage's work: the same subimage of each input in, the result out (carrying
 /// its error, ImageBufAlgo's return form).
 using SubimageOp = std::function<OIIO::ImageBuf(const std::vector<const OIIO::ImageBuf*>&)>;
+
+/// The subimage `which` names in `image`: its part name (oiio:subimagename) or its
+/// index. Throws ToolError "<command>: <label> has no subimage ..." listing the names.
+std::size_t find_subimage(const StackImage& image, const std::string& which,
+                          const std::string& command);
 
 /// The `:subimages=` modifier of the commands that take it.
 ModifierSpec subimages_modifier();
