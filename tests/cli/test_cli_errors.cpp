@@ -323,7 +323,7 @@ TEST_F(CliError, BadSubimagesAndOperands)
     expect_failure({"-a", in, in, "--siappend", in, "--add", "-o", out()},
                    "--add: " + in + " (--siappend) has 2 subimages but " + in + " has 1");
     expect_failure({in, "--mulc:subimages=2", "2", "-o", out()},
-                   "--mulc: " + in + " has no subimage '2' (it has 1)");
+                   "--mulc: " + in + " has no subimage '2' (it has 1: (unnamed))");
     expect_failure({in, "--add", "-o", out()}, "--add: needs 2 images, the stack holds 1");
     expect_failure({"--colorconfig", dir.file("none.ocio"), in, "--colorconvert", "linear", "sRGB",
                     "-o", out()},

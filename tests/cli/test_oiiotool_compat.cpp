@@ -242,14 +242,11 @@ TEST(OiiotoolDifference, HalfInputIsWrittenAsFloatUnlessAsked)
         GTEST_SKIP() << "oiiotool not found at " << oiiotool_path();
     TempDir dir;
     write_exr(cli_render(0), dir.file("render.exr"));
-    ASSERT_EQ(run_program(oiiotool_path(), {"-d", "half", dir.file("render.exr"), "-o",
-                                            dir.file("half.exr")})
-                  .exit_code,
-              0);
-    ASSERT_EQ(run_program(oiiotool_path(), {dir.file("half.exr"), "--mulc", "2", "-o",
-                                            dir.file("oiiotool.exr")})
-                  .exit_code,
-              0);
+    auto oiiotool = [&](const std::vector<std::string>& args) {
+        return run_program(oiiotool_path(), args).exit_code;
+    };
+    ASSERT_EQ(oiiotool({"-d", "half", dir.file("render.exr"), "-o", dir.file("half.exr")}), 0);
+    ASSERT_EQ(oiiotool({dir.file("half.exr"), "--mulc", "2", "-o", dir.file("oiiotool.exr")}), 0);
     ASSERT_EQ(run_cli({dir.file("half.exr"), "--mulc", "2", "-o", dir.file("statmc.exr")})
                   .exit_code,
               0);
