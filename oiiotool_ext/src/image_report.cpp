@@ -33,6 +33,17 @@ const OIIO::ImageSpec& file_spec(const OIIO::ImageBuf& image)
     return image.nativespec();
 }
 
+// A file with per-channel types shows them all: "half/float/float".
+std::string type_text(const OIIO::ImageSpec& spec)
+{
+    if (spec.channelformats.empty())
+        return spec.format.c_str();
+    std::string text;
+    for (int c = 0; c < spec.nchannels; ++c)
+        text += (c ? "/" : "") + std::string(spec.channelformat(c).c_str());
+    return text;
+}
+
 std::string summary(const OIIO::ImageBuf& image)
 {
     const OIIO::ImageSpec& spec = file_spec(image);
@@ -40,7 +51,7 @@ std::string summary(const OIIO::ImageBuf& image)
                                    ? std::string("openexr")
                                    : std::string(image.file_format_name());
     return printf_text("%4d x %4d, %d channel, %s %s", spec.width, spec.height, spec.nchannels,
-                       spec.format.c_str(), format.c_str());
+                       type_text(spec).c_str(), format.c_str());
 }
 
 std::string lowercase(std::string text)
@@ -63,9 +74,13 @@ bool attribute_before(const OIIO::ParamValue* a, const OIIO::ParamValue* b)
 void print_details(std::ostream& out, const OIIO::ImageBuf& image)
 {
     const OIIO::ImageSpec& spec = image.spec();
+    const OIIO::ImageSpec& native = file_spec(image);
     out << "    channel list: ";
-    for (int c = 0; c < spec.nchannels; ++c)
+    for (int c = 0; c < spec.nchannels; ++c) {
         out << (c ? ", " : "") << spec.channelnames[c];
+        if (!native.channelformats.empty())
+            out << " (" << native.channelformat(c) << ")";
+    }
     out << "\n";
     if (spec.x || spec.y || spec.z)
         out << "    pixel data origin: x=" << spec.x << ", y=" << spec.y << "\n";

@@ -36,6 +36,7 @@ struct Case {
     std::string name;
     std::vector<std::string> args;  ///< "@x" is file x in the test directory; "OUT" the output
     Compare what = Compare::Image;
+    std::string shows{};  ///< text oiiotool's report must hold: the case tests what it says
 };
 
 std::ostream& operator<<(std::ostream& os, const Case& c) { return os << c.name; }
@@ -129,6 +130,12 @@ protected:
         write_exr(cli_render(0), dir->file("render.exr"));
         write_exr(cli_render(1), dir->file("render2.exr"));
         write_parts(dir->file("parts.exr"));
+        // Per-channel types: half colour, float alpha and albedo.
+        OIIO::ImageBuf mixed = cli_render(0);
+        const OIIO::TypeDesc half = OIIO::TypeDesc::HALF, full = OIIO::TypeDesc::FLOAT;
+        const OIIO::TypeDesc types[7] = {half, half, half, full, full, full, full};
+        mixed.set_write_format(types);
+        write_exr(mixed, dir->file("mixed.exr"));
         // Data window inside a larger display window.
         write_exr(OIIO::ImageBufAlgo::crop(cli_render(0), OIIO::ROI(2, 6, 3, 7, 0, 1, 0, 7)),
                   dir->file("cropped.exr"));
@@ -168,6 +175,7 @@ TEST_P(OiiotoolCompat, SameResultAsOiiotool)
     EXPECT_EQ(got.exit_code, want.exit_code) << "statmc: " << got.err << "\noiiotool: " << want.err;
     if (c.what == Compare::Text) {
         EXPECT_NE(want.out, "");
+        EXPECT_NE(want.out.find(c.shows), std::string::npos) << want.out;
         EXPECT_EQ(without_subimage_headings(got.out), without_subimage_headings(want.out));
         return;
     }
@@ -221,12 +229,16 @@ const Case kCases[] = {
     // Reports.
     {"info", {"--info", "@render.exr", "@parts.exr"}, Compare::Text},
     {"info_verbose", {"--info", "-v", "@stats.exr"}, Compare::Text},
-    {"info_verbose_parts", {"-a", "--info", "-v", "@parts.exr"}, Compare::Text},
-    {"info_windows", {"--info", "-v", "@cropped.exr"}, Compare::Text},
+    {"info_verbose_parts", {"-a", "--info", "-v", "@parts.exr"}, Compare::Text,
+     "2 subimages: 24x16 [f,f,f,f], 24x16 [f,f,f]"},
+    {"info_windows", {"--info", "-v", "@cropped.exr"}, Compare::Text, "pixel data origin: x=2, y=3"},
     {"stats", {"--stats", "@render.exr"}, Compare::Text},
+    {"info_stats_mixed_types", {"--info", "-v", "--stats", "@mixed.exr"}, Compare::Text,
+     "half/half/half/float/float/float/float"},
+    {"mixed_types_to_float", {"@mixed.exr", "-d", "float", "-o", "OUT"}},
     {"stats_parts", {"-a", "--stats", "@parts.exr"}, Compare::Text},
-    {"diff_fails", {"@render.exr", "@render2.exr", "--diff"}, Compare::Text},
-    {"diff_passes", {"@render.exr", "@render.exr", "--diff"}, Compare::Text},
+    {"diff_fails", {"@render.exr", "@render2.exr", "--diff"}, Compare::Text, "FAILURE"},
+    {"diff_passes", {"@render.exr", "@render.exr", "--diff"}, Compare::Text, "PASS"},
     {"echo", {"--echo", "hello statmc", "--echo:newline=0", "no newline", "--echo", "!"},
      Compare::Text},
 };
