@@ -1,5 +1,6 @@
 // Every bad input ends in one "statmc: error: ..." line naming the culprit, exit code 1,
 // no crash or hang, and no output or temporary file left behind.
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -328,6 +329,9 @@ TEST_F(CliError, BadSubimagesAndOperands)
     expect_failure({"--colorconfig", dir.file("none.ocio"), in, "--colorconvert", "linear", "sRGB",
                     "-o", out()},
                    "--colorconfig: colour config " + dir.file("none.ocio"));
+    if (!std::getenv("OCIO"))
+        expect_failure({in, "--ociodisplay", "", "", "-o", out()},
+                       "--ociodisplay: needs an OCIO config (--colorconfig FILE or $OCIO)");
 }
 
 }  // namespace

@@ -211,6 +211,11 @@ const Case kCases[] = {
     {"crop_pad", {"@render.exr", "--crop", "2,3,30,20", "-o", "OUT"}},
     {"resize", {"@render.exr", "--resize", "12x8", "-o", "OUT"}},
     {"resize_percent_filter", {"@render.exr", "--resize:filter=box", "200%", "-o", "OUT"}},
+    {"resize_origin", {"@render.exr", "--resize", "30x20+2-1", "-o", "OUT"}},
+    // GEOM is the display window; the data window inside it scales along.
+    {"resize_windowed", {"@cropped.exr", "--resize", "12x8", "-o", "OUT"}},
+    {"resize_windowed_percent", {"@cropped.exr", "--resize", "75%", "-o", "OUT"}},
+    {"crop_windowed", {"@cropped.exr", "--crop", "3x5", "-o", "OUT"}},
     // Subimages.
     {"subimage_by_name", {"@parts.exr", "--subimage", "variance", "-o", "OUT"}},
     {"subimage_delete", {"@parts.exr", "--subimage:delete=1", "0", "-o", "OUT"}},

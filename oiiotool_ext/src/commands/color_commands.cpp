@@ -16,14 +16,20 @@ namespace statmc::tool {
 
 namespace {
 
+// Whether a config file is named (--colorconfig or $OCIO), rather than OIIO's built-in
+// spaces.
+bool config_named(const ToolContext& ctx)
+{
+    const char* env = std::getenv("OCIO");
+    return !ctx.colorconfig.empty() || (env && *env);
+}
+
 std::shared_ptr<OIIO::ColorConfig> color_config(const ToolContext& ctx, const std::string& command)
 {
     auto config = std::make_shared<OIIO::ColorConfig>(ctx.colorconfig);
     // With neither a file nor $OCIO, OIIO reports the missing file but works with its
     // built-in spaces, as oiiotool does; only a named config must load.
-    const char* env = std::getenv("OCIO");
-    const bool named = !ctx.colorconfig.empty() || (env && *env);
-    if (!named)
+    if (!config_named(ctx))
         config->geterror();
     else if (config->has_error())
         throw ToolError(command + ": colour config " +
@@ -86,12 +92,17 @@ Command ociodisplay_command()
                    unpremult_modifier(),
                    subimages_modifier()};
     c.run = [](ToolContext& ctx, const Invocation& inv) {
+        // The built-in spaces have no displays; OIIO would fail (or crash on the
+        // defaults) without a config.
+        if (!config_named(ctx))
+            throw ToolError(inv.name + ": needs an OCIO config (--colorconfig FILE or $OCIO)");
         const auto config = color_config(ctx, inv.name);
+        auto text = [](const char* s) { return std::string(s ? s : ""); };
         std::string display = inv.args[0], view = inv.args[1];
         if (display.empty())
-            display = config->getDefaultDisplayName();
+            display = text(config->getDefaultDisplayName());
         if (view.empty())  // IBA refuses an empty view (ecosystem.md pitfall 8)
-            view = config->getDefaultViewName(display);
+            view = text(config->getDefaultViewName(display));
         const std::string from = inv.modifiers.values().get_string("from");
         const std::string looks = inv.modifiers.values().get_string("looks");
         const bool unpremult = inv.modifiers.get_bool("unpremult");

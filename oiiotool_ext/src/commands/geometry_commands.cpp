@@ -20,9 +20,9 @@ struct Geometry {
 };
 
 // oiiotool's GEOM: "WxH", "WxH+X+Y" (signed offsets) or "xmin,ymin,xmax,ymax"
-// (inclusive); with `allow_percent`, "N%" scales `spec`'s size.
-Geometry parse_geometry(const std::string& text, const OIIO::ImageSpec& spec,
-                        bool allow_percent, const std::string& command)
+// (inclusive); with `percent_of`, "N%" scales that window's size (rounded).
+Geometry parse_geometry(const std::string& text, const OIIO::ROI* percent_of,
+                        const std::string& command)
 {
     Geometry g;
     char tail = 0;
@@ -36,17 +36,38 @@ Geometry parse_geometry(const std::string& text, const OIIO::ImageSpec& spec,
                text.find_first_of("+-", text.find('x')) != std::string::npos) {
         g.has_origin = true;
     } else if (std::sscanf(text.c_str(), "%dx%d%c", &g.width, &g.height, &tail) == 2) {
-    } else if (allow_percent && std::sscanf(text.c_str(), "%lf%%%c", &percent, &tail) == 1 &&
+    } else if (percent_of && std::sscanf(text.c_str(), "%lf%%%c", &percent, &tail) == 1 &&
                percent > 0) {
-        g.width = int(std::lround(spec.width * percent / 100.0));
-        g.height = int(std::lround(spec.height * percent / 100.0));
+        g.width = int(std::lround(percent_of->width() * percent / 100.0));
+        g.height = int(std::lround(percent_of->height() * percent / 100.0));
     } else {
         throw ToolError(command + ": geometry '" + text + "' is not WxH, WxH+X+Y" +
-                        (allow_percent ? ", N%" : "") + " or xmin,ymin,xmax,ymax");
+                        (percent_of ? ", N%" : "") + " or xmin,ymin,xmax,ymax");
     }
     if (g.width <= 0 || g.height <= 0)
         throw ToolError(command + ": geometry '" + text + "' has no pixels");
     return g;
+}
+
+// oiiotool's rule, measured against oiiotool 2.4: GEOM is the new display window (its
+// origin kept unless given), and the data window scales with it, its corner rounded
+// down and its size up. Float arithmetic, as oiiotool's.
+OIIO::ImageSpec resized_spec(const OIIO::ImageSpec& old, const Geometry& g)
+{
+    OIIO::ImageSpec spec = old;
+    spec.full_width = g.width;
+    spec.full_height = g.height;
+    if (g.has_origin) {
+        spec.full_x = g.x;
+        spec.full_y = g.y;
+    }
+    const float sx = float(g.width) / float(old.full_width);
+    const float sy = float(g.height) / float(old.full_height);
+    spec.x = spec.full_x + int(std::floor(float(old.x - old.full_x) * sx));
+    spec.y = spec.full_y + int(std::floor(float(old.y - old.full_y) * sy));
+    spec.width = int(std::ceil(float(old.width) * sx));
+    spec.height = int(std::ceil(float(old.height) * sy));
+    return spec;
 }
 
 }  // namespace
@@ -62,7 +83,7 @@ Command crop_command()
     c.run = [](ToolContext& ctx, const Invocation& inv) {
         apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
             const OIIO::ImageSpec& spec = in[0]->spec();
-            const Geometry g = parse_geometry(inv.args[0], spec, false, inv.name);
+            const Geometry g = parse_geometry(inv.args[0], nullptr, inv.name);
             const int x = g.has_origin ? g.x : spec.x, y = g.has_origin ? g.y : spec.y;
             const OIIO::ROI roi(x, x + g.width, y, y + g.height, spec.z, spec.z + spec.depth, 0,
                                 spec.nchannels);
@@ -77,8 +98,8 @@ Command resize_command()
     Command c;
     c.name = "--resize";
     c.arg_names = {"GEOM"};
-    c.summary = "Resample to a new size (WxH, WxH+X+Y or N%) with a filter; the display "
-                "window scales with it";
+    c.summary = "Resample to a new display window size (WxH, WxH+X+Y or N%) with a filter; "
+                "the data window scales with it";
     c.modifiers = {statmc::string_parameter("filter", "", "OIIO filter name (default: "
                                                           "lanczos3 to shrink, blackman-harris "
                                                           "to enlarge)")};
@@ -87,21 +108,9 @@ Command resize_command()
         const std::string filter = inv.modifiers.values().get_string("filter");
         apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
             const OIIO::ImageSpec& old = in[0]->spec();
-            const Geometry g = parse_geometry(inv.args[0], old, true, inv.name);
-            OIIO::ImageSpec spec = old;
-            spec.width = g.width;
-            spec.height = g.height;
-            if (g.has_origin) {
-                spec.x = g.x;
-                spec.y = g.y;
-            }
-            // The display window scales with the data window, as oiiotool does it.
-            const double sx = double(g.width) / old.width, sy = double(g.height) / old.height;
-            spec.full_x = int(std::lround(old.full_x * sx));
-            spec.full_y = int(std::lround(old.full_y * sy));
-            spec.full_width = int(std::lround(old.full_width * sx));
-            spec.full_height = int(std::lround(old.full_height * sy));
-            OIIO::ImageBuf resized(spec);
+            const OIIO::ROI full = OIIO::get_roi_full(old);
+            const Geometry g = parse_geometry(inv.args[0], &full, inv.name);
+            OIIO::ImageBuf resized(resized_spec(old, g));
             OIIO::ImageBufAlgo::resize(resized, *in[0], filter, 0.0f, resized.roi(),
                                        ctx.nthreads);
             return resized;
