@@ -38,9 +38,10 @@ std::shared_ptr<OIIO::ColorConfig> color_config(const ToolContext& ctx, const st
     return config;
 }
 
+// Off by default, as in oiiotool (ImageBufAlgo's own default is on).
 ModifierSpec unpremult_modifier()
 {
-    return statmc::bool_parameter("unpremult", true, "divide by alpha around the conversion");
+    return statmc::bool_parameter("unpremult", false, "divide by alpha around the conversion");
 }
 
 }  // namespace
