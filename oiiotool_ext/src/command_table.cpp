@@ -103,6 +103,8 @@ std::string help_text()
           "Arguments are read left to right on an image stack, as oiiotool reads them: an\n"
           "input file is pushed, a command pops its operands and pushes its result, and -o\n"
           "writes the top image. Modifiers follow a command: --name:mod=value:mod2=value.\n"
+          "oiiotool's commands below behave as in oiiotool 2.4; the others it knows are\n"
+          "refused by name.\n"
           "Images hold per-pixel statistics as EXR layers (docs/exr-layers.md).\n\n"
           "Commands:\n";
     for (const Command& c : command_table())
@@ -114,7 +116,10 @@ std::string help_text()
           "  statmc in.exr --denoise:radius=20:alpha=0.005:guides=albedo,normal -o out.exr\n"
           "  statmc a.exr b.exr c.exr --passes --denoise -o out.exr\n"
           "  statmc task1.exr task2.exr task3.exr --merge -o frame.exr\n"
-          "  statmc out.exr reference.exr --compare -o error.exr\n";
+          "  statmc out.exr reference.exr --compare -o error.exr\n"
+          "  statmc aovs.exr --denoise:aov=diffuse --denoise:aov=specular -o out.exr\n"
+          "  statmc frame.exr --ch R,G,B --resize 50% -d half -o preview.exr   (oiiotool's "
+          "commands)\n";
     return os.str();
 }
 
