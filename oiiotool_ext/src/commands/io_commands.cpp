@@ -23,7 +23,7 @@ OIIO::TypeDesc exr_type(const std::string& name, const std::string& command)
                         "statmc does not support");
     if (name == "half" || name == "float")
         return OIIO::TypeDesc(name);
-    if (name == "uint" || name == "uint32")
+    if (name == "uint32")  // oiiotool's spelling; it refuses "uint"
         return OIIO::TypeDesc::UINT32;
     throw ToolError(command + ": OpenEXR stores half, float or uint32 channels, got '" + name +
                     "'");
