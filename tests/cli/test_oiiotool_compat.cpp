@@ -242,6 +242,8 @@ const Case kCases[] = {
     // Reports.
     {"info", {"--info", "@render.exr", "@parts.exr"}, Compare::Text},
     {"info_verbose", {"--info", "-v", "@stats.exr"}, Compare::Text},
+    {"info_verbose_modifier", {"--info:verbose=1", "@render.exr"}, Compare::Text,
+     "channel list: R, G, B, A, albedo.R, albedo.G, albedo.B"},
     {"info_verbose_parts", {"-a", "--info", "-v", "@parts.exr"}, Compare::Text,
      "2 subimages: 24x16 [f,f,f,f], 24x16 [f,f,f]"},
     {"info_windows", {"--info", "-v", "@cropped.exr"}, Compare::Text, "pixel data origin: x=2, y=3"},

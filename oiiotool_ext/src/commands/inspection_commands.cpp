@@ -11,9 +11,13 @@ Command info_command()
 {
     Command c;
     c.name = "--info";
-    c.summary = "Print the size, channels and type of every input read after this (with -v: "
-                "channel list, windows and metadata)";
-    c.run = [](ToolContext& ctx, const Invocation&) { ctx.print_info = true; };
+    c.summary = "Print the size, channels and type of every input read after this (with -v or "
+                ":verbose=1: channel list, windows and metadata)";
+    c.modifiers = {statmc::bool_parameter("verbose", false, "the metadata too, as with -v")};
+    c.run = [](ToolContext& ctx, const Invocation& inv) {
+        ctx.print_info = true;
+        ctx.info_verbose = ctx.info_verbose || inv.modifiers.get_bool("verbose");
+    };
     return c;
 }
 

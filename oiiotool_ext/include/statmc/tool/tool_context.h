@@ -21,6 +21,7 @@ struct ToolContext {
     bool all_subimages = false;  ///< -a
     bool verbose = false;        ///< -v
     bool print_info = false;     ///< --info: report each input as it is read
+    bool info_verbose = false;   ///< --info:verbose=1, as -v does for --info
     bool print_stats = false;    ///< --stats
     layers::WriteOptions output; ///< -d, --compression
     std::string colorconfig;     ///< --colorconfig; empty = $OCIO, else OIIO's built-in
