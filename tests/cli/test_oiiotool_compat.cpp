@@ -190,6 +190,7 @@ const Case kCases[] = {
     {"ch_shuffle_rename_constant",
      {"@stats.exr", "--ch", "B,G,R,A=1,var.R=variance.R,3", "-o", "OUT"}},
     {"input_ch", {"-i:ch=R,G,B,variance.R,variance.G,variance.B", "@stats.exr", "-o", "OUT"}},
+    {"input_ch_now_float", {"-i:ch=B,sampleCount.Y:type=float:now=1", "@stats.exr", "-o", "OUT"}},
     {"chnames", {"@render.exr", "--chnames", "X,,Z", "-o", "OUT"}},
     {"chappend",
      {"@render.exr", "@stats.exr", "--ch", "variance.R,variance.G,variance.B", "--chappend",

@@ -55,7 +55,12 @@ Command input_command()
     c.arg_names = {"FILE"};
     c.summary = "Read an image (every subimage) and push it on the stack (a bare FILE does "
                 "the same); :ch= reads only the listed channels";
-    c.modifiers = {statmc::string_parameter("ch", "", "channels to keep, as --ch lists them")};
+    // now= and type=float are accepted for oiiotool's scripts: statmc always reads at once,
+    // in float.
+    c.modifiers = {statmc::string_parameter("ch", "", "channels to keep, as --ch lists them"),
+                   statmc::bool_parameter("now", true, "read at once (statmc always does)"),
+                   statmc::choice_parameter("type", {"float"}, "float",
+                                            "pixel type in memory (statmc always uses float)")};
     c.run = [](ToolContext& ctx, const Invocation& inv) {
         const std::string& path = inv.args[0];
         if (ctx.verbose)
