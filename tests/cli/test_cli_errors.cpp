@@ -249,8 +249,9 @@ TEST_F(CliError, UnknownModifier)
                    "--denoise: unknown modifier 'sigma' (modifiers: radius, alpha, sigma_s");
     expect_failure({in, "-o:compression=zip", out()},
                    "-o: unknown modifier 'compression' (modifiers: type, datatype)");
-    expect_failure({in, "--siappend:n=2", out()},
-                   "--siappend: unknown modifier 'n' (it takes no modifiers)");
+    expect_failure({in, "--siappend:all=1", out()},
+                   "--siappend: unknown modifier 'all' (modifiers: n)");
+    expect_failure({in, in, "--chappend:n=1", out()}, "--chappend: n must be");
 }
 
 TEST_F(CliError, UnknownCommand)

@@ -195,6 +195,9 @@ const Case kCases[] = {
     {"chappend",
      {"@render.exr", "@stats.exr", "--ch", "variance.R,variance.G,variance.B", "--chappend",
       "-o", "OUT"}},
+    {"chappend_n_duplicate_names",
+     {"@render.exr", "--ch", "R,G,B", "@render.exr", "--ch", "A", "@render2.exr", "--ch", "A",
+      "--chappend:n=3", "-o", "OUT"}},
     // Arithmetic.
     {"add", {"@render.exr", "@render2.exr", "--add", "-o", "OUT"}},
     {"sub", {"@render.exr", "@render2.exr", "--sub", "-o", "OUT"}},
@@ -229,6 +232,7 @@ const Case kCases[] = {
     {"subimage_by_name", {"@parts.exr", "--subimage", "variance", "-o", "OUT"}},
     {"subimage_delete", {"@parts.exr", "--subimage:delete=1", "0", "-o", "OUT"}},
     {"siappend", {"@parts.exr", "--subimage", "rgba", "@render2.exr", "--siappend", "-o", "OUT"}},
+    {"siappend_n", {"@parts.exr", "@render.exr", "@render2.exr", "--siappend:n=3", "-o", "OUT"}},
     {"copy_all_parts", {"@parts.exr", "-o", "OUT"}},
     {"first_part_without_a", {"@parts.exr", "--mulc", "2", "-o", "OUT"}},
     {"all_parts", {"-a", "@parts.exr", "--mulc", "2", "-o", "OUT"}},

@@ -53,11 +53,22 @@ Command chappend_command()
 {
     Command c;
     c.name = "--chappend";
-    c.summary = "Append the channels of the top image to those of the one below it";
-    c.modifiers = {subimages_modifier()};
+    c.summary = "Append the channels of the top image to those of the one below it (:n= "
+                "joins the top n, bottom first)";
+    c.modifiers = {statmc::int_parameter("n", 2, "how many images to join").at_least(2),
+                   subimages_modifier()};
     c.run = [](ToolContext& ctx, const Invocation& inv) {
-        apply_to_subimages(ctx, inv, 2, [&](const auto& in) {
-            return OIIO::ImageBufAlgo::channel_append(*in[0], *in[1], OIIO::ROI(), ctx.nthreads);
+        const int n = inv.modifiers.get_int("n");
+        // Joined from the top down, as oiiotool does: a repeated name is renamed
+        // ("channel1") within the upper images first.
+        apply_to_subimages(ctx, inv, std::size_t(n), [&](const auto& in) {
+            const std::size_t top = in.size() - 1;
+            OIIO::ImageBuf joined = OIIO::ImageBufAlgo::channel_append(*in[top - 1], *in[top],
+                                                                       OIIO::ROI(), ctx.nthreads);
+            for (std::size_t k = top - 1; k-- > 0 && !joined.has_error();)
+                joined = OIIO::ImageBufAlgo::channel_append(*in[k], joined, OIIO::ROI(),
+                                                            ctx.nthreads);
+            return joined;
         });
     };
     return c;

@@ -44,13 +44,17 @@ Command siappend_command()
 {
     Command c;
     c.name = "--siappend";
-    c.summary = "Join the top two images into one image with the subimages of both";
+    c.summary = "Join the top two images into one image with the subimages of both (:n= "
+                "joins the top n, bottom first)";
+    c.modifiers = {statmc::int_parameter("n", 2, "how many images to join").at_least(2)};
     c.run = [](ToolContext& ctx, const Invocation& inv) {
         ctx.stack.top(inv.name);
-        std::vector<StackImage> both = ctx.stack.pop(2, inv.name);
-        StackImage joined = std::move(both[0]);
-        for (OIIO::ImageBuf& sub : both[1].subimages)
-            joined.subimages.push_back(std::move(sub));
+        std::vector<StackImage> images =
+            ctx.stack.pop(std::size_t(inv.modifiers.get_int("n")), inv.name);
+        StackImage joined = std::move(images[0]);
+        for (std::size_t k = 1; k < images.size(); ++k)
+            for (OIIO::ImageBuf& sub : images[k].subimages)
+                joined.subimages.push_back(std::move(sub));
         joined.label += " (" + inv.name + ")";
         ctx.stack.push(std::move(joined));
     };
