@@ -61,8 +61,9 @@ OIIO::ImageSpec resized_spec(const OIIO::ImageSpec& old, const Geometry& g)
         spec.full_x = g.x;
         spec.full_y = g.y;
     }
-    const float sx = float(g.width) / float(old.full_width);
-    const float sy = float(g.height) / float(old.full_height);
+    // A file always has a display window; an image made without one uses its data window.
+    const float sx = float(g.width) / float(old.full_width > 0 ? old.full_width : old.width);
+    const float sy = float(g.height) / float(old.full_height > 0 ? old.full_height : old.height);
     spec.x = spec.full_x + int(std::floor(float(old.x - old.full_x) * sx));
     spec.y = spec.full_y + int(std::floor(float(old.y - old.full_y) * sy));
     spec.width = int(std::ceil(float(old.width) * sx));
