@@ -137,7 +137,8 @@ void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOption
     const int lanes = detail::kernel_width(level);
 
     run_with_threads(nthreads, [&] {
-        const detail::FilterLayout layout = detail::make_filter_layout(est, guides, options, nthreads, lanes);
+        const detail::FilterLayout layout =
+            detail::make_filter_layout(est, guides, options, nthreads, lanes, diagnostics.any());
         const int chunks = (est.width + lanes - 1) / lanes;
         // Tiles of a few rows by 64 columns keep the window's planes in L2. Each pixel
         // is computed alone, so the tiling cannot change the result.

@@ -48,6 +48,7 @@ struct Partial {
     typename V::F acc[NC];  // Σ W_ij (F_j − F_i)
     typename V::F weight_sum;
     typename V::F member_count;
+    typename V::F inverse_sum;  // Σ W_ij² / n_j, for the effective sample count
 };
 
 /// Adds the taps of window rows [dy0, dy1] to the chunk of lanes starting at (x0, y).
@@ -74,6 +75,7 @@ void add_band(const FilterLayout& L, int y, int x0, int dy0, int dy1, Partial<V,
         guide[g] = V::load(L.guide[g] + centre);
     F weight_sum = partial.weight_sum;
     F member_count = partial.member_count;
+    F inverse_sum = partial.inverse_sum;
 
     auto tap = [&](int dx, int dy) {
         const std::ptrdiff_t off = centre + std::ptrdiff_t(dy) * L.stride + dx;
@@ -97,8 +99,10 @@ void add_band(const FilterLayout& L, int y, int x0, int dy0, int dy1, Partial<V,
         for (int c = 0; c < NC; ++c)
             acc[c] = V::masked_fmadd(m, w, V::sub(V::load(L.value[c] + off), value[c]), acc[c]);
         weight_sum = V::masked_add(m, weight_sum, w);
-        if constexpr (kDiagnostics)
+        if constexpr (kDiagnostics) {
             member_count = V::masked_add(m, member_count, V::set1(1.f));
+            inverse_sum = V::masked_fmadd(m, V::mul(w, w), V::load(L.inverse_count + off), inverse_sum);
+        }
     };
 
     for (int dy = dy0; dy <= dy1; ++dy) {
@@ -117,6 +121,7 @@ void add_band(const FilterLayout& L, int y, int x0, int dy0, int dy1, Partial<V,
         partial.acc[c] = acc[c];
     partial.weight_sum = weight_sum;
     partial.member_count = member_count;
+    partial.inverse_sum = inverse_sum;
 }
 
 template <class V, int NC, bool kDiagnostics>
@@ -124,11 +129,12 @@ void write_chunk(const FilterLayout& L, const std::vector<Plane>& out, const Fil
                  int y, int x0, const Partial<V, NC>& partial)
 {
     const std::ptrdiff_t centre = std::ptrdiff_t(y) * L.stride + x0;
-    float lanes[NC][V::kWidth], wsum[V::kWidth], count[V::kWidth];
+    float lanes[NC][V::kWidth], wsum[V::kWidth], count[V::kWidth], inverse[V::kWidth];
     for (int c = 0; c < NC; ++c)
         V::store(lanes[c], V::add(V::load(L.value[c] + centre), V::div(partial.acc[c], partial.weight_sum)));
     V::store(wsum, partial.weight_sum);
     V::store(count, partial.member_count);
+    V::store(inverse, partial.inverse_sum);
     const int n = std::min(V::kWidth, L.width - x0);
     for (int k = 0; k < n; ++k) {
         for (int c = 0; c < NC; ++c)
@@ -138,6 +144,9 @@ void write_chunk(const FilterLayout& L, const std::vector<Plane>& out, const Fil
                 diag.members(x0 + k, y) = count[k];
             if (diag.weight_sum)
                 diag.weight_sum(x0 + k, y) = wsum[k];
+            if (diag.effective_samples)
+                diag.effective_samples(x0 + k, y) =
+                    inverse[k] > 0 ? wsum[k] * wsum[k] / inverse[k] : 0.f;
         }
     }
 }
@@ -158,7 +167,12 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
                 p.acc[c] = V::zero();
             p.weight_sum = V::set1(1.f);  // the centre
             p.member_count = V::set1(1.f);
+            p.inverse_sum = V::zero();
         }
+        if constexpr (kDiagnostics)
+            for (int k = chunk0; k < chunk1; ++k)
+                partials[k - chunk0].inverse_sum =
+                    V::load(L.inverse_count + std::ptrdiff_t(y) * L.stride + k * V::kWidth);
         // Bands in a fixed order: each pixel sums its taps in the same order whatever the
         // tiling, so results stay bitwise identical for any thread count.
         for (int dy0 = -L.pad_y; dy0 <= L.pad_y; dy0 += kBandRows) {
@@ -179,7 +193,7 @@ template <class V, int NC, int NG>
 void filter_rows_diag(const FilterLayout& L, const std::vector<Plane>& out,
                       const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
-    if (diag.members || diag.weight_sum)
+    if (diag.any())
         filter_rows_impl<V, NC, NG, true>(L, out, diag, y0, y1, chunk0, chunk1);
     else
         filter_rows_impl<V, NC, NG, false>(L, out, diag, y0, y1, chunk0, chunk1);

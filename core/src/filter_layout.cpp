@@ -100,7 +100,8 @@ void mark_guarded_chunks(FilterLayout& L, const NoiseLevels& noise)
 void FilterLayout::Release::operator()(float* p) const { std::free(p); }
 
 FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
-                                const DenoiseOptions& options, int nthreads, int lanes)
+                                const DenoiseOptions& options, int nthreads, int lanes,
+                                bool with_inverse_count)
 {
     FilterLayout L;
     L.width = est.width;
@@ -131,7 +132,7 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         ? noise_levels(est, options.firefly_ratio) : NoiseLevels{};
     mark_guarded_chunks(L, noise);
     const bool guard = std::find(L.guarded.begin(), L.guarded.end(), 1) != L.guarded.end();
-    const int planes = 3 * L.channels + L.guide_count + (guard ? 2 : 0);
+    const int planes = 3 * L.channels + L.guide_count + (guard ? 2 : 0) + (with_inverse_count ? 1 : 0);
     // Not zeroed: every float, padding included, is written once below, by the thread
     // that will mostly read it (zeroing 50 MB first cost as much as filling it).
     L.storage.reset(page_memory(L.plane_size * planes));
@@ -157,6 +158,9 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
     float* noise_limit = guard ? plane_origin(3 * L.channels + L.guide_count + 1) : nullptr;
     L.noise = noise_level;
     L.noise_limit = noise_limit;
+    float* inverse_count =
+        with_inverse_count ? plane_origin(3 * L.channels + L.guide_count + (guard ? 2 : 0)) : nullptr;
+    L.inverse_count = inverse_count;
 
     const float max_count = tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, est.pixels(), 1 << 16), 0.f,
@@ -182,6 +186,8 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
             std::fill(noise_level + p + x0, noise_level + p + x1, 0.f);
             std::fill(noise_limit + p + x0, noise_limit + p + x1, 0.f);
         }
+        if (inverse_count)
+            std::fill(inverse_count + p + x0, inverse_count + p + x1, 0.f);
     };
     const int row_end = L.stride - L.pad_x;  // one past the last padded column, from x = 0
     auto fill_rows = [&](const tbb::blocked_range<int>& rows) {
@@ -217,6 +223,10 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                 if (guard) {
                     noise_level[p] = noise.level[std::size_t(y) * est.width + x];
                     noise_limit[p] = noise.limit[std::size_t(y) * est.width + x];
+                }
+                if (inverse_count) {
+                    const float count = finite_or_zero(float(n));
+                    inverse_count[p] = count > 0 ? 1.f / count : 0.f;
                 }
             }
         }

@@ -33,6 +33,7 @@ struct FilterLayout {
     std::vector<std::uint8_t> guarded;
     bool needs_guard(int y, int chunk) const { return guarded[std::size_t(y) * chunks + chunk] != 0; }
     const float* value[4] = {};      // F, what is averaged
+    const float* inverse_count = nullptr;  // 1/n (0 in the padding), for diagnostics only
     int guide_count = 0;             // 0, 3 (albedo or normal) or 6 (both)
     const float* guide[6] = {};      // scaled by 1/(√2·σ): Σ (Δg)² is the log-weight
 
@@ -51,8 +52,10 @@ struct FilterLayout {
 };
 
 /// `lanes`: the kernel's SIMD width, which sets the chunks of `guarded`.
+/// `with_inverse_count` adds the 1/n plane the effective sample count needs.
 FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
-                                const DenoiseOptions& options, int nthreads, int lanes);
+                                const DenoiseOptions& options, int nthreads, int lanes,
+                                bool with_inverse_count = false);
 
 /// Filters output rows [y0, y1), chunks of kernel-width columns [chunk0, chunk1).
 using FilterRowsFn = void (*)(const FilterLayout& layout, const std::vector<Plane>& out,

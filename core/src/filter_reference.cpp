@@ -43,6 +43,9 @@ void filter_reference(const EstimatorImage& est, const Guides& guides,
     for (int yi = 0; yi < est.height; ++yi)
         for (int xi = 0; xi < est.width; ++xi) {
             double sum[4] = {}, weight_sum = 1, members = 1;
+            const double ni = std::isfinite(est.count[est.index(0, xi, yi)])
+                                  ? est.count[est.index(0, xi, yi)] : 0.0;
+            double inverse_sum = ni > 0 ? 1.0 / ni : 0.0;  // Σ W_ij² / n_j
             for (int c = 0; c < est.channels; ++c)
                 sum[c] = est.value[est.index(c, xi, yi)];
             const bool centre_testable = est.testable(xi, yi);
@@ -79,6 +82,7 @@ void filter_reference(const EstimatorImage& est, const Guides& guides,
                         sum[c] += w * est.value[est.index(c, xj, yj)];
                     weight_sum += w;
                     members += 1;
+                    inverse_sum += w * w / est.count[est.index(0, xj, yj)];
                 }
             for (int c = 0; c < est.channels; ++c)
                 out[c](xi, yi) = float(sum[c] / weight_sum);
@@ -86,6 +90,9 @@ void filter_reference(const EstimatorImage& est, const Guides& guides,
                 diagnostics.members(xi, yi) = float(members);
             if (diagnostics.weight_sum)
                 diagnostics.weight_sum(xi, yi) = float(weight_sum);
+            if (diagnostics.effective_samples)
+                diagnostics.effective_samples(xi, yi) =
+                    inverse_sum > 0 ? float(weight_sum * weight_sum / inverse_sum) : 0.f;
         }
 }
 

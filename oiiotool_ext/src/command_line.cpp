@@ -1,33 +1,52 @@
 #include "statmc/tool/command_line.h"
 
 #include "statmc/tool/command_table.h"
+#include "statmc/tool/oiiotool_commands.h"
+#include "statmc/tool/text_split.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {
 
 namespace {
 
-std::vector<std::string> split(const std::string& text, char separator)
+bool is_command_word(const std::string& word) { return word.size() > 1 && word[0] == '-'; }
+
+// oiiotool treats one and two dashes alike ("-resize" is "--resize").
+const Command* find_either_spelling(std::string& name)
 {
-    std::vector<std::string> parts;
-    std::size_t start = 0;
-    while (true) {
-        const std::size_t at = text.find(separator, start);
-        parts.push_back(text.substr(start, at - start));
-        if (at == std::string::npos)
-            return parts;
-        start = at + 1;
-    }
+    if (const Command* c = find_command(name))
+        return c;
+    if (name.size() > 2 && name[1] != '-')
+        if (const Command* c = find_command("-" + name)) {
+            name = "-" + name;
+            return c;
+        }
+    return nullptr;
 }
 
-bool is_command_word(const std::string& word) { return word.size() > 1 && word[0] == '-'; }
+[[noreturn]] void unknown_command(const std::string& name)
+{
+    const std::string dashed = name.size() > 2 && name[1] != '-' ? "-" + name : name;
+    if (is_oiiotool_command(name) || is_oiiotool_command(dashed))
+        throw ToolError(name + " is an oiiotool command that statmc does not support (run that "
+                               "step with oiiotool; statmc --help lists the supported ones)");
+    throw ToolError("unknown command '" + name + "' (see statmc --help)");
+}
+
+// oiiotool would evaluate {expressions}; passing them on literally would differ silently.
+void refuse_expression(const std::string& word)
+{
+    const std::size_t open = word.find('{');
+    if (open != std::string::npos && word.find('}', open) != std::string::npos)
+        throw ToolError("'" + word + "': statmc does not evaluate oiiotool's {expressions}");
+}
 
 }  // namespace
 
 std::pair<std::string, std::vector<std::pair<std::string, std::string>>>
 split_command(const std::string& word)
 {
-    std::vector<std::string> parts = split(word, ':');
+    std::vector<std::string> parts = split_text(word, ':');
     std::vector<std::pair<std::string, std::string>> modifiers;
     for (std::size_t i = 1; i < parts.size(); ++i) {
         const std::string& part = parts[i];
@@ -44,6 +63,7 @@ split_command(const std::string& word)
 Invocation parse_invocation(const std::vector<std::string>& args, std::size_t& i)
 {
     const std::string& word = args[i++];
+    refuse_expression(word);
     if (word == "-")
         throw ToolError("'-': statmc cannot read images from standard input");
     Invocation inv;
@@ -55,14 +75,15 @@ Invocation parse_invocation(const std::vector<std::string>& args, std::size_t& i
         return inv;
     }
     auto [name, given] = split_command(word);
-    inv.command = find_command(name);
+    inv.command = find_either_spelling(name);
     if (!inv.command)
-        throw ToolError("unknown command '" + name + "' (see statmc --help)");
+        unknown_command(name);
     inv.name = name;
     inv.modifiers = Modifiers::parse(name, given, inv.command->modifiers);
     for (const std::string& arg_name : inv.command->arg_names) {
         if (i >= args.size())
             throw ToolError(name + ": missing argument " + arg_name);
+        refuse_expression(args[i]);
         inv.args.push_back(args[i++]);
     }
     if (!inv.command->optional_arg_name.empty() && i < args.size())

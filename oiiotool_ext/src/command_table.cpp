@@ -64,9 +64,18 @@ void describe(std::ostringstream& os, const Command& c)
 
 const std::vector<Command>& command_table()
 {
+    // In the order --help shows them.
     static const std::vector<Command> table = {
-        input_command(),  output_command(),  threads_command(),
-        list_ops_command(), help_command(), version_command(),
+        input_command(),        output_command(),      data_format_command(),
+        compression_command(),  all_subimages_command(), ch_command(),
+        chnames_command(),      chappend_command(),    subimage_command(),
+        siappend_command(),     add_command(),         sub_command(),
+        mul_command(),          addc_command(),        mulc_command(),
+        colorconfig_command(),  colorconvert_command(), ociodisplay_command(),
+        crop_command(),         resize_command(),      info_command(),
+        verbose_command(),      stats_command(),       diff_command(),
+        echo_command(),         threads_command(),     list_ops_command(),
+        help_command(),         version_command(),
     };
     return table;
 }
@@ -94,6 +103,8 @@ std::string help_text()
           "Arguments are read left to right on an image stack, as oiiotool reads them: an\n"
           "input file is pushed, a command pops its operands and pushes its result, and -o\n"
           "writes the top image. Modifiers follow a command: --name:mod=value:mod2=value.\n"
+          "oiiotool's commands below behave as in oiiotool 2.4; the others it knows are\n"
+          "refused by name.\n"
           "Images hold per-pixel statistics as EXR layers (docs/exr-layers.md).\n\n"
           "Commands:\n";
     for (const Command& c : command_table())
@@ -105,7 +116,10 @@ std::string help_text()
           "  statmc in.exr --denoise:radius=20:alpha=0.005:guides=albedo,normal -o out.exr\n"
           "  statmc a.exr b.exr c.exr --passes --denoise -o out.exr\n"
           "  statmc task1.exr task2.exr task3.exr --merge -o frame.exr\n"
-          "  statmc out.exr reference.exr --compare -o error.exr\n";
+          "  statmc out.exr reference.exr --compare -o error.exr\n"
+          "  statmc aovs.exr --denoise:aov=diffuse --denoise:aov=specular -o out.exr\n"
+          "  statmc frame.exr --ch R,G,B --resize 50% -d half -o preview.exr   (oiiotool's "
+          "commands)\n";
     return os.str();
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "statmc/tool/number_parsing.h"
+#include "statmc/tool/text_split.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {
@@ -20,19 +21,6 @@ std::string join(const std::vector<std::string>& items, const char* separator)
 bool contains(const std::vector<std::string>& items, const std::string& item)
 {
     return std::find(items.begin(), items.end(), item) != items.end();
-}
-
-std::vector<std::string> split_list(const std::string& text)
-{
-    std::vector<std::string> items;
-    std::size_t start = 0;
-    while (true) {
-        const std::size_t comma = text.find(',', start);
-        items.push_back(text.substr(start, comma - start));
-        if (comma == std::string::npos)
-            return items;
-        start = comma + 1;
-    }
 }
 
 bool parse_bool(const std::string& text, const std::string& what)
@@ -67,7 +55,7 @@ statmc::ParameterValue parse_text(const std::string& command, const ModifierSpec
     case ModifierType::List: {
         if (contains(spec.keywords, text))
             return std::vector<std::string>{text};
-        std::vector<std::string> items = split_list(text);
+        std::vector<std::string> items = split_text(text);
         for (const std::string& item : items)
             if (!contains(spec.choices, item))
                 throw ToolError(what + ": unknown item '" + item + "' (expected a list of " +

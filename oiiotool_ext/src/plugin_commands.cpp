@@ -82,14 +82,14 @@ void run_operator(const statmc::OperatorSpec& op, ToolContext& ctx, const Invoca
     run_context.out = &ctx.out;
     run_context.module = op.module;
     for (const StackImage& s : popped) {
-        images.push_back(&s.image);
+        images.push_back(&s.image());
         run_context.input_labels.push_back(s.label);
     }
     StackImage result{op.run(images, inv.modifiers.values(), run_context), ""};
     // One input is named in the message; several are named by the operator itself.
     const std::string where = popped.size() == 1 ? popped[0].label + ": " : "";
-    if (result.image.has_error())
-        throw ToolError(inv.name + ": " + where + result.image.geterror());
+    if (result.image().has_error())
+        throw ToolError(inv.name + ": " + where + result.image().geterror());
     result.label = popped.size() == 1 ? popped[0].label + " (" + op.name + ")"
                                       : inv.name + " result";
     ctx.stack.push(std::move(result));

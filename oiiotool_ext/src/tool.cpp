@@ -35,7 +35,7 @@ int run_program(const std::vector<std::string>& args, ToolContext& ctx)
     }
     for (const Invocation& inv : program)
         inv.command->run(ctx, inv);
-    return 0;
+    return ctx.exit_code;
 }
 
 }  // namespace

@@ -31,6 +31,12 @@ std::string slurp(const std::string& path)
 
 CliResult run_cli(const std::vector<std::string>& args, int timeout_seconds)
 {
+    return run_program(STATMC_CLI_PATH, args, timeout_seconds);
+}
+
+CliResult run_program(const std::string& program, const std::vector<std::string>& args,
+                      int timeout_seconds)
+{
     TempDir capture;  // apart from the directories tests inspect for stray files
     const std::string out_path = capture.file("stdout"), err_path = capture.file("stderr");
     posix_spawn_file_actions_t actions;
@@ -39,7 +45,7 @@ CliResult run_cli(const std::vector<std::string>& args, int timeout_seconds)
     posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
 
-    std::vector<std::string> argv_strings = {STATMC_CLI_PATH};
+    std::vector<std::string> argv_strings = {program};
     argv_strings.insert(argv_strings.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (std::string& s : argv_strings)
@@ -47,10 +53,11 @@ CliResult run_cli(const std::vector<std::string>& args, int timeout_seconds)
     argv.push_back(nullptr);
 
     pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, STATMC_CLI_PATH, &actions, nullptr, argv.data(), environ);
+    const int spawned =
+        posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
     if (spawned != 0)
-        throw std::runtime_error("cannot start " STATMC_CLI_PATH);
+        throw std::runtime_error("cannot start " + program);
 
     CliResult result;
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(timeout_seconds);

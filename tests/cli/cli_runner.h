@@ -14,6 +14,11 @@ struct CliResult {
     std::string out, err;
 };
 
+/// Runs the built statmc.
 CliResult run_cli(const std::vector<std::string>& args, int timeout_seconds = 120);
+
+/// Runs another program (`program` is a path) the same way: oiiotool, to compare with.
+CliResult run_program(const std::string& program, const std::vector<std::string>& args,
+                      int timeout_seconds = 120);
 
 }  // namespace statmc::test

@@ -1,5 +1,6 @@
 // Every bad input ends in one "statmc: error: ..." line naming the culprit, exit code 1,
 // no crash or hang, and no output or temporary file left behind.
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -247,7 +248,10 @@ TEST_F(CliError, UnknownModifier)
     expect_failure({in, "--denoise:radius=3:sigma=2", "-o", out()},
                    "--denoise: unknown modifier 'sigma' (modifiers: radius, alpha, sigma_s");
     expect_failure({in, "-o:compression=zip", out()},
-                   "-o: unknown modifier 'compression' (it takes no modifiers)");
+                   "-o: unknown modifier 'compression' (modifiers: type, datatype)");
+    expect_failure({in, "--siappend:all=1", out()},
+                   "--siappend: unknown modifier 'all' (modifiers: n)");
+    expect_failure({in, in, "--chappend:n=1", out()}, "--chappend: n must be");
 }
 
 TEST_F(CliError, UnknownCommand)
@@ -270,6 +274,65 @@ TEST_F(CliError, MissingArguments)
     expect_failure({in, "--denoise", "-o"}, "-o: missing argument FILE");
     expect_failure({in, "--threads"}, "--threads: missing argument N");
     expect_failure({"-", "-o", out()}, "'-': statmc cannot read images from standard input");
+}
+
+TEST_F(CliError, OiiotoolCommandsStatmcLacks)
+{
+    const auto in = input("in.exr", cli_render(0));
+    for (const char* command : {"--flip", "-flop", "--over", "-otex", "--printstats"})
+        expect_failure({in, command, "-o", out()},
+                       std::string(command) +
+                           " is an oiiotool command that statmc does not support");
+    expect_failure({in, "--flipp", "-o", out()}, "unknown command '--flipp'");
+    expect_failure({in, "--echo", "{TOP.width}"},
+                   "'{TOP.width}': statmc does not evaluate oiiotool's {expressions}");
+}
+
+TEST_F(CliError, BadChannelLists)
+{
+    const auto in = input("in.exr", cli_render(0));
+    expect_failure({in, "--ch", "R,Q", "-o", out()},
+                   "--ch: no channel 'Q' (the image has R, G, B, A, albedo.R, albedo.G, albedo.B)");
+    expect_failure({in, "--ch", "R,9", "-o", out()},
+                   "--ch: channel index 9 is out of range (the image has 7 channels)");
+    expect_failure({"-i:ch=R,variance.R", in, "-o", out()},
+                   in + ": -i:ch: no channel 'variance.R'");
+}
+
+TEST_F(CliError, BadGeometryTypesAndCompression)
+{
+    const auto in = input("in.exr", cli_render(0));
+    expect_failure({in, "--crop", "10y8", "-o", out()},
+                   "--crop: geometry '10y8' is not WxH, WxH+X+Y or xmin,ymin,xmax,ymax");
+    expect_failure({in, "--resize", "0x8", "-o", out()}, "--resize: geometry '0x8' has no pixels");
+    expect_failure({in, "--compression", "dwaa", "-o", out()},
+                   "--compression: 'dwaa' is lossy; statmc writes none, rle, zip, zips or piz");
+    expect_failure({"-d", "uint8", in, "-o", out()},
+                   "-d: OpenEXR stores half, float or uint32 channels, got 'uint8'");
+    expect_failure({"-d", "R=half", in, "-o", out()}, "-d R=half: per-channel types");
+    expect_failure({in, "-o:type=double", out()},
+                   "-o:type: OpenEXR stores half, float or uint32 channels, got 'double'");
+    expect_failure({in, "--mulc", "2,x", "-o", out()}, "--mulc: expected a finite number, got 'x'");
+}
+
+TEST_F(CliError, BadSubimagesAndOperands)
+{
+    const auto in = input("in.exr", cli_render(0));
+    expect_failure({in, "--subimage", "beauty", "-o", out()},
+                   "--subimage: " + in + " has no subimage 'beauty' (it has 1: (unnamed))");
+    expect_failure({in, "--subimage:delete=1", "0", "-o", out()},
+                   "has one subimage; deleting it would leave no image");
+    expect_failure({"-a", in, in, "--siappend", in, "--add", "-o", out()},
+                   "--add: " + in + " (--siappend) has 2 subimages but " + in + " has 1");
+    expect_failure({in, "--mulc:subimages=2", "2", "-o", out()},
+                   "--mulc: " + in + " has no subimage '2' (it has 1: (unnamed))");
+    expect_failure({in, "--add", "-o", out()}, "--add: needs 2 images, the stack holds 1");
+    expect_failure({"--colorconfig", dir.file("none.ocio"), in, "--colorconvert", "linear", "sRGB",
+                    "-o", out()},
+                   "--colorconfig: colour config " + dir.file("none.ocio"));
+    if (!std::getenv("OCIO"))
+        expect_failure({in, "--ociodisplay", "", "", "-o", out()},
+                       "--ociodisplay: needs an OCIO config (--colorconfig FILE or $OCIO)");
 }
 
 }  // namespace

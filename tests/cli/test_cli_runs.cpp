@@ -1,9 +1,12 @@
 // statmc runs that succeed: outputs equal the operators' results on the same files.
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "cli_images.h"
 #include "cli_runner.h"
 #include "statmc/denoise/denoise.h"
+#include "statmc/layers/statistics_layers.h"
 #include "statmc/passes/passes.h"
 #include "temp_dir.h"
 #include "test_images.h"
@@ -138,16 +141,52 @@ TEST(CliRun, ThreadsDoNotChangeTheResult)
     expect_same_channels(read_exr(dir.file("one.exr")), read_exr(dir.file("all.exr")));
 }
 
+TEST(CliRun, DenoiseAovWithDiagnostics)
+{
+    TempDir dir;
+    layers::StatisticsMetadata meta;
+    meta.aov = "diffuse";
+    write_exr(layers::make_statistics_image(noisy_statistics(kCliWidth, kCliHeight, 8, 5), meta),
+              dir.file("aov.exr"));
+    expect_success(run_cli({dir.file("aov.exr"), "--denoise:aov=diffuse:radius=4:diagnostics=1",
+                            "-o", dir.file("out.exr")}));
+    DenoiseImageOptions opt;
+    opt.aov = "diffuse";
+    opt.filter.radius = 4;
+    opt.diagnostics = true;
+    const OIIO::ImageBuf expected = denoise(read_exr(dir.file("aov.exr")), opt);
+    ASSERT_FALSE(expected.has_error()) << expected.geterror();
+    const OIIO::ImageBuf out = read_exr(dir.file("out.exr"));
+    expect_same_channels(out, expected);
+    EXPECT_GE(out.spec().channelindex("diffuse.diagnostics.members"), 0);
+    EXPECT_GE(out.spec().channelindex("diffuse.diagnostics.effectiveSamples"), 0);
+    // Somewhere the filter averaged more than the pixel itself.
+    float most = 0;
+    for (int y = 0; y < kCliHeight; ++y)
+        for (int x = 0; x < kCliWidth; ++x)
+            most = std::max(most, channel_value(out, "diffuse.diagnostics.members", x, y));
+    EXPECT_GT(most, 1.f);
+}
+
 TEST(CliRun, HelpListsEveryCommandAndModifier)
 {
     const CliResult r = run_cli({"--help"});
     expect_success(r);
     for (const char* text :
-         {"-i FILE", "-o FILE", "--denoise", "--passes", "--threads N", "--help", "--version",
+         {"-i[:mod=val...] FILE", "-o[:mod=val...] FILE", "--denoise", "--passes", "--threads N", "--help", "--version",
           ":radius=20 ", ":alpha=0.005 ", ":sigma_s=10 ", ":sigma_albedo=0.02 ",
           ":sigma_normal=0.1 ", ":guides=auto ", "(albedo,normal|auto|none)",
           ":albedo_layer=albedo ", ":normal_layer=normal ", ":test=auto ",
-          "(auto|boxcox|untransformed)", ":nonfinite=error ", "(error|zero)", ":n=int "})
+          "(auto|boxcox|untransformed)", ":nonfinite=error ", "(error|zero)", ":n=int ",
+          ":diagnostics=0 ", ":aov=name ",
+          // the oiiotool commands, from the same table
+          "-d TYPE", "--compression NAME", "-a ", "--ch[:mod=val...] CHANLIST",
+          "--chnames[:mod=val...] NAMELIST", "--chappend", "--subimage[:mod=val...] N|NAME",
+          "--siappend", "--add", "--sub", "--mul", "--addc[:mod=val...] VAL",
+          "--mulc[:mod=val...] VAL", "--colorconfig FILE", "--colorconvert[:mod=val...] FROM TO",
+          "--ociodisplay[:mod=val...] DISPLAY VIEW", "--crop[:mod=val...] GEOM",
+          "--resize[:mod=val...] GEOM", ":filter=name ", "--info", "-v ", "--stats", "--diff",
+          "--echo[:mod=val...] TEXT", ":subimages=name "})
         EXPECT_NE(r.out.find(text), std::string::npos) << text;
     EXPECT_EQ(run_cli({"-h"}).out, r.out);
     EXPECT_EQ(run_cli({}).out, r.out);

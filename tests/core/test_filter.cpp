@@ -15,8 +15,10 @@ namespace {
 
 struct Output {
     int w, h, c;
-    std::vector<float> values, members, weights;
-    Output(int w_, int h_, int c_) : w(w_), h(h_), c(c_), values(std::size_t(w) * h * c), members(std::size_t(w) * h), weights(std::size_t(w) * h) {}
+    std::vector<float> values, members, weights, effective;
+    Output(int w_, int h_, int c_)
+        : w(w_), h(h_), c(c_), values(std::size_t(w) * h * c), members(std::size_t(w) * h),
+          weights(std::size_t(w) * h), effective(std::size_t(w) * h) {}
     std::vector<Plane> planes()
     {
         std::vector<Plane> p;
@@ -24,7 +26,11 @@ struct Output {
             p.push_back(dense_plane(values.data() + std::size_t(k) * w * h, w));
         return p;
     }
-    FilterDiagnostics diagnostics() { return {dense_plane(members.data(), w), dense_plane(weights.data(), w)}; }
+    FilterDiagnostics diagnostics()
+    {
+        return {dense_plane(members.data(), w), dense_plane(weights.data(), w),
+                dense_plane(effective.data(), w)};
+    }
 };
 
 // Random estimators with region structure, so that the test both accepts and rejects,
@@ -90,6 +96,9 @@ void expect_matches_reference(const EstimatorImage& est, const Guides& guides, c
         ASSERT_NEAR(fast.values[i], ref.values[i], 2e-5f * (1 + std::abs(ref.values[i]))) << "value " << i;
     for (std::size_t i = 0; i < ref.weights.size(); ++i)
         ASSERT_NEAR(fast.weights[i], ref.weights[i], 1e-4f * ref.weights[i]) << "weight " << i;
+    for (std::size_t i = 0; i < ref.effective.size(); ++i)
+        ASSERT_NEAR(fast.effective[i], ref.effective[i], 2e-4f * ref.effective[i])
+            << "effective samples " << i;
 }
 
 struct Case {
@@ -160,6 +169,7 @@ TEST(Filter, BitwiseIdenticalForAnyThreadCount)
     EXPECT_EQ(std::memcmp(one.values.data(), two.values.data(), one.values.size() * 4), 0);
     EXPECT_EQ(std::memcmp(one.values.data(), all.values.data(), one.values.size() * 4), 0);
     EXPECT_EQ(std::memcmp(one.weights.data(), two.weights.data(), one.weights.size() * 4), 0);
+    EXPECT_EQ(std::memcmp(one.effective.data(), all.effective.data(), one.effective.size() * 4), 0);
 }
 
 TEST(Filter, VectorKernelsAgree)

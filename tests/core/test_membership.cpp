@@ -80,7 +80,7 @@ bool filter_says_member(float mi, float vi, float mj, float vj, float n, double 
     opt.radius = 1;
     opt.alpha = alpha;
     float out[2], members[2];
-    filter(est, {}, opt, {dense_plane(out, 2)}, {dense_plane(members, 2), {}}, 1, level);
+    filter(est, {}, opt, {dense_plane(out, 2)}, {dense_plane(members, 2), {}, {}}, 1, level);
     EXPECT_EQ(members[0], members[1]) << "the test is symmetric";
     return members[0] == 2.f;
 }

@@ -26,6 +26,13 @@ TEST(LayerNames, AovStatisticsNestTwoLevels)
               "bounce1.boxcoxM3.B");
 }
 
+TEST(LayerNames, DiagnosticsSitUnderTheAov)
+{
+    EXPECT_EQ(diagnostics_channel("", kMembersChannel), "diagnostics.members");
+    EXPECT_EQ(diagnostics_channel("", kEffectiveSamplesChannel), "diagnostics.effectiveSamples");
+    EXPECT_EQ(diagnostics_channel("diffuse", kMembersChannel), "diffuse.diagnostics.members");
+}
+
 TEST(LayerNames, StatisticsChannelsAreRecognised)
 {
     EXPECT_TRUE(is_statistics_channel("sampleCount.Y"));

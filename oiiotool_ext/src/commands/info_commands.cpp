@@ -1,4 +1,4 @@
-// --help, --version and --threads: commands that touch no image.
+// --help, --version, --threads and --echo: commands that touch no image.
 #include <OpenImageIO/imageio.h>
 
 #include "statmc/tool/command_table.h"
@@ -59,6 +59,19 @@ Command list_ops_command()
     c.summary = "List the operators the plugins provide and exit";
     c.immediate = true;
     c.run = [](ToolContext& ctx, const Invocation&) { ctx.out << operator_list_text(); };
+    return c;
+}
+
+Command echo_command()
+{
+    Command c;
+    c.name = "--echo";
+    c.arg_names = {"TEXT"};
+    c.summary = "Print TEXT (:newline=0 leaves out the line end)";
+    c.modifiers = {statmc::bool_parameter("newline", true, "end with a new line")};
+    c.run = [](ToolContext& ctx, const Invocation& inv) {
+        ctx.out << inv.args[0] << (inv.modifiers.get_bool("newline") ? "\n" : "");
+    };
     return c;
 }
 

@@ -3,12 +3,15 @@
 #include <stdexcept>
 #include <vector>
 
+#include <OpenImageIO/imagebufalgo.h>
+
 #include "statmc/core/estimator_image.h"
 #include "statmc/core/filter.h"
 #include "statmc/layers/float_pixels.h"
 #include "statmc/layers/guide_layers.h"
 #include "statmc/layers/layer_error.h"
 #include "statmc/layers/layer_lookup.h"
+#include "statmc/layers/layer_names.h"
 #include "statmc/layers/statistics_layers.h"
 #include "statmc/layers/statistics_validation.h"
 #include "statmc/layers/view_window.h"
@@ -123,38 +126,83 @@ int thread_count(int nthreads)
     return global > 0 ? global : 0;
 }
 
-// The filtered means of the input region, dense and channel-major.
-std::vector<float> filter_region(const StatisticsView& stats, TestDomain domain,
-                                 const Guides& guides, const DenoiseOptions& options,
-                                 int nthreads)
+// What the filter gives over the input region, dense: the means channel-major, and the
+// diagnostics planes when asked for.
+struct Filtered {
+    std::vector<float> means, members, effective_samples;
+};
+
+Filtered filter_region(const StatisticsView& stats, TestDomain domain, const Guides& guides,
+                       const DenoiseOptions& options, bool diagnostics, int nthreads)
 {
     const EstimatorImage est = estimators_from_statistics(stats, domain);
     const std::size_t pixels = std::size_t(stats.width) * stats.height;
-    std::vector<float> filtered(pixels * stats.channels);
+    Filtered f;
+    f.means.resize(pixels * stats.channels);
     std::vector<Plane> out;
     for (int c = 0; c < stats.channels; ++c)
-        out.push_back(dense_plane(filtered.data() + c * pixels, stats.width));
-    filter(est, guides, options, out, {}, thread_count(nthreads));
-    return filtered;
+        out.push_back(dense_plane(f.means.data() + c * pixels, stats.width));
+    FilterDiagnostics planes;
+    if (diagnostics) {
+        f.members.resize(pixels);
+        f.effective_samples.resize(pixels);
+        planes.members = dense_plane(f.members.data(), stats.width);
+        planes.effective_samples = dense_plane(f.effective_samples.data(), stats.width);
+    }
+    filter(est, guides, options, out, planes, thread_count(nthreads));
+    return f;
 }
 
-void write_means(OIIO::ImageBuf& result, const StatisticsChannels& ch,
-                 const std::vector<float>& filtered, const Regions& regions)
+// Channel `channel` of `result` over the output region, from a dense plane of the input
+// region.
+void write_region(OIIO::ImageBuf& result, int channel, const float* dense, const Regions& regions)
 {
     const OIIO::ImageSpec& spec = result.spec();
     const OIIO::ROI& in = regions.input;
     const OIIO::ROI& out = regions.output;
-    const std::size_t pixels = std::size_t(in.width()) * in.height();
-    for (int c = 0; c < ch.channels(); ++c) {
-        const Plane to = layers::shifted(layers::channel_plane(result, ch.mean[c]),
-                                         out.xbegin - spec.x, out.ybegin - spec.y);
-        const ConstPlane from =
-            layers::shifted(dense_plane(filtered.data() + c * pixels, in.width()),
-                            out.xbegin - in.xbegin, out.ybegin - in.ybegin);
-        for (int y = 0; y < out.height(); ++y)
-            for (int x = 0; x < out.width(); ++x)
-                to(x, y) = from(x, y);
-    }
+    const Plane to = layers::shifted(layers::channel_plane(result, channel),
+                                     out.xbegin - spec.x, out.ybegin - spec.y);
+    const ConstPlane from = layers::shifted(dense_plane(dense, in.width()),
+                                            out.xbegin - in.xbegin, out.ybegin - in.ybegin);
+    for (int y = 0; y < out.height(); ++y)
+        for (int x = 0; x < out.width(); ++x)
+            to(x, y) = from(x, y);
+}
+
+void write_means(OIIO::ImageBuf& result, const StatisticsChannels& ch, const Filtered& f,
+                 const Regions& regions)
+{
+    const std::size_t pixels = std::size_t(regions.input.width()) * regions.input.height();
+    for (int c = 0; c < ch.channels(); ++c)
+        write_region(result, ch.mean[c], f.means.data() + c * pixels, regions);
+}
+
+// `result` with the diagnostics channels of `aov`, added (as zeros) unless an earlier
+// run left them; their indices in the returned image come back in `members`/`effective`.
+OIIO::ImageBuf with_diagnostics_channels(const OIIO::ImageBuf& result, const std::string& aov,
+                                         int& members, int& effective)
+{
+    const std::string names[2] = {layers::diagnostics_channel(aov, layers::kMembersChannel),
+                                  layers::diagnostics_channel(aov, layers::kEffectiveSamplesChannel)};
+    const OIIO::ImageSpec& spec = result.spec();
+    std::vector<int> order;
+    std::vector<float> values(spec.nchannels, 0.f);
+    std::vector<std::string> new_names(spec.channelnames);
+    for (int c = 0; c < spec.nchannels; ++c)
+        order.push_back(c);
+    for (const std::string& name : names)
+        if (spec.channelindex(name) < 0) {
+            order.push_back(-1);
+            values.push_back(0.f);
+            new_names.push_back(name);
+        }
+    OIIO::ImageBuf extended = OIIO::ImageBufAlgo::channels(result, int(order.size()), order,
+                                                           values, new_names);
+    if (extended.has_error())
+        throw std::runtime_error("cannot add the diagnostics channels: " + extended.geterror());
+    members = extended.spec().channelindex(names[0]);
+    effective = extended.spec().channelindex(names[1]);
+    return extended;
 }
 
 bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseImageOptions& opt,
@@ -184,13 +232,19 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
                                                       regions.input.height());
     const Guides window_guides{layers::shifted(guides.albedo, x0, y0),
                                layers::shifted(guides.normal, x0, y0)};
-    const std::vector<float> filtered =
-        filter_region(window, domain, window_guides, opt.filter, nthreads);
+    const Filtered filtered =
+        filter_region(window, domain, window_guides, opt.filter, opt.diagnostics, nthreads);
 
     OIIO::ImageBuf result = in.copy(OIIO::TypeDesc::FLOAT);
     if (result.has_error() || !layers::has_local_float_pixels(result))
         throw std::runtime_error("cannot allocate the output image: " + result.geterror());
     write_means(result, ch, filtered, regions);
+    if (opt.diagnostics) {
+        int members = -1, effective = -1;
+        result = with_diagnostics_channels(result, opt.aov, members, effective);
+        write_region(result, members, filtered.members.data(), regions);
+        write_region(result, effective, filtered.effective_samples.data(), regions);
+    }
     result.specmod().attribute(layers::attr::kDenoised, 1);
     dst = std::move(result);  // last, since dst may be src
     return true;

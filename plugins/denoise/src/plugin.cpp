@@ -13,8 +13,10 @@
 // | normal_layer | string | normal  |           | layer of the normal guide                   |
 // | test         | choice | auto    |           | auto / boxcox / untransformed               |
 // | nonfinite    | choice | error   |           | NaN/Inf: refuse the image, or count as 0    |
+// | aov          | string | ""      |           | AOV denoised (diffuse → diffuse.R/G/B ...)  |
+// | diagnostics  | bool   | 0       |           | add diagnostics.members/.effectiveSamples   |
 //
-// One input (the top of the stack); pushes the image with R,G,B denoised.
+// One input (the top of the stack); pushes the image with the AOV's mean denoised.
 #include <algorithm>
 
 #include "statmc/denoise/denoise.h"
@@ -59,6 +61,8 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.test = test_choice(p.get_string("test", "auto"));
     opt.nonfinite = p.get_string("nonfinite", "error") == "zero" ? statmc::NonfinitePolicy::Zero
                                                                  : statmc::NonfinitePolicy::Error;
+    opt.aov = p.get_string("aov", "");
+    opt.diagnostics = p.get_bool("diagnostics", false);
     return opt;
 }
 
@@ -86,6 +90,11 @@ std::vector<statmc::ParameterSpec> parameters()
         choice_parameter("nonfinite", {"error", "zero"}, "error",
                          "NaN/Inf in the statistics: error refuses the image, zero counts "
                          "them as 0"),
+        string_parameter("aov", "", "the AOV to denoise (its <aov>.R,G,B mean and "
+                                    "<aov>.variance/Box-Cox layers); default the beauty"),
+        bool_parameter("diagnostics", false,
+                       "add [<aov>.]diagnostics.members and .effectiveSamples: per pixel, the "
+                       "pixels averaged and the effective sample count (Σw)²/Σ(w²/n)"),
     };
 }
 

@@ -92,45 +92,90 @@ void check_target(const std::string& path)
         cannot_write(path, "it is a directory");
 }
 
-}  // namespace
+// Subimage `s` of an existing file; `subimages` is set to the file's count.
+OIIO::ImageBuf read_subimage(const std::string& path, int s, int& subimages)
+{
+    OIIO::ImageBuf image(path);
+    auto unreadable = [&] {
+        const std::string why = image.has_error() ? image.geterror() : OIIO::geterror();
+        return FileError(path + ": not an OpenEXR/readable image: " + why);
+    };
+    if (!image.init_spec(path, s, 0))
+        throw unreadable();
+    subimages = image.nsubimages();
+    if (image.deep())
+        throw FileError(path + ": deep images are not supported");
+    if (image.spec().depth > 1)
+        throw FileError(path + ": volume images are not supported");
+    if (!image.read(s, 0, /*force=*/true, OIIO::TypeDesc::FLOAT))
+        throw unreadable();
+    return image;
+}
 
-OIIO::ImageBuf read_image_file(const std::string& path)
+void check_readable(const std::string& path)
 {
     std::error_code ec;
     if (!fs::exists(path, ec))
         throw FileError(path + ": no such file");
     if (fs::is_directory(path, ec))
         throw FileError(path + ": is a directory, not an image");
+}
+
+}  // namespace
+
+OIIO::ImageBuf read_image_file(const std::string& path)
+{
+    check_readable(path);
     const ForgetOnExit forget{path};
-    OIIO::ImageBuf image(path);
-    auto unreadable = [&] {
-        const std::string why = image.has_error() ? image.geterror() : OIIO::geterror();
-        return FileError(path + ": not an OpenEXR/readable image: " + why);
-    };
-    if (!image.init_spec(path, 0, 0))
-        throw unreadable();
-    if (image.deep())
-        throw FileError(path + ": deep images are not supported");
-    if (image.spec().depth > 1)
-        throw FileError(path + ": volume images are not supported");
-    if (!image.read(0, 0, /*force=*/true, OIIO::TypeDesc::FLOAT))
-        throw unreadable();
-    return image;
+    int subimages = 0;
+    return read_subimage(path, 0, subimages);
+}
+
+std::vector<OIIO::ImageBuf> read_image_subimages(const std::string& path)
+{
+    check_readable(path);
+    const ForgetOnExit forget{path};
+    std::vector<OIIO::ImageBuf> images;
+    int subimages = 1;
+    for (int s = 0; s < subimages; ++s)
+        images.push_back(read_subimage(path, s, subimages));
+    // The file's count, as OIIO reports it on a single-part file's spec.
+    images[0].specmod().attribute("oiio:subimages", subimages);
+    return images;
 }
 
 void write_image_file(const OIIO::ImageBuf& image, const std::string& path)
 {
+    write_image_file(std::vector<OIIO::ImageBuf>{image}, path, WriteOptions{});
+}
+
+void write_image_file(const std::vector<OIIO::ImageBuf>& subimages, const std::string& path,
+                      const WriteOptions& options)
+{
     check_target(path);
     auto out = exr_writer(path);
-    OIIO::ImageSpec spec = image.spec();
-    apply_storage_rules(spec);
+    std::vector<OIIO::ImageSpec> specs;
+    for (const OIIO::ImageBuf& image : subimages) {
+        OIIO::ImageSpec spec = image.spec();
+        apply_storage_rules(spec);
+        if (options.format != OIIO::TypeDesc::UNKNOWN)
+            spec.set_format(options.format);
+        if (!options.compression.empty())
+            spec.attribute("compression", options.compression);
+        specs.push_back(spec);
+    }
 
     const fs::path target(path);
     TemporaryFile temporary(temporary_name(target));
-    if (!out->open(temporary.path().string(), spec))
+    if (!out->open(temporary.path().string(), int(specs.size()), specs.data()))
         cannot_write(path, out->geterror());
-    if (!image.write(out.get()))
-        cannot_write(path, image.geterror());
+    for (std::size_t s = 0; s < subimages.size(); ++s) {
+        if (s > 0 && !out->open(temporary.path().string(), specs[s],
+                                OIIO::ImageOutput::AppendSubimage))
+            cannot_write(path, out->geterror());
+        if (!subimages[s].write(out.get()))
+            cannot_write(path, subimages[s].geterror());
+    }
     if (!out->close())
         cannot_write(path, out->geterror());
     out.reset();

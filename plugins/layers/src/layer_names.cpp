@@ -46,6 +46,11 @@ bool is_statistics_channel(std::string_view channel, std::string_view aov)
     return false;
 }
 
+std::string diagnostics_channel(std::string_view aov, std::string_view quantity)
+{
+    return channel_name(channel_name(aov, kDiagnosticsLayer), quantity);
+}
+
 std::string channel_name(std::string_view layer, std::string_view suffix)
 {
     if (layer.empty())

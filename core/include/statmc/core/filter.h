@@ -24,6 +24,13 @@ struct Guides {
 struct FilterDiagnostics {
     Plane members;     ///< neighbours that passed the test, the centre included
     Plane weight_sum;  ///< Σ W_ij, the centre's weight 1 included
+    /// (Σ W_ij)² / Σ W_ij²/n_j over the members: if each member's mean has variance
+    /// σ²/n_j, the output has variance σ²/N, so N is the sample count of one pixel as
+    /// precise as the average. Equal weights give M² / Σ 1/n_j (M times the harmonic mean
+    /// count), equal weights and counts M·n; 0 when the centre's count is 0.
+    Plane effective_samples;
+
+    bool any() const { return members || weight_sum || effective_samples; }
 };
 
 /// Instruction sets the filter kernel is built for.

@@ -10,9 +10,24 @@
 
 namespace statmc::tool {
 
+/// One stack entry: an image with one or more subimages (the parts of a multi-part EXR),
+/// as oiiotool's stack holds them.
 struct StackImage {
-    OIIO::ImageBuf image;
+    StackImage() = default;
+    // Moved, not copied through an initializer list: a copy of a failed ImageBuf is
+    // not safe in OIIO 2.4 and would lose the error.
+    StackImage(OIIO::ImageBuf image, std::string name) : label(std::move(name))
+    {
+        subimages.push_back(std::move(image));
+    }
+    StackImage(std::vector<OIIO::ImageBuf> images, std::string name)
+        : subimages(std::move(images)), label(std::move(name)) {}
+
+    std::vector<OIIO::ImageBuf> subimages;  ///< never empty
     std::string label;  ///< names the image in messages: its file, or the command that made it
+
+    /// Subimage 0: what a command reads unless -a is given.
+    const OIIO::ImageBuf& image() const { return subimages.front(); }
 };
 
 class ImageStack {

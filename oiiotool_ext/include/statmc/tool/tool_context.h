@@ -2,7 +2,9 @@
 #pragma once
 
 #include <ostream>
+#include <string>
 
+#include "statmc/layers/exr_files.h"
 #include "statmc/tool/image_stack.h"
 
 namespace statmc::tool {
@@ -10,9 +12,19 @@ namespace statmc::tool {
 struct ToolContext {
     explicit ToolContext(std::ostream& output) : out(output) {}
 
-    std::ostream& out;  ///< where --help and --version print
+    std::ostream& out;  ///< where --help, --version and the reports print
     ImageStack stack;
     int nthreads = 0;   ///< --threads; 0 = all
+    int exit_code = 0;  ///< 1 once a --diff has failed; the commands after it still run
+
+    // oiiotool's flags, each affecting the commands after it.
+    bool all_subimages = false;  ///< -a
+    bool verbose = false;        ///< -v
+    bool print_info = false;     ///< --info: report each input as it is read
+    bool info_verbose = false;   ///< --info:verbose=1, as -v does for --info
+    bool print_stats = false;    ///< --stats
+    layers::WriteOptions output; ///< -d, --compression
+    std::string colorconfig;     ///< --colorconfig; empty = $OCIO, else OIIO's built-in
 };
 
 }  // namespace statmc::tool

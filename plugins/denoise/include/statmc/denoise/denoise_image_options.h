@@ -42,6 +42,9 @@ struct DenoiseImageOptions {
     TestDomainChoice test = TestDomainChoice::Auto;
     NonfinitePolicy nonfinite = NonfinitePolicy::Error;
     std::string aov;  ///< the AOV denoised; "" is the beauty (R,G,B)
+    /// Also write the filter's per-pixel members and effective sample count
+    /// (layers::diagnostics_channel; 0 outside the ROI).
+    bool diagnostics = false;
 
     /// Empty when valid, else a message naming the offending parameter.
     std::string validate() const;

@@ -43,6 +43,16 @@ inline constexpr const char* kAlbedoLayer = "albedo";  // albedo.R/G/B
 inline constexpr const char* kNormalLayer = "normal";  // normal.X/Y/Z
 inline constexpr const char* kDepthLayer = "depth";    // depth.Z
 
+/// What `--denoise:diagnostics=1` adds under `[<aov>.]diagnostics` (FilterDiagnostics):
+/// per pixel, the filter's members (the centre included) and its effective sample count
+/// (Σ W)² / Σ W²/n_j.
+inline constexpr const char* kDiagnosticsLayer = "diagnostics";
+inline constexpr const char* kMembersChannel = "members";
+inline constexpr const char* kEffectiveSamplesChannel = "effectiveSamples";
+
+/// "diagnostics.members", "diffuse.diagnostics.effectiveSamples", ...
+std::string diagnostics_channel(std::string_view aov, std::string_view quantity);
+
 /// The layer that holds `stat` of `aov` ("" is the beauty): the mean is the AOV itself
 /// ("" for the beauty, whose channels are unprefixed), the others are "variance",
 /// "diffuse.variance", "bounce1.boxcoxM3" and so on.

@@ -1,0 +1,64 @@
+// -a, --subimage, --siappend: the subimages (EXR parts) of stack images.
+#include "statmc/tool/command_table.h"
+#include "statmc/tool/subimage_loop.h"
+#include "statmc/tool/tool_context.h"
+#include "statmc/tool/tool_error.h"
+
+namespace statmc::tool {
+
+Command all_subimages_command()
+{
+    Command c;
+    c.name = "-a";
+    c.summary = "Apply the commands that follow to every subimage, not only the first";
+    c.run = [](ToolContext& ctx, const Invocation&) { ctx.all_subimages = true; };
+    return c;
+}
+
+Command subimage_command()
+{
+    Command c;
+    c.name = "--subimage";
+    c.arg_names = {"N|NAME"};
+    c.summary = "Keep only one subimage of the top image, by index or part name; "
+                ":delete=1 removes it instead";
+    c.modifiers = {statmc::bool_parameter("delete", false, "remove the subimage, keep the rest")};
+    c.run = [](ToolContext& ctx, const Invocation& inv) {
+        StackImage image = ctx.stack.pop(inv.name);
+        const std::size_t s = find_subimage(image, inv.args[0], inv.name);
+        if (inv.modifiers.get_bool("delete")) {
+            if (image.subimages.size() == 1)
+                throw ToolError(inv.name + ": " + image.label +
+                                " has one subimage; deleting it would leave no image");
+            image.subimages.erase(image.subimages.begin() + std::ptrdiff_t(s));
+        } else {
+            image.subimages = {image.subimages[s]};
+        }
+        image.label += " (" + inv.name + " " + inv.args[0] + ")";
+        ctx.stack.push(std::move(image));
+    };
+    return c;
+}
+
+Command siappend_command()
+{
+    Command c;
+    c.name = "--siappend";
+    c.summary = "Join the top two images into one image with the subimages of both (:n= "
+                "joins the top n, bottom first)";
+    c.modifiers = {statmc::int_parameter("n", 2, "how many images to join").at_least(2)};
+    c.run = [](ToolContext& ctx, const Invocation& inv) {
+        ctx.stack.top(inv.name);
+        std::vector<StackImage> images =
+            ctx.stack.pop(std::size_t(inv.modifiers.get_int("n")), inv.name);
+        StackImage joined = std::move(images[0]);
+        for (std::size_t k = 1; k < images.size(); ++k)
+            for (OIIO::ImageBuf& sub : images[k].subimages)
+                joined.subimages.push_back(std::move(sub));
+        joined.label += " (" + inv.name + ")";
+        ctx.stack.push(std::move(joined));
+    };
+    return c;
+}
+
+}  // namespace statmc::tool

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Runs every command of README.md's "Studio workflows" section on generated files, so the
+# examples stay true. The inputs are made with oiiotool: eight "renders" of one frame (a
+# gradient plus Gaussian noise of a different seed each, with albedo and normal layers)
+# and the noise-free gradient as the reference. Work happens in out/readme-examples/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cmake --build build --target statmc >/dev/null
+export PATH="$PWD/build/oiiotool_ext:$PATH"
+mkdir -p out/readme-examples
+cd out/readme-examples
+
+gradient="fill:top=0.1,0.1,0.1:bottom=0.9,0.8,0.7"
+for k in 1 2 3 4 5 6 7 8; do
+  oiiotool --pattern "$gradient" 64x48 3 --pattern noise:type=gaussian:mean=0:stddev=0.15:seed=$k 64x48 3 --add \
+           --chnames R,G,B \
+           --pattern fill:left=0.2,0.2,0.2:right=0.8,0.7,0.6 64x48 3 --chnames albedo.R,albedo.G,albedo.B --chappend \
+           --pattern constant:color=0,0,1 64x48 3 --chnames normal.X,normal.Y,normal.Z --chappend \
+           -d float -o render$k.exr
+done
+oiiotool --pattern "$gradient" 64x48 3 -d float -o reference.exr
+statmc render5.exr render6.exr render7.exr render8.exr --passes -o frameB.exr
+statmc render1.exr render2.exr --passes -o task1.exr
+statmc render3.exr render4.exr --passes -o task2.exr
+
+run() { echo "+ $*"; "$@"; }
+
+# K passes from another renderer
+run statmc render1.exr render2.exr render3.exr render4.exr --passes -o frame.exr
+run statmc render1.exr render2.exr render3.exr render4.exr --passes --denoise -o frame-denoised.exr
+# Denoise a beauty with its guides
+run statmc frame.exr --denoise:guides=albedo,normal -o frame-denoised.exr
+run statmc frame.exr --denoise:diagnostics=1 -o frame-diagnostics.exr
+# AOVs renamed into the contract, denoised separately, recombined
+run statmc frame.exr --ch diffuse.R=R,diffuse.G=G,diffuse.B=B,diffuse.variance.R=variance.R,diffuse.variance.G=variance.G,diffuse.variance.B=variance.B,sampleCount.Y \
+       frameB.exr --ch specular.R=R,specular.G=G,specular.B=B,specular.variance.R=variance.R,specular.variance.G=variance.G,specular.variance.B=variance.B \
+       --chappend -o aovs.exr
+run statmc aovs.exr --denoise:aov=diffuse --denoise:aov=specular -o aovs-denoised.exr
+run statmc aovs-denoised.exr --ch R=diffuse.R,G=diffuse.G,B=diffuse.B \
+       aovs-denoised.exr --ch R=specular.R,G=specular.G,B=specular.B --add -o beauty-denoised.exr
+# Merge farm tasks
+run statmc task1.exr task2.exr --merge -o merged.exr
+run statmc merged.exr frame.exr --diff
+run statmc merged.exr --denoise -o merged-denoised.exr
+# Compare against a reference and view the error
+run statmc frame-denoised.exr reference.exr --compare -o error.exr
+run statmc frame-denoised.exr reference.exr --compare --mulc 10 --display -o error-view.exr
+run statmc --stats error.exr
+echo "readme-examples: every command ran"
