@@ -114,6 +114,15 @@ void run(benchmark::State& state, bool with_guides, SimdLevel level, bool refere
 void BM_Filter(benchmark::State& s) { run(s, false, detected_simd_level(), false); }
 void BM_FilterGuides(benchmark::State& s) { run(s, true, detected_simd_level(), false); }
 void BM_FilterNoGuard(benchmark::State& s) { run(s, false, detected_simd_level(), false, 0.f); }
+void BM_FilterAvx2Kernel(benchmark::State& s)
+{
+    const std::vector<SimdLevel> levels = supported_simd_levels();
+    if (std::find(levels.begin(), levels.end(), SimdLevel::Avx2) == levels.end()) {
+        s.SkipWithError("no AVX2 on this CPU");
+        return;
+    }
+    run(s, s.range(1) != 0, SimdLevel::Avx2, false);
+}
 void BM_FilterScalarKernel(benchmark::State& s) { run(s, false, SimdLevel::Scalar, false); }
 void BM_FilterReference(benchmark::State& s) { run(s, false, SimdLevel::Scalar, true); }
 void BM_FilterReferenceGuides(benchmark::State& s) { run(s, true, SimdLevel::Scalar, true); }
@@ -122,6 +131,8 @@ void BM_FilterReferenceGuides(benchmark::State& s) { run(s, true, SimdLevel::Sca
 BENCHMARK(BM_Filter)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterGuides)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterNoGuard)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
+// Args: threads, guides (0/1).
+BENCHMARK(BM_FilterAvx2Kernel)->Args({0, 0})->Args({0, 1})->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterScalarKernel)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(3)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterReference)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Repetitions(3)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterReferenceGuides)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Repetitions(3)->ReportAggregatesOnly();
