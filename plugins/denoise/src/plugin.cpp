@@ -12,8 +12,10 @@
 // | normal_layer | string | normal  |           | layer of the normal guide                   |
 // | test         | choice | auto    |           | auto / boxcox / untransformed               |
 // | nonfinite    | choice | error   |           | NaN/Inf: refuse the image, or count as 0    |
+// | aov          | string | (empty) |           | AOV denoised, e.g. bounce1L; empty = R,G,B  |
 //
-// One input (the top of the stack); pushes the image with R,G,B denoised.
+// One input (the top of the stack); pushes the image with the AOV's mean (R,G,B by
+// default) denoised.
 #include <algorithm>
 
 #include "statmc/denoise/denoise.h"
@@ -57,6 +59,7 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.test = test_choice(p.get_string("test", "auto"));
     opt.nonfinite = p.get_string("nonfinite", "error") == "zero" ? statmc::NonfinitePolicy::Zero
                                                                  : statmc::NonfinitePolicy::Error;
+    opt.aov = p.get_string("aov", "");
     return opt;
 }
 
@@ -80,6 +83,9 @@ std::vector<statmc::ParameterSpec> parameters()
         choice_parameter("nonfinite", {"error", "zero"}, "error",
                          "NaN/Inf in the statistics: error refuses the image, zero counts "
                          "them as 0"),
+        string_parameter("aov", "",
+                         "the AOV whose mean is denoised (docs/exr-layers.md), e.g. bounce1L; "
+                         "empty: the beauty R,G,B"),
     };
 }
 
