@@ -52,4 +52,17 @@ inline std::string quad(const std::string& p, const std::string& n)
            " " + n + " " + n + " " + n + "]\n";
 }
 
+/// A grey room (floor, back wall, ceiling) lit by a small quad under the ceiling: light
+/// bounces around, so paths are long enough for roulette and both MIS techniques.
+inline std::string test_room(int maxdepth = 8)
+{
+    return "LookAt 0 1 3  0 1 0  0 1 0\nCamera \"perspective\" \"float fov\" 60\n"
+           "Integrator \"path\" \"integer maxdepth\" " + std::to_string(maxdepth) + "\nWorldBegin\n"
+           "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [8 8 8]\n" +
+           quad("-0.3 1.99 -0.3  0.3 1.99 -0.3  0.3 1.99 0.3  -0.3 1.99 0.3", "0 -1 0") +
+           "AttributeEnd\nMaterial \"matte\" \"rgb Kd\" [0.7 0.7 0.7]\n" +
+           quad("-1 0 -1  1 0 -1  1 0 1  -1 0 1", "0 1 0") + quad("-1 2 -1  1 2 -1  1 2 1  -1 2 1", "0 -1 0") +
+           quad("-1 0 -1  1 0 -1  1 2 -1  -1 2 -1", "0 0 1") + "WorldEnd\n";
+}
+
 }  // namespace statmc::render::test

@@ -293,19 +293,10 @@ TEST(Render, PathRecordDecomposesTheSample)
 {
     // The per-vertex record (the hook for ACRR's per-bounce radiance and SMIS's win
     // counts) adds up to the sample and does not change it.
-    // A grey room (floor, back wall, ceiling) lit by a small quad: light bounces around.
-    const std::string room = "LookAt 0 1 3  0 1 0  0 1 0\nCamera \"perspective\" \"float fov\" 60\n"
-                             "Integrator \"path\" \"integer maxdepth\" 8\nWorldBegin\n"
-                             "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [8 8 8]\n" +
-                             quad("-0.3 1.99 -0.3  0.3 1.99 -0.3  0.3 1.99 0.3  -0.3 1.99 0.3", "0 -1 0") +
-                             "AttributeEnd\nMaterial \"matte\" \"rgb Kd\" [0.7 0.7 0.7]\n" +
-                             quad("-1 0 -1  1 0 -1  1 0 1  -1 0 1", "0 1 0") +
-                             quad("-1 2 -1  1 2 -1  1 2 1  -1 2 1", "0 -1 0") +
-                             quad("-1 0 -1  1 0 -1  1 2 -1  -1 2 -1", "0 0 1") + "WorldEnd\n";
-    const auto desc = parse_scene_string(room, "room.pbrt");
+    const auto desc = parse_scene_string(statmc::render::test::test_room(), "room.pbrt");
     const Scene scene(desc);
     const Camera camera(desc.camera, 16, 16);
-    const PathIntegrator integrator(scene, IntegratorSettings{desc.maxdepth, 3});
+    const PathIntegrator integrator(scene, IntegratorSettings{desc.maxdepth, {}, {}});
     PathRecord record;
     int multi_bounce = 0;
     for (int i = 0; i < 256; ++i) {
