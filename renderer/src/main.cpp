@@ -18,6 +18,7 @@
 #include "exr_output.h"
 #include "progress.h"
 #include "render_loop.h"
+#include "sampling_options.h"
 #include "scene.h"
 #include "scene_parser.h"
 
@@ -43,8 +44,7 @@ int main(int argc, char** argv)
     int spp = 0, iterations = 0, seed = 0, threads = 0, maxdepth = -1;
     std::string resolution;
     bool denoise = false, quiet = false, profile = false, every_iteration = false, bounce_layers = false;
-    IntegratorSettings integrator;
-    std::string rr = "classic", mis = "standard";
+    SamplingOptions sampling;
     app.add_option("scene", scene_path, "pbrt-v3 scene file")->required();
     app.add_option("-o,--output", output, "output statistics EXR")->required();
     auto* spp_opt = app.add_option("--spp", spp,
@@ -63,31 +63,7 @@ int main(int argc, char** argv)
         ->check(CLI::NonNegativeNumber);
     app.add_option("--maxdepth", maxdepth, "maximum path depth [default: the scene's Integrator maxdepth]")
         ->check(CLI::NonNegativeNumber);
-    app.add_option("--rr", rr,
-                   "Russian roulette: classic (pbrt-v3, from the throughput) or acrr (approximate "
-                   "contribution from denoised per-bounce radiance, method.md §7)")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"classic", "acrr"}));
-    app.add_option("--rr-bounces", integrator.roulette.tracked_bounces,
-                   "ACRR: tracked bounces beside the pixel (layers bounce0L..bounceNL)")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 32));
-    app.add_option("--rr-start-bounce", integrator.roulette.start_bounce,
-                   "roulette after the BSDF sample at vertices >= this one (0 = first hit; 4 = pbrt-v3)")
-        ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
-    app.add_option("--mis", mis,
-                   "MIS: standard (power heuristic) or selective (skip a technique whose denoised win "
-                   "share is below --mis-threshold, method.md §8)")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"standard", "selective"}));
-    app.add_option("--mis-bounces", integrator.mis.tracked_bounces,
-                   "SMIS: tracked vertices (layers bounce<j>LightWins, bounce<j>BsdfWins)")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 32));
-    app.add_option("--mis-threshold", integrator.mis.threshold, "SMIS: win-share threshold, in [0, 0.5)")
-        ->capture_default_str()
-        ->check(CLI::Range(0.0, 0.4999));
+    add_sampling_options(app, sampling);
     app.add_flag("--bounce-layers", bounce_layers,
                  "track and write every per-bounce layer (L and win counts) even with classic RR and "
                  "standard MIS [default: only those --rr/--mis use]");
@@ -128,10 +104,9 @@ int main(int argc, char** argv)
                                            : schedule_for_spp(spp > 0 ? spp : desc.spp);
         settings.seed = std::uint64_t(seed);
         settings.threads = threads;
+        IntegratorSettings& integrator = settings.integrator;
         integrator.maxdepth = maxdepth >= 0 ? maxdepth : desc.maxdepth;
-        integrator.roulette.mode = rr == "acrr" ? RouletteMode::Acrr : RouletteMode::Classic;
-        integrator.mis.mode = mis == "selective" ? MisMode::Selective : MisMode::Standard;
-        settings.integrator = integrator;
+        sampling.apply(integrator);
         settings.progress = !quiet && Progress::stderr_is_terminal();
 
         Scene scene(desc);
