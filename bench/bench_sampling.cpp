@@ -2,7 +2,7 @@
 // 2022) for statmc-render's roulette and MIS choices. For each progressive iteration of
 // each independent run it appends one CSV row:
 //   cost      = wall time of the iteration (rendering + denoising the per-bounce
-//               estimates) per camera sample,
+//               estimates, the latter also given alone) per camera sample,
 //   rel_var   = relative variance of one sample: the iteration's own samples give an
 //               image I_k (from the accumulated means), and
 //               rel_var = spp_k · mean over pixels and channels of (I_k − ref)² / (ref² + 0.01)
@@ -67,7 +67,7 @@ int main(int argc, char** argv)
     CLI::App app{"bench_sampling: per-iteration cost, relative variance and efficiency of statmc-render's "
                  "sampling (seed C.2), appended to a CSV"};
     std::string scene_path, reference_path, csv_path, label;
-    int width = 0, height = 0, iterations = 16, spp = 4, runs = 4, seed = 1, threads = 0;
+    int width = 0, height = 0, iterations = 16, spp = 4, runs = 4, seed = 1, threads = 0, progressive = 0;
     double budget = 0;
     SamplingOptions sampling;
     app.add_option("scene", scene_path, "pbrt-v3 scene")->required();
@@ -76,6 +76,9 @@ int main(int argc, char** argv)
     app.add_option("--label", label, "configuration name in the CSV")->required();
     app.add_option("--iterations", iterations, "iterations per run")->capture_default_str();
     app.add_option("--spp-per-iteration", spp, "samples per pixel of each iteration")->capture_default_str();
+    app.add_option("--progressive-spp", progressive,
+                   "instead of --iterations x --spp-per-iteration: the progressive schedule 4, 4, 8, ... "
+                   "to this many spp (method.md §6)");
     app.add_option("--runs", runs, "independent runs (seeds seed, seed+1, ...)")->capture_default_str();
     app.add_option("--seed", seed, "first seed")->capture_default_str();
     app.add_option("--threads", threads, "worker threads, 0 = all")->capture_default_str();
@@ -95,7 +98,10 @@ int main(int argc, char** argv)
         RenderSettings rs;
         rs.width = width;
         rs.height = height;
-        rs.schedule.assign(std::size_t(iterations), spp);
+        if (progressive > 0)
+            rs.schedule = schedule_for_spp(progressive);
+        else
+            rs.schedule.assign(std::size_t(iterations), spp);
         rs.threads = threads;
         rs.integrator.maxdepth = desc.maxdepth;
         sampling.apply(rs.integrator);
@@ -106,7 +112,8 @@ int main(int argc, char** argv)
         if (!csv)
             throw std::runtime_error(csv_path + ": cannot open");
         if (fresh)
-            std::fprintf(csv, "label,run,iteration,spp,total_spp,seconds,elapsed,cost,rel_var,efficiency,relmse\n");
+            std::fprintf(csv, "label,run,iteration,spp,total_spp,seconds,denoise_seconds,elapsed,cost,rel_var,"
+                              "efficiency,relmse\n");
 
         for (int run = 0; run < runs; ++run) {
             rs.seed = std::uint64_t(seed + run);
@@ -115,10 +122,11 @@ int main(int argc, char** argv)
             double previous_n = 0, elapsed = 0;
             std::atomic<bool> stop{false};
             auto t0 = std::chrono::steady_clock::now();
-            auto measure = [&](int it, const Film& f) {
+            auto measure = [&](int it, const Film& f, const IterationStats& is) {
+                const int k_spp = is.spp;  // this iteration's samples per pixel
                 const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
                 elapsed += seconds;
-                const double n_now = previous_n + spp;
+                const double n_now = previous_n + k_spp;
                 double iteration_error = 0, accumulated_error = 0;
                 for (int y = 0; y < height; ++y)
                     for (int x = 0; x < width; ++x) {
@@ -127,18 +135,18 @@ int main(int argc, char** argv)
                         for (int c = 0; c < 3; ++c) {
                             const double mean = px.raw[c].mean, truth = ref.rgb[c * npix + i];
                             // This iteration's samples alone, from the running means.
-                            const double own = (mean * n_now - previous[c * npix + i] * previous_n) / spp;
+                            const double own = (mean * n_now - previous[c * npix + i] * previous_n) / k_spp;
                             iteration_error += rel_error(own, truth);
                             accumulated_error += rel_error(mean, truth);
                             previous[c * npix + i] = mean;
                         }
                     }
                 previous_n = n_now;
-                const double samples = double(spp) * double(npix);
+                const double samples = double(k_spp) * double(npix);
                 const double cost = seconds / samples;
-                const double rel_var = spp * iteration_error / double(3 * npix);
-                std::fprintf(csv, "%s,%d,%d,%d,%d,%.6f,%.6f,%.6e,%.6e,%.6e,%.6e\n", label.c_str(), run, it, spp,
-                             int(n_now), seconds, elapsed, cost, rel_var, 1.0 / (cost * rel_var),
+                const double rel_var = k_spp * iteration_error / double(3 * npix);
+                std::fprintf(csv, "%s,%d,%d,%d,%d,%.6f,%.6f,%.6f,%.6e,%.6e,%.6e,%.6e\n", label.c_str(), run, it, k_spp,
+                             int(n_now), seconds, is.denoise_seconds, elapsed, cost, rel_var, 1.0 / (cost * rel_var),
                              accumulated_error / double(3 * npix));
                 if (budget > 0 && elapsed >= budget)
                     stop = true;

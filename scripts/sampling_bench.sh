@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sampling-efficiency measurements of docs/sampling.md (seed C.2 style), small enough for
-# a 2-core machine (≈ 6 minutes): Veach Ajar ACRR vs classic RR, the tracked-bounce sweep,
-# Veach MIS SMIS vs standard MIS at equal time. CSVs go to $OUT (not committed); then
+# a 2-core machine (≈ 7 minutes): Veach Ajar ACRR vs classic RR (C.2's constant 4-spp
+# iterations, and the progressive schedule), the tracked-bounce sweep, Veach MIS SMIS vs
+# standard MIS (progressive to 512 spp, and at equal time with constant 8-spp iterations). CSVs go to $OUT (not committed); then
 #   /usr/bin/python3 scripts/plot_sampling.py $OUT docs/images
 # draws the charts and prints the tables.
 set -euo pipefail
@@ -28,6 +29,13 @@ for rr in classic acrr; do
     --rr "$rr" --rr-start-bounce 0 --iterations 32 --spp-per-iteration 4 --runs "$RUNS"
 done
 
+# 1b. The same with the progressive schedule 4, 4, 8, ..., 128 (256 spp, 7 denoising passes).
+rm -f "$OUT/ajar_progressive.csv"
+for rr in classic acrr; do
+  "$bench" "$ajar" --reference "$OUT/ajar-ref.exr" --csv "$OUT/ajar_progressive.csv" --label "$rr" \
+    --rr "$rr" --rr-start-bounce 0 --progressive-spp 256 --runs "$RUNS"
+done
+
 # 2. Tracked-bounce sweep: ACRR with 1..8 tracked bounces, same schedule, 2 runs each.
 rm -f "$OUT/ajar_sweep.csv"
 for n in 1 2 3 4 5 6 7 8; do
@@ -35,7 +43,14 @@ for n in 1 2 3 4 5 6 7 8; do
     --rr acrr --rr-bounces "$n" --rr-start-bounce 0 --iterations 32 --spp-per-iteration 4 --runs 2
 done
 
-# 3. Veach MIS at equal time: 8-spp iterations until 8 s have passed, 3 runs each.
+# 3. Veach MIS, progressive schedule to 512 spp (8 denoising passes), 3 runs each.
+rm -f "$OUT/mis_progressive.csv"
+for m in standard selective; do
+  "$bench" "$mis" --reference "$OUT/mis-ref.exr" --csv "$OUT/mis_progressive.csv" --label "$m" \
+    --mis "$m" --progressive-spp 512 --runs 3
+done
+
+# 3b. Veach MIS at equal time: 8-spp iterations until 8 s have passed, 3 runs each.
 rm -f "$OUT/mis_equal_time.csv"
 for m in standard selective; do
   "$bench" "$mis" --reference "$OUT/mis-ref.exr" --csv "$OUT/mis_equal_time.csv" --label "$m" \

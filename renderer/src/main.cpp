@@ -130,9 +130,9 @@ int main(int argc, char** argv)
             }
             return info;
         };
-        std::function<void(int, const Film&)> after_iteration;
+        IterationCallback after_iteration;
         if (every_iteration)
-            after_iteration = [&](int, const Film& f) {
+            after_iteration = [&](int, const Film& f, const IterationStats&) {
                 write_outputs(f, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
             };
         std::signal(SIGINT, on_sigint);

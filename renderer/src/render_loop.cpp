@@ -111,7 +111,7 @@ BounceEstimates denoise_bounces(const Film& film, const DenoiseOptions& options,
 
 RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings, Film& film,
                    const std::atomic<bool>* cancel,
-                   const std::function<void(int iteration, const Film&)>& after_iteration)
+                   const IterationCallback& after_iteration)
 {
     const auto start = std::chrono::steady_clock::now();
     std::unique_ptr<tbb::global_control> limit;
@@ -202,7 +202,7 @@ RenderStats render(const Scene& scene, const Camera& camera, const RenderSetting
         is.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - iteration_start).count();
         rs.iterations.push_back(is);
         if (after_iteration)
-            after_iteration(int(it), film);
+            after_iteration(int(it), film, is);
         if (cancel && cancel->load()) {
             rs.interrupted = true;
             break;

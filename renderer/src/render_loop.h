@@ -75,6 +75,9 @@ struct RenderStats {
     std::vector<IterationStats> iterations;
 };
 
+/// Runs after an iteration with the film so far and what the iteration cost.
+using IterationCallback = std::function<void(int iteration, const Film&, const IterationStats&)>;
+
 /// Renders into `film`. When `cancel` becomes true, the iteration in progress finishes
 /// the tiles already started and skips the rest (never during the first iteration, so
 /// every pixel has samples), then the render stops. `after_iteration` runs after each
@@ -82,6 +85,6 @@ struct RenderStats {
 /// bounce_layout_for(settings.integrator) or a superset of it (record_all).
 RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings, Film& film,
                    const std::atomic<bool>* cancel = nullptr,
-                   const std::function<void(int iteration, const Film&)>& after_iteration = {});
+                   const IterationCallback& after_iteration = {});
 
 }  // namespace statmc::render

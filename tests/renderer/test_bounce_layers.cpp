@@ -30,20 +30,12 @@ constexpr int kW = 24, kH = 16, kSpp = 16, kSeed = 7;
 // The in-process twin of `statmc-render room.pbrt --spp 16 --seed 7 --rr acrr --mis selective`.
 std::unique_ptr<Film> render_room(const std::string& text)
 {
-    const auto desc = parse_scene_string(text, "room.pbrt");
-    const Scene scene(desc);
-    const Camera camera(desc.camera, kW, kH);
-    RenderSettings rs;
-    rs.width = kW;
-    rs.height = kH;
-    rs.schedule = schedule_for_spp(kSpp);
-    rs.seed = kSeed;
-    rs.integrator.maxdepth = desc.maxdepth;
-    rs.integrator.roulette.mode = RouletteMode::Acrr;
-    rs.integrator.mis.mode = MisMode::Selective;
-    auto film = std::make_unique<Film>(kW, kH, bounce_layout_for(rs.integrator));
-    render(scene, camera, rs, *film);
-    return film;
+    IntegratorSettings integrator;
+    integrator.roulette.mode = RouletteMode::Acrr;
+    integrator.mis.mode = MisMode::Selective;
+    return statmc::render::test::render_scene(parse_scene_string(text, "room.pbrt"), kW, kH, kSpp, kSeed, 0,
+                                              integrator)
+        .film;
 }
 
 int run(const std::string& cmd) { return std::system((cmd + " > /dev/null 2>&1").c_str()); }

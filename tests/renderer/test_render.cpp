@@ -17,29 +17,9 @@
 
 using namespace statmc::render;
 using statmc::render::test::quad;
+using statmc::render::test::render_scene;
 
 namespace {
-
-struct Rendered {
-    std::unique_ptr<Film> film;
-    RenderStats stats;
-};
-
-Rendered render_scene(const SceneDescription& desc, int w, int h, int spp, std::uint64_t seed, int threads)
-{
-    const Scene scene(desc);
-    const Camera camera(desc.camera, w, h);
-    RenderSettings rs;
-    rs.width = w;
-    rs.height = h;
-    rs.schedule = schedule_for_spp(spp);
-    rs.seed = seed;
-    rs.threads = threads;
-    rs.integrator.maxdepth = desc.maxdepth;
-    Rendered r{std::make_unique<Film>(w, h), {}};
-    r.stats = render(scene, camera, rs, *r.film);
-    return r;
-}
 
 // A diffuse plane of albedo ρ inside a closed box whose walls all emit L (and reflect
 // nothing). Every point of the plane sees emitters over its whole upper hemisphere, so

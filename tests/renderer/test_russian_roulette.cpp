@@ -76,16 +76,7 @@ TEST(RussianRoulette, UnusableEstimatesRenderExactlyAsClassic)
     const PathIntegrator plain(scene, classic), steered(scene, acrr);
     const BounceLayout layout{5, 0};
     auto differing = [&](const std::vector<float>& values) {
-        const PixelEstimates est{values.data(), &layout};
-        int differ = 0;
-        for (int i = 0; i < 256; ++i) {
-            Sampler a(3, std::uint64_t(i), 0), b(3, std::uint64_t(i), 0);
-            GuideSample ga, gb;
-            const Ray ray = camera.generate(float(i % 16) + 0.5f, float(i / 16) + 0.5f);
-            const Rgb x = plain.radiance(ray, a, ga), y = steered.radiance(ray, b, gb, nullptr, &est);
-            differ += !(x.r == y.r && x.g == y.g && x.b == y.b);
-        }
-        return differ;
+        return statmc::render::test::differing_samples(plain, steered, camera, {values.data(), &layout}, 3);
     };
     EXPECT_EQ(differing({kNaN, kNaN, kNaN, kNaN, kNaN}), 0);
     EXPECT_EQ(differing({0.f, 1.f, 1.f, 1.f, 1.f}), 0);

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <utility>
 #include <sstream>
 
 #include "camera.h"
@@ -24,34 +25,11 @@
 #include "scene_parser.h"
 
 using namespace statmc::render;
+using statmc::render::test::Rendered;
 
 namespace {
 
 constexpr double kZBound = 4.5;
-
-struct Rendered {
-    std::unique_ptr<Film> film;
-    std::uint64_t rays = 0;
-};
-
-Rendered render_with(const SceneDescription& desc, int w, int h, int spp, std::uint64_t seed,
-                     IntegratorSettings integrator)
-{
-    Scene scene(desc);
-    scene.enable_profiling(true);
-    const Camera camera(desc.camera, w, h);
-    RenderSettings rs;
-    rs.width = w;
-    rs.height = h;
-    rs.schedule = schedule_for_spp(spp);
-    rs.seed = seed;
-    integrator.maxdepth = desc.maxdepth;
-    rs.integrator = integrator;
-    Rendered r{std::make_unique<Film>(w, h, bounce_layout_for(integrator)), 0};
-    render(scene, camera, rs, *r.film);
-    r.rays = scene.traversal_counters().rays;
-    return r;
-}
 
 /// Welch's z for every region × channel, and the whole image's relative standard error.
 struct Comparison {
@@ -99,6 +77,25 @@ Comparison welch_regions(const Film& a, const Film& b, int rw, int rh)
     return c;
 }
 
+/// Renders `desc` with `a` and with `b` (independent seeds) and expects every region to
+/// agree (|z| < kZBound) with a whole-image relative standard error below `max_rel_se`.
+/// Returns the two renders for the test's own checks.
+std::pair<Rendered, Rendered> expect_agreement(const std::string& scene, int w, int h, int spp, int rw, int rh,
+                                               const IntegratorSettings& a, const IntegratorSettings& b,
+                                               double max_rel_se, const char* what)
+{
+    const auto desc = parse_scene_file(scene);
+    Rendered ra = statmc::render::test::render_scene(desc, w, h, spp, 21, 0, a);
+    Rendered rb = statmc::render::test::render_scene(desc, w, h, spp, 22, 0, b);
+    const Comparison c = welch_regions(*ra.film, *rb.film, rw, rh);
+    EXPECT_EQ(c.regions, 3 * (w / rw) * (h / rh));
+    EXPECT_LT(c.max_abs_z, kZBound) << c.worst;
+    EXPECT_LT(c.relative_se, max_rel_se);
+    std::printf("%s: max |z| %.2f over %d, relative se %.4f, rays %.3g vs %.3g\n", what, c.max_abs_z, c.regions,
+                c.relative_se, double(rb.rays), double(ra.rays));
+    return {std::move(ra), std::move(rb)};
+}
+
 }  // namespace
 
 TEST(Unbiased, AcrrAgreesWithClassicRoulette)
@@ -106,21 +103,14 @@ TEST(Unbiased, AcrrAgreesWithClassicRoulette)
     const std::string shared = statmc::render::test::shared_dir();
     if (shared.empty())
         GTEST_SKIP() << "../shared/scenes not present";
-    const auto desc = parse_scene_file(shared + "/scenes/cornell-box/scene.pbrt");
     IntegratorSettings classic;
     IntegratorSettings acrr;
     acrr.roulette.mode = RouletteMode::Acrr;
     acrr.roulette.start_bounce = 0;  // as in the seed's C.2: roulette from the first hit
-    const Rendered a = render_with(desc, 32, 32, 1024, 21, classic);
-    const Rendered b = render_with(desc, 32, 32, 1024, 22, acrr);
-    const Comparison c = welch_regions(*a.film, *b.film, 8, 8);
-    EXPECT_EQ(c.regions, 48);
-    EXPECT_LT(c.max_abs_z, kZBound) << c.worst;
-    EXPECT_LT(c.relative_se, 0.01);
+    const auto [a, b] = expect_agreement(shared + "/scenes/cornell-box/scene.pbrt", 32, 32, 1024, 8, 8, classic, acrr,
+                                         0.01, "ACRR vs classic");
     // ACRR did steer: it traces a clearly different number of rays (deterministic).
     EXPECT_GT(std::abs(double(b.rays) / double(a.rays) - 1), 0.05) << a.rays << " vs " << b.rays;
-    std::printf("ACRR vs classic: max |z| %.2f, relative se %.4f, rays %.3g vs %.3g\n", c.max_abs_z,
-                c.relative_se, double(b.rays), double(a.rays));
 }
 
 TEST(Unbiased, SelectiveMisAgreesWithStandardMis)
@@ -128,17 +118,12 @@ TEST(Unbiased, SelectiveMisAgreesWithStandardMis)
     const std::string shared = statmc::render::test::shared_dir();
     if (shared.empty())
         GTEST_SKIP() << "../shared/scenes not present";
-    const auto desc = parse_scene_file(shared + "/scenes/veach-mis/scene.pbrt");
     IntegratorSettings standard;
     IntegratorSettings selective;
     selective.mis.mode = MisMode::Selective;
-    const Rendered a = render_with(desc, 48, 27, 2048, 31, standard);
-    const Rendered b = render_with(desc, 48, 27, 2048, 32, selective);
-    const Comparison c = welch_regions(*a.film, *b.film, 8, 9);
-    EXPECT_EQ(c.regions, 54);
-    EXPECT_LT(c.max_abs_z, kZBound) << c.worst;
     // Glossy highlights of small lights are noisy: here the power bound is 3%.
-    EXPECT_LT(c.relative_se, 0.03);
+    const auto [a, b] = expect_agreement(shared + "/scenes/veach-mis/scene.pbrt", 48, 27, 2048, 8, 9, standard,
+                                         selective, 0.03, "SMIS vs standard");
     // SMIS did skip a technique at the first hit of a good share of the pixels (what the
     // last iteration's estimates decide; BSDF sampling, mostly, which loses to the
     // lights' cone sampling on the plates).
@@ -151,6 +136,5 @@ TEST(Unbiased, SelectiveMisAgreesWithStandardMis)
         skipped += !(t.light && t.bsdf);
     }
     EXPECT_GT(skipped, f.width * f.height / 10) << skipped << " of " << f.width * f.height;
-    std::printf("SMIS vs standard: max |z| %.2f, relative se %.4f, skipped at %d of %d first hits\n",
-                c.max_abs_z, c.relative_se, skipped, f.width * f.height);
+    std::printf("SMIS skipped a technique at %d of %d first hits\n", skipped, f.width * f.height);
 }
