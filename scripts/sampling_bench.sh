@@ -50,9 +50,9 @@ for m in standard selective; do
     --mis "$m" --progressive-spp 512 --runs 3
 done
 
-# 3b. Veach MIS at equal time: 8-spp iterations until 8 s have passed, 3 runs each.
+# 3b. Veach MIS at equal time: 8-spp iterations until 12 CPU seconds have passed, 3 runs each.
 rm -f "$OUT/mis_equal_time.csv"
 for m in standard selective; do
   "$bench" "$mis" --reference "$OUT/mis-ref.exr" --csv "$OUT/mis_equal_time.csv" --label "$m" \
-    --mis "$m" --iterations 1000 --spp-per-iteration 8 --time-budget 8 --runs 3
+    --mis "$m" --iterations 1000 --spp-per-iteration 8 --time-budget 12 --runs 3
 done
