@@ -10,6 +10,9 @@
 namespace statmc::render {
 
 struct BounceLayout {
+    /// bounce_sample's per-sample scratch is a fixed array: more luminances are refused.
+    static constexpr int kMaxLuminances = 64;
+
     int luminance_bounces = 0;  ///< B: L_0 (the pixel) .. L_{B−1}; 0 = not tracked
     int mis_bounces = 0;        ///< M: win counts at vertices 0..M−1; 0 = not tracked
 

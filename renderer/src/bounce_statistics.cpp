@@ -1,6 +1,8 @@
 #include "bounce_statistics.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "statmc/core/estimator_image.h"
 #include "statmc/layers/layer_names.h"
@@ -23,8 +25,8 @@ void bounce_sample(const PathRecord& record, const BounceLayout& layout, float* 
     if (B > 0) {
         // Sums by arrival vertex, the deepest tracked one taking everything beyond it;
         // then suffix sums give Σ over vertices ≥ j.
-        Rgb sums[64];
-        const int buckets = std::min(B, 64);
+        Rgb sums[BounceLayout::kMaxLuminances];
+        const int buckets = std::min(B, BounceLayout::kMaxLuminances);
         for (const auto& c : record.contributions)
             sums[std::min(c.arrival(), buckets - 1)] += c.value;
         Rgb suffix;
@@ -51,6 +53,10 @@ void bounce_sample(const PathRecord& record, const BounceLayout& layout, float* 
 BounceStatistics::BounceStatistics(int width, int height, BounceLayout layout)
     : width_(width), height_(height), layout_(layout)
 {
+    if (layout.luminance_bounces < 0 || layout.luminance_bounces > BounceLayout::kMaxLuminances ||
+        layout.mis_bounces < 0)
+        throw std::invalid_argument("BounceStatistics: at most " + std::to_string(BounceLayout::kMaxLuminances) +
+                                    " luminances and a non-negative number of MIS bounces");
     const int groups = (layout.quantities() + kGroup - 1) / kGroup;
     groups_.reserve(std::size_t(groups));
     for (int g = 0; g < groups; ++g)
