@@ -84,3 +84,20 @@ TEST(RussianRoulette, UnusableEstimatesRenderExactlyAsClassic)
     EXPECT_EQ(differing({1.f, kNaN, kNaN, kNaN, kNaN}), 0);  // every decision falls back
     EXPECT_GT(differing({1.f, 0.5f, 0.4f, 0.3f, 0.2f}), 10);  // ACRR does decide otherwise
 }
+
+TEST(RussianRoulette, FirstIterationHasNoEstimatesAndIsClassic)
+{
+    // The first iteration (4 spp) has no estimates yet: ACRR and SMIS must render it bit
+    // for bit as classic roulette and standard MIS do; the second one must differ.
+    const auto desc = parse_scene_string(statmc::render::test::test_room(), "room.pbrt");
+    IntegratorSettings classic;
+    classic.roulette.start_bounce = 0;
+    IntegratorSettings steered = classic;
+    steered.roulette.mode = RouletteMode::Acrr;
+    steered.mis.mode = MisMode::Selective;
+    auto means = [&](int spp, const IntegratorSettings& s) {
+        return statmc::render::test::render_scene(desc, 16, 16, spp, 9, 0, s).film->stats.planes().mean;
+    };
+    EXPECT_EQ(means(4, classic), means(4, steered));
+    EXPECT_NE(means(8, classic), means(8, steered));
+}
