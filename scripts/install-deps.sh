@@ -6,6 +6,7 @@ packages=(
   libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev openexr
   libopencolorio-dev libembree-dev libtbb-dev libboost-math-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
+  python3-matplotlib
 )
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq

@@ -25,7 +25,16 @@ OIIO::ImageBuf make_output_image(const Film& film, const OutputInfo& info)
     layers::StatisticsMetadata meta;
     meta.spp = info.spp;
     meta.seed = info.seed;
-    OIIO::ImageBuf image = layers::make_statistics_image(planes, meta, guides);
+    // Per-bounce quantities: one Y AOV each, sharing sampleCount.Y (docs/exr-layers.md).
+    std::vector<StatisticsPlanes> groups;
+    std::vector<layers::AovStatistics> aovs;
+    if (film.bounces) {
+        groups = film.bounces->group_planes();
+        const BounceLayout& layout = film.bounces->layout();
+        for (int q = 0; q < layout.quantities(); ++q)
+            aovs.push_back({layout.aov(q), BounceStatistics::quantity_view(groups, q)});
+    }
+    OIIO::ImageBuf image = layers::make_statistics_image(planes.view(), meta, guides, aovs);
     image.specmod().attribute(kRenderTimeAttribute, info.render_seconds);
     image.specmod().attribute(kSceneAttribute, info.scene);
     return image;

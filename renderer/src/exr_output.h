@@ -21,7 +21,8 @@ struct OutputInfo {
     std::string scene;
 };
 
-/// Mean, variance, Box-Cox statistics, sampleCount, albedo, normal and depth.
+/// Mean, variance, Box-Cox statistics, sampleCount, the per-bounce AOVs the film tracks
+/// (bounce<j>L, bounce<j>LightWins, bounce<j>BsdfWins), albedo, normal and depth.
 OIIO::ImageBuf make_output_image(const Film& film, const OutputInfo& info);
 
 /// Writes `image` as OpenEXR under the contract's storage rules through

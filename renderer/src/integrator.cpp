@@ -7,7 +7,25 @@
 
 namespace statmc::render {
 
-Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSample& guide, PathRecord* record) const
+float PathIntegrator::survival(int bounce, const Rgb& beta, const PixelEstimates* estimates) const
+{
+    if (settings_.roulette.mode == RouletteMode::Acrr && estimates && estimates->has_luminance())
+        if (const auto p = acrr_survival(beta.max_component(), estimates->luminance(bounce + 1),
+                                         estimates->luminance(0)))
+            return *p;
+    return classic_survival(beta);
+}
+
+TechniqueChoice PathIntegrator::techniques(int bounce, const PixelEstimates* estimates) const
+{
+    if (settings_.mis.mode != MisMode::Selective || !estimates || !estimates->has_wins() ||
+        bounce >= estimates->layout->mis_bounces)
+        return {};
+    return choose_techniques(estimates->light_wins(bounce), estimates->bsdf_wins(bounce), settings_.mis.threshold);
+}
+
+Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSample& guide, PathRecord* record,
+                             const PixelEstimates* estimates) const
 {
     Rgb L, beta{1.f};
     if (record)
@@ -21,6 +39,8 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
     bool specular_bounce = false;
     bool guide_done = false;
     float bsdf_pdf = 0;  // solid-angle pdf of the BSDF sample that produced `ray`
+    TechniqueChoice prev_choice;  // the techniques of the vertex that sampled `ray`
+    float roulette_weight = 1;    // Π 1/p so far, for the record
     Vec3 prev_p;
     const Lights& lights = scene_.lights();
 
@@ -29,8 +49,10 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
         if (!hit)
             break;  // no environment light in the supported subset
         const Vec3 wo = -ray.direction;
-        if (record)
+        if (record) {
             record->throughput.push_back(beta);
+            record->roulette_weight.push_back(roulette_weight);
+        }
         if (bounce == 0)
             guide.depth = hit->t;
 
@@ -42,11 +64,17 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
             if (!Le.is_black()) {
                 if (bounce == 0 || specular_bounce) {
                     contribute(bounce, PathRecord::Technique::Emission, 1.f, beta * Le);
-                } else {
+                } else if (prev_choice.bsdf) {
                     // Direct lighting of the previous vertex, found by its BSDF sample.
                     const float light_pdf = lights.pdf(prev_p, hit->emitter, hit->p, hit->ng);
-                    const float w = power_heuristic(bsdf_pdf, light_pdf);
-                    contribute(bounce - 1, PathRecord::Technique::Bsdf, w, beta * Le * w);
+                    const float w = prev_choice.bsdf_weight(bsdf_pdf, light_pdf);
+                    contribute(bounce - 1, PathRecord::Technique::Bsdf, power_heuristic(bsdf_pdf, light_pdf),
+                               beta * Le * w);
+                } else if (record) {
+                    // SMIS skipped BSDF sampling: nothing is added, but the would-be weight
+                    // still counts a win, so that the technique can come back.
+                    const float light_pdf = lights.pdf(prev_p, hit->emitter, hit->p, hit->ng);
+                    contribute(bounce - 1, PathRecord::Technique::Bsdf, power_heuristic(bsdf_pdf, light_pdf), Rgb{});
                 }
             }
         }
@@ -61,7 +89,8 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
         }
 
         // Next-event estimation.
-        if (!bsdf.is_specular() && !lights.empty()) {
+        const TechniqueChoice choice = techniques(bounce, estimates);
+        if (choice.light && !bsdf.is_specular() && !lights.empty()) {
             const float us = sampler.get1d(), u1 = sampler.get1d(), u2 = sampler.get1d();
             const auto ls = lights.sample(hit->p, us, u1, u2);
             if (ls && ls->pdf > 0 && !ls->radiance.is_black()) {
@@ -70,8 +99,10 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
                     const Vec3 o = Scene::offset_origin(hit->p, hit->ng, ls->wi);
                     const float tmax = length(hit->p + ls->wi * ls->distance - o) * (1.f - 1e-3f);
                     if (!scene_.occluded(o, ls->wi, tmax)) {
-                        const float w = power_heuristic(ls->pdf, bsdf.pdf(wo, ls->wi));
-                        contribute(bounce, PathRecord::Technique::Light, w, beta * f * ls->radiance * (w / ls->pdf));
+                        const float pdf_b = bsdf.pdf(wo, ls->wi);
+                        const float w = choice.light_weight(ls->pdf, pdf_b);
+                        contribute(bounce, PathRecord::Technique::Light, power_heuristic(ls->pdf, pdf_b),
+                                   beta * f * ls->radiance * (w / ls->pdf));
                     }
                 }
             }
@@ -86,12 +117,16 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
         specular_bounce = bs->specular;
         bsdf_pdf = bs->pdf;
         prev_p = hit->p;
+        prev_choice = choice;
 
-        if (bounce > settings_.rr_start_bounce) {
-            const float q = std::max(0.05f, 1.f - beta.max_component());
-            if (sampler.get1d() < q)
-                break;
-            beta *= 1.f / (1.f - q);
+        if (bounce >= settings_.roulette.start_bounce) {
+            const float p = survival(bounce, beta, estimates);
+            if (p < 1.f) {
+                if (sampler.get1d() >= p)
+                    break;
+                beta *= 1.f / p;
+                roulette_weight *= 1.f / p;
+            }
         }
         ray = {Scene::offset_origin(hit->p, hit->ng, bs->wi), bs->wi};
     }

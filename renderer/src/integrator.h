@@ -1,16 +1,18 @@
 // Unidirectional path tracing with next-event estimation, both strategies combined by
 // the power heuristic (light sampling at each non-specular vertex, BSDF sampling that
-// happens to hit an emitter), and classic Russian roulette after a few bounces.
-//
-// Written to grow: the per-vertex steps (emission, light sampling, continuation) are
-// separate so that per-bounce statistics (ACRR, method.md §7) and selective MIS (§8) can
-// hook into PathState without restructuring the loop.
+// happens to hit an emitter) or selectively (SMIS, method.md §8), and Russian roulette,
+// classic or approximate-contribution (ACRR, §7). The per-pixel estimates that ACRR and
+// SMIS steer by come from earlier iterations (PixelEstimates); without them both behave
+// classically.
 #pragma once
 
 #include <vector>
 
+#include "bounce_layout.h"
+#include "russian_roulette.h"
 #include "sampler.h"
 #include "scene.h"
+#include "selective_mis.h"
 
 namespace statmc::render {
 
@@ -33,41 +35,50 @@ struct PathRecord {
     struct Contribution {
         int bounce;           ///< the vertex whose lighting this is (0 = first hit)
         Technique technique;  ///< Emission: seen directly (camera or specular chain)
-        float mis_weight;     ///< 1 for Emission
+        float mis_weight;     ///< the power-heuristic weight (what standard MIS uses and
+                              ///< what decides a win, even where SMIS used 1 or 0); 1 for Emission
         Rgb value;            ///< added to the pixel sample
+
+        /// The vertex at which the value was added: a BSDF-sampled hit lights the previous
+        /// vertex but is found, with the throughput of, the next one.
+        int arrival() const { return technique == Technique::Bsdf ? bounce + 1 : bounce; }
     };
-    std::vector<Rgb> throughput;  ///< β on arrival at vertex b (β_0 = 1)
+    std::vector<Rgb> throughput;  ///< β on arrival at vertex b (β_0 = 1), roulette weights included
+    /// Π 1/p of the roulette survived before vertex b (1 at vertex 0): how much more
+    /// likely reaching b would have been without roulette.
+    std::vector<float> roulette_weight;
     std::vector<Contribution> contributions;
 
     void clear()
     {
         throughput.clear();
+        roulette_weight.clear();
         contributions.clear();
     }
 };
 
 struct IntegratorSettings {
-    int maxdepth = 5;         ///< pbrt's meaning: 1 = direct lighting only
-    int rr_start_bounce = 3;  ///< classic roulette from the bounce after this one (pbrt: > 3)
+    int maxdepth = 5;  ///< pbrt's meaning: 1 = direct lighting only
+    RouletteSettings roulette;
+    MisSettings mis;
 };
 
 class PathIntegrator {
 public:
     PathIntegrator(const Scene& scene, IntegratorSettings settings) : scene_(scene), settings_(settings) {}
 
-    /// The radiance arriving along `ray` (one Monte Carlo sample).
-    Rgb radiance(const Ray& ray, Sampler& sampler, GuideSample& guide, PathRecord* record = nullptr) const;
+    /// The radiance arriving along `ray` (one Monte Carlo sample). `estimates` (of the
+    /// pixel, from earlier iterations) steer ACRR and SMIS when the settings ask for them;
+    /// null, or unusable values, mean classic roulette and standard MIS.
+    Rgb radiance(const Ray& ray, Sampler& sampler, GuideSample& guide, PathRecord* record = nullptr,
+                 const PixelEstimates* estimates = nullptr) const;
 
 private:
+    float survival(int bounce, const Rgb& beta, const PixelEstimates* estimates) const;
+    TechniqueChoice techniques(int bounce, const PixelEstimates* estimates) const;
+
     const Scene& scene_;
     IntegratorSettings settings_;
 };
-
-/// The power heuristic (β = 2) weight of a strategy with density `pdf_a` against `pdf_b`.
-inline float power_heuristic(float pdf_a, float pdf_b)
-{
-    const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
-    return a + b > 0 ? a / (a + b) : 0.f;
-}
 
 }  // namespace statmc::render

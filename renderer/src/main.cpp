@@ -18,6 +18,7 @@
 #include "exr_output.h"
 #include "progress.h"
 #include "render_loop.h"
+#include "sampling_options.h"
 #include "scene.h"
 #include "scene_parser.h"
 
@@ -42,7 +43,8 @@ int main(int argc, char** argv)
     std::string scene_path, output;
     int spp = 0, iterations = 0, seed = 0, threads = 0, maxdepth = -1;
     std::string resolution;
-    bool denoise = false, quiet = false, profile = false, every_iteration = false;
+    bool denoise = false, quiet = false, profile = false, every_iteration = false, bounce_layers = false;
+    SamplingOptions sampling;
     app.add_option("scene", scene_path, "pbrt-v3 scene file")->required();
     app.add_option("-o,--output", output, "output statistics EXR")->required();
     auto* spp_opt = app.add_option("--spp", spp,
@@ -61,6 +63,10 @@ int main(int argc, char** argv)
         ->check(CLI::NonNegativeNumber);
     app.add_option("--maxdepth", maxdepth, "maximum path depth [default: the scene's Integrator maxdepth]")
         ->check(CLI::NonNegativeNumber);
+    add_sampling_options(app, sampling);
+    app.add_flag("--bounce-layers", bounce_layers,
+                 "track and write every per-bounce layer (L and win counts) even with classic RR and "
+                 "standard MIS [default: only those --rr/--mis use]");
     app.add_flag("--denoise", denoise, "also write the denoised image to OUT.denoised.exr [default: off]");
     app.add_flag("--write-every-iteration", every_iteration,
                  "rewrite OUT (and OUT.denoised.exr with --denoise) after every progressive iteration, "
@@ -98,13 +104,15 @@ int main(int argc, char** argv)
                                            : schedule_for_spp(spp > 0 ? spp : desc.spp);
         settings.seed = std::uint64_t(seed);
         settings.threads = threads;
-        settings.integrator.maxdepth = maxdepth >= 0 ? maxdepth : desc.maxdepth;
+        IntegratorSettings& integrator = settings.integrator;
+        integrator.maxdepth = maxdepth >= 0 ? maxdepth : desc.maxdepth;
+        sampling.apply(integrator);
         settings.progress = !quiet && Progress::stderr_is_terminal();
 
         Scene scene(desc);
         scene.enable_profiling(profile);
         const Camera camera(desc.camera, width, height);
-        Film film(width, height);
+        Film film(width, height, bounce_layout_for(integrator, bounce_layers));
         const auto start = std::chrono::steady_clock::now();
         auto write_outputs = [&](const Film& f, double seconds) {
             OutputInfo info;
@@ -122,9 +130,9 @@ int main(int argc, char** argv)
             }
             return info;
         };
-        std::function<void(int, const Film&)> after_iteration;
+        IterationCallback after_iteration;
         if (every_iteration)
-            after_iteration = [&](int, const Film& f) {
+            after_iteration = [&](int, const Film& f, const IterationStats&) {
                 write_outputs(f, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
             };
         std::signal(SIGINT, on_sigint);

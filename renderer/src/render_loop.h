@@ -2,28 +2,33 @@
 // (totals 4, 8, 16, 32, ...), each over 16x16 tiles in parallel (TBB). Samples go straight
 // into core's per-pixel accumulators (StatisticsImage<3>): a tile owns its pixels and
 // adds their samples in sample-index order, so the statistics are exact and identical
-// for any thread count without a merge step. Guides are averaged alongside.
+// for any thread count without a merge step. Guides are averaged alongside, and so are
+// the per-bounce statistics of ACRR and SMIS (bounce_statistics.h): after each iteration
+// but the last they are denoised, and the estimates steer the next iteration's samples.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "statmc/core/statistics_image.h"
 
+#include "bounce_statistics.h"
 #include "camera.h"
 #include "integrator.h"
 #include "scene.h"
 
 namespace statmc::render {
 
-/// Per-pixel accumulators for the beauty and the guide sums.
+/// Per-pixel accumulators for the beauty, the guide sums and the per-bounce quantities.
 struct Film {
-    Film(int width, int height);
+    Film(int width, int height, BounceLayout bounce_layout = {});
     int width, height;
     StatisticsImage<3> stats;
     std::vector<double> albedo_sum, normal_sum, depth_sum;  ///< channel-major sums
+    std::unique_ptr<BounceStatistics> bounces;              ///< null when nothing is tracked
 
     /// Guide averages as dense channel-major float planes (3, 3 and 1 channels).
     std::vector<float> albedo() const;
@@ -38,13 +43,36 @@ std::vector<int> schedule_for_spp(int total_spp);
 /// The first `iterations` entries of the schedule: totals 4·2^(K−1).
 std::vector<int> schedule_for_iterations(int iterations);
 
+/// The per-bounce quantities a render with `settings` needs: L_0..L_B for ACRR, the win
+/// counts of M vertices for SMIS; with `record_all`, both whatever the modes (to inspect
+/// them in the EXR).
+BounceLayout bounce_layout_for(const IntegratorSettings& settings, bool record_all = false);
+
 struct RenderSettings {
     int width = 0, height = 0;
     std::vector<int> schedule;  ///< samples per pixel of each iteration
     std::uint64_t seed = 0;
     int threads = 0;            ///< 0: all cores
     IntegratorSettings integrator;
+    /// How the per-bounce statistics are denoised: the paper's filter, without the firefly
+    /// guard, as ACRR and SMIS were measured (docs/sampling.md).
+    DenoiseOptions bounce_filter = paper_filter();
+
+    static DenoiseOptions paper_filter()
+    {
+        DenoiseOptions o;
+        o.firefly_ratio = 0;
+        return o;
+    }
     bool progress = false;
+};
+
+/// What one progressive iteration cost.
+struct IterationStats {
+    int spp = 0;
+    std::uint64_t samples = 0;
+    double seconds = 0;          ///< rendering and, after it, denoising the estimates
+    double denoise_seconds = 0;  ///< the latter part
 };
 
 struct RenderStats {
@@ -53,14 +81,19 @@ struct RenderStats {
     bool interrupted = false;
     std::uint64_t samples = 0;
     std::uint64_t tile_cycles = 0;  ///< time stamp counter cycles inside tiles, all threads
+    std::vector<IterationStats> iterations;
 };
+
+/// Runs after an iteration with the film so far and what the iteration cost.
+using IterationCallback = std::function<void(int iteration, const Film&, const IterationStats&)>;
 
 /// Renders into `film`. When `cancel` becomes true, the iteration in progress finishes
 /// the tiles already started and skips the rest (never during the first iteration, so
 /// every pixel has samples), then the render stops. `after_iteration` runs after each
-/// iteration (the hook for per-iteration denoising).
+/// iteration (the hook for per-iteration denoising). The film's layout must be
+/// bounce_layout_for(settings.integrator) or a superset of it (record_all).
 RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings, Film& film,
                    const std::atomic<bool>* cancel = nullptr,
-                   const std::function<void(int iteration, const Film&)>& after_iteration = {});
+                   const IterationCallback& after_iteration = {});
 
 }  // namespace statmc::render

@@ -131,6 +131,43 @@ TEST(StatisticsLayers, AovPrefixedStatisticsRoundTrip)
     EXPECT_THROW(read_statistics(back), LayerError);  // no beauty R,G,B
 }
 
+TEST(StatisticsLayers, ExtraAovsShareTheCountAndRoundTrip)
+{
+    // A beauty plus two AOVs in one image: a colour one and a scalar (Y) one, as the
+    // renderer's per-bounce layers are; each is read back bitwise under its prefix.
+    test::TempDir dir;
+    const StatisticsPlanes beauty = test::noisy_statistics(kW, kH, 8, 11);
+    const StatisticsPlanes colour = test::noisy_statistics(kW, kH, 8, 12);  // same counts
+    const StatisticsPlanes scalar_src = test::noisy_statistics(kW, kH, 8, 13);
+    StatisticsView scalar = scalar_src.view();
+    scalar.channels = 1;
+    const std::vector<AovStatistics> aovs = {{"diffuse", colour.view()}, {"bounce2L", scalar}};
+    test::write_exr(make_statistics_image(beauty.view(), {}, {}, aovs), dir.file("aovs.exr"));
+    const OIIO::ImageBuf back = test::read_exr(dir.file("aovs.exr"));
+    EXPECT_GE(back.spec().channelindex("bounce2L.Y"), 0);
+    EXPECT_GE(back.spec().channelindex("bounce2L.boxcoxM3.Y"), 0);
+    EXPECT_LT(back.spec().channelindex("bounce2L.R"), 0);
+    EXPECT_EQ(back.spec().nchannels, 16 + 15 + 5);  // beauty + count, colour AOV, scalar AOV
+    expect_same_planes(beauty.view(), read_statistics(back));
+    expect_same_planes(colour.view(), read_statistics(back, "diffuse"));
+    expect_same_planes(scalar, read_statistics(back, "bounce2L"));
+}
+
+TEST(StatisticsLayers, ExtraAovsAreChecked)
+{
+    const StatisticsPlanes beauty = test::noisy_statistics(kW, kH, 8, 11);
+    const StatisticsPlanes other = test::noisy_statistics(kW, kH, 8, 12);
+    const StatisticsPlanes more = test::noisy_statistics(kW, kH, 9, 12);  // counts differ
+    const StatisticsPlanes small = test::noisy_statistics(kW - 1, kH, 8, 12);
+    auto make = [&](std::vector<AovStatistics> aovs) { return make_statistics_image(beauty.view(), {}, {}, aovs); };
+    EXPECT_NO_THROW(make({{"bounce0L", other.view()}}));
+    EXPECT_THROW(make({{"bounce0L", more.view()}}), LayerError);
+    EXPECT_THROW(make({{"bounce0L", small.view()}}), LayerError);
+    EXPECT_THROW(make({{"0bounce", other.view()}}), LayerError);
+    EXPECT_THROW(make({{"bounce.L", other.view()}}), LayerError);
+    EXPECT_THROW(make({{"bounce0L", other.view()}, {"bounce0L", other.view()}}), LayerError);
+}
+
 TEST(StatisticsLayers, MeanAndVarianceOnlyIsAVarianceAov)
 {
     StatisticsPlanes stats = test::noisy_statistics(kW, kH, 5, 6);

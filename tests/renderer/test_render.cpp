@@ -17,29 +17,9 @@
 
 using namespace statmc::render;
 using statmc::render::test::quad;
+using statmc::render::test::render_scene;
 
 namespace {
-
-struct Rendered {
-    std::unique_ptr<Film> film;
-    RenderStats stats;
-};
-
-Rendered render_scene(const SceneDescription& desc, int w, int h, int spp, std::uint64_t seed, int threads)
-{
-    const Scene scene(desc);
-    const Camera camera(desc.camera, w, h);
-    RenderSettings rs;
-    rs.width = w;
-    rs.height = h;
-    rs.schedule = schedule_for_spp(spp);
-    rs.seed = seed;
-    rs.threads = threads;
-    rs.integrator.maxdepth = desc.maxdepth;
-    Rendered r{std::make_unique<Film>(w, h), {}};
-    r.stats = render(scene, camera, rs, *r.film);
-    return r;
-}
 
 // A diffuse plane of albedo ρ inside a closed box whose walls all emit L (and reflect
 // nothing). Every point of the plane sees emitters over its whole upper hemisphere, so
@@ -293,19 +273,10 @@ TEST(Render, PathRecordDecomposesTheSample)
 {
     // The per-vertex record (the hook for ACRR's per-bounce radiance and SMIS's win
     // counts) adds up to the sample and does not change it.
-    // A grey room (floor, back wall, ceiling) lit by a small quad: light bounces around.
-    const std::string room = "LookAt 0 1 3  0 1 0  0 1 0\nCamera \"perspective\" \"float fov\" 60\n"
-                             "Integrator \"path\" \"integer maxdepth\" 8\nWorldBegin\n"
-                             "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [8 8 8]\n" +
-                             quad("-0.3 1.99 -0.3  0.3 1.99 -0.3  0.3 1.99 0.3  -0.3 1.99 0.3", "0 -1 0") +
-                             "AttributeEnd\nMaterial \"matte\" \"rgb Kd\" [0.7 0.7 0.7]\n" +
-                             quad("-1 0 -1  1 0 -1  1 0 1  -1 0 1", "0 1 0") +
-                             quad("-1 2 -1  1 2 -1  1 2 1  -1 2 1", "0 -1 0") +
-                             quad("-1 0 -1  1 0 -1  1 2 -1  -1 2 -1", "0 0 1") + "WorldEnd\n";
-    const auto desc = parse_scene_string(room, "room.pbrt");
+    const auto desc = parse_scene_string(statmc::render::test::test_room(), "room.pbrt");
     const Scene scene(desc);
     const Camera camera(desc.camera, 16, 16);
-    const PathIntegrator integrator(scene, IntegratorSettings{desc.maxdepth, 3});
+    const PathIntegrator integrator(scene, IntegratorSettings{desc.maxdepth, {}, {}});
     PathRecord record;
     int multi_bounce = 0;
     for (int i = 0; i < 256; ++i) {

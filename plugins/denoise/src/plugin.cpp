@@ -13,10 +13,11 @@
 // | normal_layer | string | normal  |           | layer of the normal guide                   |
 // | test         | choice | auto    |           | auto / boxcox / untransformed               |
 // | nonfinite    | choice | error   |           | NaN/Inf: refuse the image, or count as 0    |
-// | aov          | string | ""      |           | AOV denoised (diffuse → diffuse.R/G/B ...)  |
+// | aov          | string | (empty) |           | AOV denoised, e.g. diffuse, bounce1L; empty = R,G,B |
 // | diagnostics  | bool   | 0       |           | add diagnostics.members/.effectiveSamples   |
 //
-// One input (the top of the stack); pushes the image with the AOV's mean denoised.
+// One input (the top of the stack); pushes the image with the AOV's mean (R,G,B by
+// default) denoised.
 #include <algorithm>
 
 #include "statmc/denoise/denoise.h"
@@ -90,8 +91,9 @@ std::vector<statmc::ParameterSpec> parameters()
         choice_parameter("nonfinite", {"error", "zero"}, "error",
                          "NaN/Inf in the statistics: error refuses the image, zero counts "
                          "them as 0"),
-        string_parameter("aov", "", "the AOV to denoise (its <aov>.R,G,B mean and "
-                                    "<aov>.variance/Box-Cox layers); default the beauty"),
+        string_parameter("aov", "",
+                         "the AOV whose mean is denoised (docs/exr-layers.md), e.g. diffuse or "
+                         "bounce1L; empty: the beauty R,G,B"),
         bool_parameter("diagnostics", false,
                        "add [<aov>.]diagnostics.members and .effectiveSamples: per pixel, the "
                        "pixels averaged and the effective sample count (Σw)²/Σ(w²/n)"),

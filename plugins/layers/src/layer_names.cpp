@@ -51,6 +51,23 @@ std::string diagnostics_channel(std::string_view aov, std::string_view quantity)
     return channel_name(channel_name(aov, kDiagnosticsLayer), quantity);
 }
 
+std::string bounce_aov(BounceQuantity quantity, int bounce)
+{
+    if (bounce < 0)
+        throw LayerError("bounce_aov: negative bounce " + std::to_string(bounce));
+    const char* what = quantity == BounceQuantity::Luminance   ? "L"
+                       : quantity == BounceQuantity::LightWins ? "LightWins"
+                                                               : "BsdfWins";
+    return "bounce" + std::to_string(bounce) + what;
+}
+
+bool is_valid_aov_name(std::string_view aov)
+{
+    if (aov.empty() || (aov[0] >= '0' && aov[0] <= '9'))
+        return false;
+    return aov.find_first_of(". \t") == std::string_view::npos;
+}
+
 std::string channel_name(std::string_view layer, std::string_view suffix)
 {
     if (layer.empty())

@@ -1,5 +1,6 @@
 #include "statmc/layers/statistics_layers.h"
 
+#include <functional>
 #include <utility>
 
 #include "statmc/layers/float_pixels.h"
@@ -92,26 +93,61 @@ void copy_plane(const ConstPlane& from, const Plane& to, int width, int height)
             to(x, y) = from(x, y);
 }
 
-// The channels an image of `stats` gets, in writing order, each with its source plane.
-std::vector<std::pair<std::string, ConstPlane>>
-layout_channels(const StatisticsView& stats, const StatisticsMetadata& metadata,
-                const GuidePlanes& guides)
+using Channels = std::vector<std::pair<std::string, ConstPlane>>;
+
+// The mean (and, after `after_mean`, the other statistics `stats` has) of one AOV.
+void layout_statistics(Channels& out, const StatisticsView& stats, const std::string& aov,
+                       const std::function<void()>& after_mean)
 {
     const std::vector<std::string>& suffixes = suffixes_for_channels(stats.channels);
-    std::vector<std::pair<std::string, ConstPlane>> out;
     auto add = [&](Statistic stat, const std::array<ConstPlane, 4>& planes) {
         for (int c = 0; c < stats.channels; ++c)
-            out.emplace_back(channel_name(statistic_layer(metadata.aov, stat), suffixes[c]),
-                             planes[c]);
+            out.emplace_back(channel_name(statistic_layer(aov, stat), suffixes[c]), planes[c]);
     };
     add(Statistic::Mean, stats.mean);
-    out.emplace_back(kSampleCountChannel, stats.count);
+    if (after_mean)
+        after_mean();
     if (stats.variance[0])
         add(Statistic::Variance, stats.variance);
     if (stats.has_box_cox()) {
         add(Statistic::BoxCoxMean, stats.bc_mean);
         add(Statistic::BoxCoxVariance, stats.bc_variance);
         add(Statistic::BoxCoxMoment3, stats.bc_moment3);
+    }
+}
+
+// An extra AOV must be nameable, distinct, of the frame and share the beauty's counts.
+void check_aov(const StatisticsView& beauty, const std::string& beauty_aov,
+               const AovStatistics& extra, const std::vector<AovStatistics>& all)
+{
+    if (!is_valid_aov_name(extra.aov))
+        throw LayerError("invalid AOV name '" + extra.aov +
+                         "': it needs a first character that is no digit and no dot or space");
+    int same = extra.aov == beauty_aov;
+    for (const AovStatistics& other : all)
+        same += other.aov == extra.aov;
+    if (same > 1)
+        throw LayerError("AOV " + extra.aov + " is given twice");
+    const StatisticsView& s = extra.stats;
+    if (s.width != beauty.width || s.height != beauty.height || !s.count || !s.mean[0])
+        throw LayerError("AOV " + extra.aov + " needs the beauty's resolution, a count and a mean");
+    for (int y = 0; y < s.height; ++y)
+        for (int x = 0; x < s.width; ++x)
+            if (s.count(x, y) != beauty.count(x, y))
+                throw LayerError("AOV " + extra.aov + ": sample count differs from the beauty's at pixel (" +
+                                 std::to_string(x) + ", " + std::to_string(y) + ")");
+}
+
+// The channels an image of `stats` gets, in writing order, each with its source plane.
+Channels layout_channels(const StatisticsView& stats, const StatisticsMetadata& metadata,
+                         const GuidePlanes& guides, const std::vector<AovStatistics>& aovs)
+{
+    Channels out;
+    layout_statistics(out, stats, metadata.aov,
+                      [&] { out.emplace_back(kSampleCountChannel, stats.count); });
+    for (const AovStatistics& extra : aovs) {
+        check_aov(stats, metadata.aov, extra, aovs);
+        layout_statistics(out, extra.stats, extra.aov, {});
     }
     auto add_guide = [&](const char* layer, const std::vector<std::string>& names,
                          const std::array<ConstPlane, 3>& planes) {
@@ -223,9 +259,17 @@ OIIO::ImageBuf make_statistics_image(const StatisticsView& stats,
                                      const StatisticsMetadata& metadata,
                                      const GuidePlanes& guides)
 {
+    return make_statistics_image(stats, metadata, guides, {});
+}
+
+OIIO::ImageBuf make_statistics_image(const StatisticsView& stats,
+                                     const StatisticsMetadata& metadata,
+                                     const GuidePlanes& guides,
+                                     const std::vector<AovStatistics>& aovs)
+{
     if (stats.width <= 0 || stats.height <= 0 || !stats.count || !stats.mean[0])
         throw LayerError("statistics need a resolution, a sample count and a mean");
-    const auto channels = layout_channels(stats, metadata, guides);
+    const auto channels = layout_channels(stats, metadata, guides, aovs);
     OIIO::ImageSpec spec(stats.width, stats.height, int(channels.size()), OIIO::TypeDesc::FLOAT);
     spec.channelnames.clear();
     for (const auto& channel : channels)

@@ -58,6 +58,22 @@ std::string diagnostics_channel(std::string_view aov, std::string_view quantity)
 /// "diffuse.variance", "bounce1.boxcoxM3" and so on.
 std::string statistic_layer(std::string_view aov, Statistic stat);
 
+/// Per-bounce quantities a renderer tracks for its own sampling decisions (method.md §7,
+/// §8), each stored as a one-channel (Y) AOV of its own beside the beauty.
+enum class BounceQuantity {
+    Luminance,  ///< L_j: luminance of the radiance from path vertex j on, throughput 1 (ACRR)
+    LightWins,  ///< wins of light sampling at vertex j (SMIS)
+    BsdfWins,   ///< wins of BSDF sampling at vertex j (SMIS)
+};
+
+/// The AOV of `quantity` at path vertex `bounce` (0 = the first hit): "bounce2L",
+/// "bounce0LightWins", "bounce0BsdfWins". One name part, so that its statistics stay
+/// within two levels ("bounce2L.boxcoxM3.Y"), and no leading digit.
+std::string bounce_aov(BounceQuantity quantity, int bounce);
+
+/// Whether `aov` can prefix channel names: not empty, no dot or space, no leading digit.
+bool is_valid_aov_name(std::string_view aov);
+
 /// The short name of a statistic: "mean", "variance", "boxcoxMean", ...
 const char* statistic_name(Statistic stat);
 

@@ -73,4 +73,20 @@ OIIO::ImageBuf make_statistics_image(const StatisticsPlanes& stats,
                                      const StatisticsMetadata& metadata = {},
                                      const GuidePlanes& guides = {});
 
+/// The statistics of one more AOV stored beside the beauty (e.g. a tracked bounce,
+/// bounce_aov()). It shares the beauty's sampleCount.Y, so its count plane must equal it.
+struct AovStatistics {
+    std::string aov;
+    StatisticsView stats;
+};
+
+/// make_statistics_image with `aovs` written after the beauty's statistics and before the
+/// guides, each under its own prefix (mean, then variance and the Box-Cox set it has).
+/// Throws LayerError for an invalid or repeated AOV name, another resolution, or a count
+/// that differs from the beauty's.
+OIIO::ImageBuf make_statistics_image(const StatisticsView& stats,
+                                     const StatisticsMetadata& metadata,
+                                     const GuidePlanes& guides,
+                                     const std::vector<AovStatistics>& aovs);
+
 }  // namespace statmc::layers

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Sampling-efficiency measurements of docs/sampling.md (seed C.2 style), small enough for
+# a 2-core machine (≈ 7 minutes): Veach Ajar ACRR vs classic RR (C.2's constant 4-spp
+# iterations, and the progressive schedule), the tracked-bounce sweep, Veach MIS SMIS vs
+# standard MIS (progressive to 512 spp, and at equal time with constant 8-spp iterations). CSVs go to $OUT (not committed); then
+#   /usr/bin/python3 scripts/plot_sampling.py $OUT docs/images
+# draws the charts and prints the tables.
+set -euo pipefail
+BUILD=${BUILD:-build}
+OUT=${OUT:-bench-out/sampling}
+SCENES=${SCENES:-../shared/scenes}
+RES=${RES:-160x90}
+REF_SPP=${REF_SPP:-2048}
+RUNS=${RUNS:-4}
+render="$BUILD/renderer/statmc-render"
+bench="$BUILD/bench/bench_sampling"
+ajar="$SCENES/veach-ajar/scene.pbrt"
+mis="$SCENES/veach-mis/scene.pbrt"
+mkdir -p "$OUT"
+
+# References of our own renderer (classic RR, standard MIS), seeds apart from the runs'.
+[ -f "$OUT/ajar-ref.exr" ] || "$render" "$ajar" -o "$OUT/ajar-ref.exr" --resolution "$RES" --spp "$REF_SPP" --seed 1000 -q
+[ -f "$OUT/mis-ref.exr" ] || "$render" "$mis" -o "$OUT/mis-ref.exr" --resolution "$RES" --spp "$REF_SPP" --seed 1000 -q
+
+# 1. Veach Ajar: 32 iterations of 4 spp, roulette from the first hit for both (as C.2).
+rm -f "$OUT/ajar_efficiency.csv"
+for rr in classic acrr; do
+  "$bench" "$ajar" --reference "$OUT/ajar-ref.exr" --csv "$OUT/ajar_efficiency.csv" --label "$rr" \
+    --rr "$rr" --rr-start-bounce 0 --iterations 32 --spp-per-iteration 4 --runs "$RUNS"
+done
+
+# 1b. The same with the progressive schedule 4, 4, 8, ..., 128 (256 spp, 7 denoising passes).
+rm -f "$OUT/ajar_progressive.csv"
+for rr in classic acrr; do
+  "$bench" "$ajar" --reference "$OUT/ajar-ref.exr" --csv "$OUT/ajar_progressive.csv" --label "$rr" \
+    --rr "$rr" --rr-start-bounce 0 --progressive-spp 256 --runs "$RUNS"
+done
+
+# 2. Tracked-bounce sweep: ACRR with 1..8 tracked bounces, same schedule, 2 runs each.
+rm -f "$OUT/ajar_sweep.csv"
+for n in 1 2 3 4 5 6 7 8; do
+  "$bench" "$ajar" --reference "$OUT/ajar-ref.exr" --csv "$OUT/ajar_sweep.csv" --label "acrr$n" \
+    --rr acrr --rr-bounces "$n" --rr-start-bounce 0 --iterations 32 --spp-per-iteration 4 --runs 2
+done
+
+# 3. Veach MIS, progressive schedule to 512 spp (8 denoising passes), 3 runs each.
+rm -f "$OUT/mis_progressive.csv"
+for m in standard selective; do
+  "$bench" "$mis" --reference "$OUT/mis-ref.exr" --csv "$OUT/mis_progressive.csv" --label "$m" \
+    --mis "$m" --progressive-spp 512 --runs 3
+done
+
+# 3b. Veach MIS at equal time: 8-spp iterations until 12 CPU seconds have passed, 3 runs each.
+rm -f "$OUT/mis_equal_time.csv"
+for m in standard selective; do
+  "$bench" "$mis" --reference "$OUT/mis-ref.exr" --csv "$OUT/mis_equal_time.csv" --label "$m" \
+    --mis "$m" --iterations 1000 --spp-per-iteration 8 --time-budget 12 --runs 3
+done
