@@ -144,6 +144,37 @@ def equal_time(rows, scene, budget_spp):
     return "\n".join(lines)
 
 
+def equal_time_chart(rows, scene, budget_spp, path):
+    """Bars: each method's relMSE and DSSIM at the most samples it affords in the time of
+    the budget_spp render (as equal_time's table)."""
+    g = grouped(rows)
+    if (scene, "noisy", budget_spp) not in g:
+        return False
+    budget = total_seconds(g[(scene, "noisy", budget_spp)])
+    spps = sorted({k[2] for k in g if k[0] == scene})
+    names, rel, dssim = [], [], []
+    for m in METHODS:
+        fits = [s for s in spps if (scene, m, s) in g and total_seconds(g[(scene, m, s)]) <= 1.05 * budget]
+        if fits:
+            r = g[(scene, m, max(fits))]
+            names.append(f"{m}\n{max(fits)} spp")
+            rel.append(mean_of(r, "relmse"))
+            dssim.append(mean_of(r, "dssim"))
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.6))
+    for ax, vals, label in ((axes[0], rel, "relMSE"), (axes[1], dssim, "DSSIM")):
+        ax.bar(range(len(vals)), vals, color=["0.6"] + ["C%d" % i for i in range(len(vals) - 1)])
+        ax.set_xticks(range(len(vals)))
+        ax.set_xticklabels(names, fontsize=6, rotation=30, ha="right")
+        ax.set_yscale("log")
+        ax.set_ylabel(label)
+        ax.grid(True, axis="y", which="both", alpha=0.3)
+    fig.suptitle(f"{scene}: equal time ({budget:.2f} s, the {budget_spp}-spp render)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+    return True
+
+
 def wins(rows):
     """Per scene and spp, which method has the lowest relMSE and DSSIM."""
     g = grouped(rows)
@@ -211,7 +242,11 @@ def main():
             doc += [f"{label} (lowest denoised value in bold):", "", table(rows, scene, metric), ""]
         doc += ["Time:", "", time_table(rows, scene), ""]
         spps = sorted({int(r["spp"]) for r in rows if r["scene"] == scene})
-        doc += [equal_time(rows, scene, spps[len(spps) // 2]), ""]
+        budget_spp = spps[len(spps) // 2]
+        img = f"eval-{scene}-equal-time.png"
+        if equal_time_chart(rows, scene, budget_spp, os.path.join(a.images, img)):
+            doc += [f"![{scene} at equal time]({rel}/{img})", ""]
+        doc += [equal_time(rows, scene, budget_spp), ""]
     timing_chart(timing, os.path.join(a.images, "eval-timing.png"))
     doc += ["## Denoise time against resolution and radius", "",
             f"![denoise time]({rel}/eval-timing.png)", "",

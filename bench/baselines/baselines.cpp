@@ -20,13 +20,15 @@ void for_each_row(int h, Body&& body)
     });
 }
 
-/// Box sum over [x − f, x + f] × [y − f, y + f] ∩ image of a dense w × h plane.
-void box_sum(const std::vector<float>& in, std::vector<float>& out, std::vector<float>& tmp, int w, int h, int f)
+/// Box sum over [x − f, x + f] × [y − f, y + f] ∩ image of a dense w × h plane. Running
+/// sums in double: terms span many decades, and a float sum that adds then subtracts a
+/// large one loses the small ones beside it.
+void box_sum(const std::vector<float>& in, std::vector<float>& out, std::vector<double>& tmp, int w, int h, int f)
 {
     for_each_row(h, [&](int y) {
         const float* row = in.data() + std::size_t(y) * w;
-        float* t = tmp.data() + std::size_t(y) * w;
-        float s = 0;
+        double* t = tmp.data() + std::size_t(y) * w;
+        double s = 0;
         for (int x = 0; x <= std::min(f, w - 1); ++x)
             s += row[x];
         for (int x = 0; x < w; ++x) {
@@ -39,11 +41,11 @@ void box_sum(const std::vector<float>& in, std::vector<float>& out, std::vector<
     });
     tbb::parallel_for(tbb::blocked_range<int>(0, w, 64), [&](const tbb::blocked_range<int>& cols) {
         for (int x = cols.begin(); x < cols.end(); ++x) {
-            float s = 0;
+            double s = 0;
             for (int y = 0; y <= std::min(f, h - 1); ++y)
                 s += tmp[std::size_t(y) * w + x];
             for (int y = 0; y < h; ++y) {
-                out[std::size_t(y) * w + x] = s;
+                out[std::size_t(y) * w + x] = float(s);
                 if (y + f + 1 < h)
                     s += tmp[std::size_t(y + f + 1) * w + x];
                 if (y - f >= 0)
@@ -60,7 +62,10 @@ void nlm(const std::array<ConstPlane, 3>& mean, const std::array<ConstPlane, 3>&
 {
     constexpr float kEpsilon = 1e-10f;
     const std::size_t n = std::size_t(w) * h;
-    std::vector<float> distance(n), valid(n), distance_sum(n), valid_sum(n), tmp(n);
+    // A term this large already gives the patch a weight of 0; larger ones only cost precision.
+    constexpr float kFar = 1e4f;
+    std::vector<float> distance(n), valid(n), distance_sum(n), valid_sum(n);
+    std::vector<double> tmp(n);
     std::vector<double> acc(3 * n, 0.0), weight_sum(n, 0.0);
     for (int dy = -o.search_radius; dy <= o.search_radius; ++dy)
         for (int dx = -o.search_radius; dx <= o.search_radius; ++dx) {
@@ -79,7 +84,7 @@ void nlm(const std::array<ConstPlane, 3>& mean, const std::array<ConstPlane, 3>&
                         const float diff = mean[c](x, y) - mean[c](qx, qy);
                         d += (diff * diff - o.alpha * (vp + std::min(vp, vq))) / (kEpsilon + o.k * o.k * (vp + vq));
                     }
-                    distance[i] = std::isfinite(d) ? d / 3 : 1e30f;
+                    distance[i] = std::isfinite(d) ? std::min(d / 3, kFar) : kFar;
                     valid[i] = 1;
                 }
             });
