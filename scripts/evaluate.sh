@@ -1,17 +1,17 @@
 #!/usr/bin/env bash
-# The evaluation of docs/evaluation.md, refreshed with one command (minutes to an hour on
-# a 2-core machine; not part of CI). Renders a reference and noisy frames per scene with
+# The evaluation of docs/evaluation.md, refreshed with one command (about 10 minutes on
+# this project's 2-core machine; not part of CI). Renders a reference and noisy frames per scene with
 # statmc-render, scores every method with statmc-evaluate, and redraws the charts and the
 # report with scripts/plot_evaluation.py.
 #
-#   bash scripts/evaluate.sh            # REF_SPP=1024 SPPS="4 16 64 256" SEEDS="1 2"
-#   OUT=/tmp/eval REF_SPP=4096 bash scripts/evaluate.sh
+#   bash scripts/evaluate.sh            # REF_SPP=4096 SPPS="4 16 64 256" SEEDS="1 2"
+#   OUT=/tmp/eval REF_SPP=1024 SPPS="4 16" bash scripts/evaluate.sh   # a quick look
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 build=${BUILD:-build}
 out=${OUT:-$build/evaluation}
-ref_spp=${REF_SPP:-1024}
+ref_spp=${REF_SPP:-4096}
 spps=${SPPS:-4 16 64 256}
 seeds=${SEEDS:-1 2}
 scenes_dir=${SCENES:-$root/../shared/scenes}
