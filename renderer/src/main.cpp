@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <regex>
+#include <charconv>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -31,6 +31,17 @@ extern "C" void on_sigint(int)
 {
     g_interrupted.store(true);
     std::signal(SIGINT, SIG_DFL);
+}
+
+/// "WxH" (or "WXH") with decimal W and H and nothing else; false otherwise.
+bool parse_resolution(const std::string& text, int& width, int& height)
+{
+    const char* end = text.data() + text.size();
+    const auto w = std::from_chars(text.data(), end, width);
+    if (w.ec != std::errc() || w.ptr == text.data() || w.ptr == end || (*w.ptr != 'x' && *w.ptr != 'X'))
+        return false;
+    const auto h = std::from_chars(w.ptr + 1, end, height);
+    return h.ec == std::errc() && h.ptr == end && h.ptr != w.ptr + 1;
 }
 
 }  // namespace
@@ -89,11 +100,8 @@ int main(int argc, char** argv)
             std::fprintf(stderr, "%s\n", w.c_str());
         int width = desc.camera.width, height = desc.camera.height;
         if (!resolution.empty()) {
-            std::smatch m;
-            if (!std::regex_match(resolution, m, std::regex(R"((\d+)[xX](\d+))")))
+            if (!parse_resolution(resolution, width, height))
                 throw std::runtime_error("--resolution: expected WxH, got '" + resolution + "'");
-            width = std::stoi(m[1]);
-            height = std::stoi(m[2]);
             if (width <= 0 || height <= 0 || width > 65536 || height > 65536)
                 throw std::runtime_error("--resolution: width and height must be in 1..65536");
         }
