@@ -32,9 +32,12 @@ struct Avx2 {
     static void store(float* p, F v) { _mm256_storeu_ps(p, v); }
 
     /// e^x to ~2 ulp for x in [−87.3, 88.3] (Cephes expf: range reduction by ln 2,
-    /// degree-5 polynomial, exponent by integer add); clamps outside that range.
+    /// degree-5 polynomial, exponent by integer add); clamps above that range and gives 0
+    /// below it, as std::exp and the AVX-512 kernel do (a clamp would leave weights of
+    /// ~1e-38 where they vanish).
     static F exp(F x)
     {
+        const M vanishes = _mm256_cmp_ps(x, set1(-87.3365447505531f), _CMP_LT_OQ);
         x = _mm256_min_ps(x, set1(88.3762626647949f));
         x = _mm256_max_ps(x, set1(-87.3365447505531f));
         const F fx = _mm256_floor_ps(fmadd(x, set1(1.44269504088896341f), set1(0.5f)));
@@ -49,7 +52,7 @@ struct Avx2 {
         y = fmadd(y, mul(x, x), add(x, set1(1.f)));
         const __m256i e = _mm256_slli_epi32(
             _mm256_add_epi32(_mm256_cvtps_epi32(fx), _mm256_set1_epi32(127)), 23);
-        return mul(y, _mm256_castsi256_ps(e));
+        return _mm256_andnot_ps(vanishes, mul(y, _mm256_castsi256_ps(e)));
     }
 };
 
