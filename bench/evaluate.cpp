@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "baselines/baselines.h"
+#include "statmc/core/estimator_image.h"
 #include "statmc/compare/compare.h"
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/exr_files.h"
@@ -55,29 +56,19 @@ OIIO::ImageBuf rgb_image(const OIIO::ImageBuf& like, const std::function<void(st
     return out;
 }
 
-/// The baselines' inputs: mean, variance of the mean and guides, viewed in place.
+/// The baselines' inputs: the means and their variances, as core's estimators give them
+/// for the untransformed test (variance of the mean, per-sample or not), and the guides.
 struct BaselineInputs {
+    EstimatorImage est;
     std::array<ConstPlane, 3> mean, variance;
-    std::vector<float> variance_storage;
     Guides guides;
-    int w = 0, h = 0;
 
     explicit BaselineInputs(const OIIO::ImageBuf& in)
+        : est(estimators_from_statistics(layers::read_statistics(in), TestDomain::Untransformed))
     {
-        const StatisticsView stats = layers::read_statistics(in);
-        w = stats.width;
-        h = stats.height;
-        variance_storage.resize(std::size_t(3) * w * h);
         for (int c = 0; c < 3; ++c) {
-            mean[c] = stats.mean[c];
-            for (int y = 0; y < h; ++y)
-                for (int x = 0; x < w; ++x) {
-                    const float n = std::max(1.f, stats.count(x, y));
-                    const float var = stats.variance[c] ? stats.variance[c](x, y) : 0.f;
-                    variance_storage[std::size_t(c) * w * h + std::size_t(y) * w + x] =
-                        stats.variance_of_mean ? var : var / n;
-                }
-            variance[c] = dense_plane(variance_storage.data() + std::size_t(c) * w * h, w);
+            mean[c] = dense_plane(est.value.data() + c * est.pixels(), est.width);
+            variance[c] = dense_plane(est.test_variance.data() + c * est.pixels(), est.width);
         }
         const auto albedo = layers::find_guide_layer(in.spec(), "albedo", true);
         const auto normal = layers::find_guide_layer(in.spec(), "normal", false);
@@ -93,11 +84,11 @@ struct Method {
     std::function<OIIO::ImageBuf(const OIIO::ImageBuf&)> run;
 };
 
-DenoiseImageOptions statmc_options(bool guides, float fireflies = DenoiseOptions{}.firefly_ratio)
+DenoiseImageOptions statmc_options(bool guides, const DenoiseOptions& filter = {})
 {
     DenoiseImageOptions o;
     o.guides.albedo = o.guides.normal = guides ? GuideUse::Required : GuideUse::Off;
-    o.filter.firefly_ratio = fireflies;
+    o.filter = filter;
     return o;
 }
 
@@ -111,23 +102,23 @@ OIIO::ImageBuf run_statmc(const OIIO::ImageBuf& in, const DenoiseImageOptions& o
 
 std::vector<Method> methods()
 {
-    DenoiseImageOptions moon = statmc_options(false, 0.f);  // Moon et al. 2013-style test
+    DenoiseImageOptions moon = statmc_options(false, DenoiseOptions::paper());  // Moon et al. 2013-style test
     moon.test = TestDomainChoice::Untransformed;
     moon.filter.alpha = 0.002;
     return {
         {"noisy", [](const OIIO::ImageBuf& in) { return in; }},
         {"statmc", [](const OIIO::ImageBuf& in) { return run_statmc(in, statmc_options(false)); }},
         {"statmc-guides", [](const OIIO::ImageBuf& in) { return run_statmc(in, statmc_options(true)); }},
-        {"statmc-paper", [](const OIIO::ImageBuf& in) { return run_statmc(in, statmc_options(false, 0.f)); }},
+        {"statmc-paper", [](const OIIO::ImageBuf& in) { return run_statmc(in, statmc_options(false, DenoiseOptions::paper())); }},
         {"moon-ci", [moon](const OIIO::ImageBuf& in) { return run_statmc(in, moon); }},
         {"nlm", [](const OIIO::ImageBuf& in) {
              const BaselineInputs b(in);
-             return rgb_image(in, [&](std::array<Plane, 3>& out) { baselines::nlm(b.mean, b.variance, b.w, b.h, {}, out); });
+             return rgb_image(in, [&](std::array<Plane, 3>& out) { baselines::nlm(b.mean, b.variance, b.est.width, b.est.height, {}, out); });
          }},
         {"cross-bilateral", [](const OIIO::ImageBuf& in) {
              const BaselineInputs b(in);
              return rgb_image(in, [&](std::array<Plane, 3>& out) {
-                 baselines::cross_bilateral(b.mean, b.guides, b.w, b.h, {}, out);
+                 baselines::cross_bilateral(b.mean, b.guides, b.est.width, b.est.height, {}, out);
              });
          }},
     };

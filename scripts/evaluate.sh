@@ -5,7 +5,7 @@
 # report with scripts/plot_evaluation.py.
 #
 #   bash scripts/evaluate.sh            # REF_SPP=4096 SPPS="4 16 64 256" SEEDS="1 2"
-#   OUT=/tmp/eval REF_SPP=1024 SPPS="4 16" bash scripts/evaluate.sh   # a quick look
+#   OUT=build/eval-quick REF_SPP=1024 SPPS="4 16" bash scripts/evaluate.sh   # a quick look
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD

@@ -19,6 +19,13 @@ std::string number(double v)
 
 }  // namespace
 
+DenoiseOptions DenoiseOptions::paper()
+{
+    DenoiseOptions o;
+    o.firefly_ratio = 0;
+    return o;
+}
+
 std::string DenoiseOptions::validate() const
 {
     if (radius < 0 || radius > 1000)

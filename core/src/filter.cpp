@@ -91,10 +91,6 @@ detail::FilterRowsFn kernel(SimdLevel level)
     }
 }
 
-}  // namespace
-
-namespace {
-
 void check_arguments(const EstimatorImage& est, const DenoiseOptions& options,
                      const std::vector<Plane>& out)
 {
@@ -139,12 +135,11 @@ void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOption
     run_with_threads(nthreads, [&] {
         const detail::FilterLayout layout =
             detail::make_filter_layout(est, guides, options, nthreads, lanes, diagnostics.any());
-        const int chunks = (est.width + lanes - 1) / lanes;
         // Tiles of a few rows by 64 columns keep the window's planes in L2. Each pixel
         // is computed alone, so the tiling cannot change the result.
         const int chunk_grain = std::max(1, 64 / lanes);
         tbb::parallel_for(
-            tbb::blocked_range2d<int>(0, est.height, 4, 0, chunks, chunk_grain),
+            tbb::blocked_range2d<int>(0, est.height, 4, 0, layout.chunks, chunk_grain),
             [&](const tbb::blocked_range2d<int>& r) {
                 rows(layout, out, diagnostics, r.rows().begin(), r.rows().end(),
                      r.cols().begin(), r.cols().end());

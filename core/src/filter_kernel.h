@@ -134,7 +134,8 @@ void write_chunk(const FilterLayout& L, const std::vector<Plane>& out, const Fil
         V::store(lanes[c], V::add(V::load(L.value[c] + centre), V::div(partial.acc[c], partial.weight_sum)));
     V::store(wsum, partial.weight_sum);
     V::store(count, partial.member_count);
-    V::store(inverse, partial.inverse_sum);
+    if constexpr (kDiagnostics)
+        V::store(inverse, partial.inverse_sum);
     const int n = std::min(V::kWidth, L.width - x0);
     for (int k = 0; k < n; ++k) {
         for (int c = 0; c < NC; ++c)

@@ -56,14 +56,7 @@ struct RenderSettings {
     IntegratorSettings integrator;
     /// How the per-bounce statistics are denoised: the paper's filter, without the firefly
     /// guard, as ACRR and SMIS were measured (docs/sampling.md).
-    DenoiseOptions bounce_filter = paper_filter();
-
-    static DenoiseOptions paper_filter()
-    {
-        DenoiseOptions o;
-        o.firefly_ratio = 0;
-        return o;
-    }
+    DenoiseOptions bounce_filter = DenoiseOptions::paper();
     bool progress = false;
 };
 

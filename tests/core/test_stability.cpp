@@ -133,9 +133,7 @@ TEST(Degenerate, ZeroVarianceRegionsStayExact)
         return mean < 0.9f ? mean : testing::draw_exponential(rng, mean);
     };
     const StatisticsPlanes stats = testing::sample_statistics(64, 24, 16, truth, draw, 4);
-    DenoiseOptions paper;
-    paper.firefly_ratio = 0;
-    for (const DenoiseOptions& opt : {DenoiseOptions{}, paper}) {
+    for (const DenoiseOptions& opt : {DenoiseOptions{}, DenoiseOptions::paper()}) {
         const std::vector<float> out = denoise(stats, 64, opt);
         expect_finite_and_bounded(stats, out);
         const int exact_columns = opt.firefly_ratio > 0 ? 32 : 32 - opt.radius;

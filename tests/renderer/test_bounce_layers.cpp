@@ -101,10 +101,8 @@ TEST(BounceLayers, RoundTripThroughTheExrAndStatmcDenoise)
         guides.normal[c] = statmc::dense_plane(normal.data() + c * n, kW);
     }
     std::vector<float> expected(n);
-    statmc::DenoiseOptions paper;
-    paper.firefly_ratio = 0;
     statmc::filter(statmc::estimators_from_statistics(q1, statmc::TestDomain::BoxCox), guides,
-                   paper, {statmc::dense_plane(expected.data(), kW)}, {}, 1);
+                   statmc::DenoiseOptions::paper(), {statmc::dense_plane(expected.data(), kW)}, {}, 1);
     const int ch = denoised.spec().channelindex("bounce1L.Y"), r = denoised.spec().channelindex("R");
     const int other = denoised.spec().channelindex("bounce2L.Y");
     ASSERT_GE(ch, 0);

@@ -18,6 +18,9 @@ struct DenoiseOptions {
 
     /// Empty when valid, else a message naming the offending parameter.
     std::string validate() const;
+
+    /// The filter as the paper describes it: these defaults with the firefly guard off.
+    static DenoiseOptions paper();
 };
 
 }  // namespace statmc
