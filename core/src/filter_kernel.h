@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "filter_layout.h"
+#include "simd_exp2.h"
 
 namespace statmc::detail {
 namespace {
@@ -89,12 +90,21 @@ void add_band(const FilterLayout& L, int y, int x0, int dy0, int dy1, Partial<V,
         if constexpr (NG == 0) {
             w = V::set1(L.spatial(dx, dy));
         } else {
-            F arg = V::set1(L.spatial_log(dx, dy));
-            for (int g = 0; g < NG; ++g) {  // guides are stored pre-scaled by 1/(√2·σ)
-                const F d = V::sub(guide[g], V::load(L.guide[g] + off));
-                arg = V::fnmadd(d, d, arg);
+            // log2 w = spatial − Σ (Δg)² (guides are stored pre-scaled), summed as two
+            // chains joined at the end: the weight's latency bounds this loop.
+            auto difference = [&](int g) { return V::sub(guide[g], V::load(L.guide[g] + off)); };
+            constexpr int kHalf = (NG + 1) / 2;
+            F near = V::set1(L.spatial_log2(dx, dy));
+            for (int g = 0; g < kHalf; ++g) {
+                const F d = difference(g);
+                near = V::fnmadd(d, d, near);
             }
-            w = V::exp(arg);
+            F far = V::zero();
+            for (int g = kHalf; g < NG; ++g) {
+                const F d = difference(g);
+                far = g == kHalf ? V::mul(d, d) : V::fmadd(d, d, far);
+            }
+            w = simd::exp2_nonpositive<V>(V::sub(near, far));
         }
         for (int c = 0; c < NC; ++c)
             acc[c] = V::masked_fmadd(m, w, V::sub(V::load(L.value[c] + off), value[c]), acc[c]);

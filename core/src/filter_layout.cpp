@@ -21,6 +21,10 @@ namespace statmc::detail {
 namespace {
 
 constexpr float kNever = -std::numeric_limits<float>::infinity();
+constexpr double kLog2e = 1.4426950408889634;
+// Scaled guides are clamped to this: squared differences of six of them stay finite, so
+// a guide weight is never exp2(−∞ + ∞) = NaN.
+constexpr float kGuideBound = 1e17f;
 
 float finite_or_zero(float v) { return std::isfinite(v) ? v : 0.f; }
 
@@ -32,13 +36,13 @@ void build_window(FilterLayout& L, const DenoiseOptions& options)
     const int cols = 2 * L.pad_x + 1;
     L.half_width.resize(2 * L.pad_y + 1);
     L.spatial_weight.assign(std::size_t(cols) * (2 * L.pad_y + 1), 0.f);
-    L.spatial_log_weight.assign(L.spatial_weight.size(), kNever);
+    L.spatial_log2_weight.assign(L.spatial_weight.size(), kNever);
     for (int dy = -L.pad_y; dy <= L.pad_y; ++dy) {
         const int hw = int(std::floor(std::sqrt(std::max(0.0, r2 - double(dy) * dy))));
         L.half_width[dy + L.pad_y] = std::min(hw, L.pad_x);
         for (int dx = -L.half_width[dy + L.pad_y]; dx <= L.half_width[dy + L.pad_y]; ++dx) {
             const double log_w = -(double(dx) * dx + double(dy) * dy) * inv_two_sigma2;
-            L.spatial_log_weight[L.table_index(dx, dy)] = float(log_w);
+            L.spatial_log2_weight[L.table_index(dx, dy)] = float(log_w * kLog2e);
             L.spatial_weight[L.table_index(dx, dy)] = float(std::exp(log_w));
         }
     }
@@ -118,13 +122,16 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
     L.stride = padded_width;
     L.plane_size = std::size_t(padded_width) * (est.height + 2 * L.pad_y);
 
-    std::vector<std::pair<ConstPlane, float>> guide_planes;  // plane, 1/(√2·σ)
+    // plane, √(log2 e)/(√2·σ): the guide term of the weight becomes 2^−Σ(Δg)², whose
+    // power of two the kernels apply without a range reduction by ln 2.
+    std::vector<std::pair<ConstPlane, float>> guide_planes;
+    auto guide_scale = [](float sigma) { return float(std::sqrt(kLog2e / 2.0) / sigma); };
     if (guides.has_albedo())
         for (const ConstPlane& p : guides.albedo)
-            guide_planes.emplace_back(p, float(1.0 / (std::sqrt(2.0) * options.sigma_albedo)));
+            guide_planes.emplace_back(p, guide_scale(options.sigma_albedo));
     if (guides.has_normal())
         for (const ConstPlane& p : guides.normal)
-            guide_planes.emplace_back(p, float(1.0 / (std::sqrt(2.0) * options.sigma_normal)));
+            guide_planes.emplace_back(p, guide_scale(options.sigma_normal));
     L.guide_count = int(guide_planes.size());
 
     // The guard's planes exist only where some chunk needs them.
@@ -219,7 +226,8 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                         : kNever;
                 }
                 for (int g = 0; g < L.guide_count; ++g)
-                    guide[g][p] = finite_or_zero(guide_planes[g].first(x, y)) * guide_planes[g].second;
+                    guide[g][p] = std::clamp(finite_or_zero(guide_planes[g].first(x, y)) * guide_planes[g].second,
+                                             -kGuideBound, kGuideBound);
                 if (guard) {
                     noise_level[p] = noise.level[std::size_t(y) * est.width + x];
                     noise_limit[p] = noise.limit[std::size_t(y) * est.width + x];

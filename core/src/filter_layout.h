@@ -35,16 +35,16 @@ struct FilterLayout {
     const float* value[4] = {};      // F, what is averaged
     const float* inverse_count = nullptr;  // 1/n (0 in the padding), for diagnostics only
     int guide_count = 0;             // 0, 3 (albedo or normal) or 6 (both)
-    const float* guide[6] = {};      // scaled by 1/(√2·σ): Σ (Δg)² is the log-weight
+    const float* guide[6] = {};      // scaled by √(log2 e)/(√2·σ): −Σ (Δg)² is the log2-weight
 
     // The disk: for row offset dy ∈ [−pad_y, pad_y], |dx| ≤ half_width[dy + pad_y];
-    // spatial weight and its logarithm at (dx, dy) are at [(dy + pad_y)*(2*pad_x+1) + dx + pad_x].
+    // spatial weight and its base-2 logarithm at (dx, dy) are at [(dy + pad_y)*(2*pad_x+1) + dx + pad_x].
     std::vector<int> half_width;
     std::vector<float> spatial_weight;
-    std::vector<float> spatial_log_weight;
+    std::vector<float> spatial_log2_weight;
 
     float spatial(int dx, int dy) const { return spatial_weight[table_index(dx, dy)]; }
-    float spatial_log(int dx, int dy) const { return spatial_log_weight[table_index(dx, dy)]; }
+    float spatial_log2(int dx, int dy) const { return spatial_log2_weight[table_index(dx, dy)]; }
     std::size_t table_index(int dx, int dy) const
     {
         return std::size_t(dy + pad_y) * (2 * pad_x + 1) + (dx + pad_x);

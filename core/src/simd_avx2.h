@@ -31,28 +31,15 @@ struct Avx2 {
     static bool none(M m) { return _mm256_movemask_ps(m) == 0; }
     static void store(float* p, F v) { _mm256_storeu_ps(p, v); }
 
-    /// e^x to ~2 ulp for x in [−87.3, 88.3] (Cephes expf: range reduction by ln 2,
-    /// degree-5 polynomial, exponent by integer add); clamps above that range and gives 0
-    /// below it, as std::exp and the AVX-512 kernel do (a clamp would leave weights of
-    /// ~1e-38 where they vanish).
-    static F exp(F x)
+    static F round(F x) { return _mm256_round_ps(x, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC); }
+    /// p·2^n for p ∈ [½, 2] by exponent arithmetic; 0 where 2^n would be denormal or
+    /// less (a clamp would leave weights of ~1e-38, whose denormal FMAs are slow).
+    static F scale_by_power_of_two(F p, F n)
     {
-        const M vanishes = _mm256_cmp_ps(x, set1(-87.3365447505531f), _CMP_LT_OQ);
-        x = _mm256_min_ps(x, set1(88.3762626647949f));
-        x = _mm256_max_ps(x, set1(-87.3365447505531f));
-        const F fx = _mm256_floor_ps(fmadd(x, set1(1.44269504088896341f), set1(0.5f)));
-        x = fnmadd(fx, set1(0.693359375f), x);
-        x = fnmadd(fx, set1(-2.12194440e-4f), x);
-        F y = set1(1.9875691500e-4f);
-        y = fmadd(y, x, set1(1.3981999507e-3f));
-        y = fmadd(y, x, set1(8.3334519073e-3f));
-        y = fmadd(y, x, set1(4.1665795894e-2f));
-        y = fmadd(y, x, set1(1.6666665459e-1f));
-        y = fmadd(y, x, set1(5.0000001201e-1f));
-        y = fmadd(y, mul(x, x), add(x, set1(1.f)));
+        const M vanishes = _mm256_cmp_ps(n, set1(-125.f), _CMP_LT_OQ);
         const __m256i e = _mm256_slli_epi32(
-            _mm256_add_epi32(_mm256_cvtps_epi32(fx), _mm256_set1_epi32(127)), 23);
-        return _mm256_andnot_ps(vanishes, mul(y, _mm256_castsi256_ps(e)));
+            _mm256_add_epi32(_mm256_cvtps_epi32(n), _mm256_set1_epi32(127)), 23);
+        return _mm256_andnot_ps(vanishes, mul(p, _mm256_castsi256_ps(e)));
     }
 };
 

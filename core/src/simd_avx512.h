@@ -5,7 +5,8 @@
 // compare and its masked accumulation a single masked FMA: fewer operations per lane
 // than AVX2's compare-and-blend, on twice the lanes. Without guides every operation rounds
 // exactly as its AVX2 counterpart, so both kernels give the same bits; the guide weight's
-// exp applies its power of two with vscalefps and may differ from AVX2's in the last bit.
+// power of two is applied by vscalefps, which gives the same bits as AVX2's exponent
+// arithmetic.
 #pragma once
 
 #include <immintrin.h>
@@ -36,22 +37,12 @@ struct Avx512 {
     static bool none(M m) { return m == 0; }
     static void store(float* p, F v) { _mm512_storeu_ps(p, v); }
 
-    /// e^x for x ≤ 0 to ~2 ulp: Cephes expf's reduction and polynomial, with the power of
-    /// two applied by vscalefps, which also flushes x → −∞ to 0 without clamping.
-    static F exp(F x)
+    static F round(F x) { return _mm512_roundscale_ps(x, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC); }
+    /// p·2^n by vscalefps for p ∈ [½, 2]; 0 where 2^n would be denormal or less, as in
+    /// AVX2 (denormal weights would slow the FMAs that add them, and round differently).
+    static F scale_by_power_of_two(F p, F n)
     {
-        const F n = _mm512_roundscale_ps(mul(x, set1(1.44269504088896341f)),
-                                         _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
-        x = fnmadd(n, set1(0.693359375f), x);
-        x = fnmadd(n, set1(-2.12194440e-4f), x);
-        F y = set1(1.9875691500e-4f);
-        y = fmadd(y, x, set1(1.3981999507e-3f));
-        y = fmadd(y, x, set1(8.3334519073e-3f));
-        y = fmadd(y, x, set1(4.1665795894e-2f));
-        y = fmadd(y, x, set1(1.6666665459e-1f));
-        y = fmadd(y, x, set1(5.0000001201e-1f));
-        y = fmadd(y, mul(x, x), add(x, set1(1.f)));
-        return _mm512_scalef_ps(y, n);
+        return _mm512_maskz_scalef_ps(_mm512_cmp_ps_mask(n, set1(-125.f), _CMP_GE_OQ), p, n);
     }
 };
 
