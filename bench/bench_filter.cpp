@@ -83,7 +83,8 @@ EstimatorImage crop(const EstimatorImage& full, int w, int h)
     return out;
 }
 
-void run(benchmark::State& state, bool with_guides, SimdLevel level, bool reference, float firefly_ratio = DenoiseOptions{}.firefly_ratio)
+void run(benchmark::State& state, bool with_guides, SimdLevel level, bool reference,
+         float firefly_ratio = DenoiseOptions{}.firefly_ratio, int radius = DenoiseOptions{}.radius)
 {
     EstimatorImage est = estimators_from_statistics(frame().view(), TestDomain::BoxCox);
     if (reference)
@@ -94,8 +95,9 @@ void run(benchmark::State& state, bool with_guides, SimdLevel level, bool refere
     std::vector<Plane> planes;
     for (int c = 0; c < 3; ++c)
         planes.push_back(dense_plane(out.data() + c * est.pixels(), est.width));
-    DenoiseOptions options;  // r = 20, α = 0.005
+    DenoiseOptions options;  // α = 0.005
     options.firefly_ratio = firefly_ratio;
+    options.radius = radius;
     for (auto _ : state) {
         if (reference)
             filter_reference(est, guides, options, planes);
@@ -108,12 +110,15 @@ void run(benchmark::State& state, bool with_guides, SimdLevel level, bool refere
     std::string label = reference ? "reference (double, 1 thread, 320x180 crop)" : simd_level_name(level);
     if (firefly_ratio == 0)
         label += ", no firefly guard";
+    if (radius == 0)
+        label += ", r = 0: the per-call cost outside the window walk";
     state.SetLabel(label);
 }
 
 void BM_Filter(benchmark::State& s) { run(s, false, detected_simd_level(), false); }
 void BM_FilterGuides(benchmark::State& s) { run(s, true, detected_simd_level(), false); }
 void BM_FilterNoGuard(benchmark::State& s) { run(s, false, detected_simd_level(), false, 0.f); }
+void BM_FilterFixedCost(benchmark::State& s) { run(s, s.range(1) != 0, detected_simd_level(), false, DenoiseOptions{}.firefly_ratio, 0); }
 void BM_FilterAvx2Kernel(benchmark::State& s)
 {
     const std::vector<SimdLevel> levels = supported_simd_levels();
@@ -132,6 +137,7 @@ BENCHMARK(BM_Filter)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime
 BENCHMARK(BM_FilterGuides)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterNoGuard)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
 // Args: threads, guides (0/1).
+BENCHMARK(BM_FilterFixedCost)->Args({0, 0})->Args({0, 1})->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterAvx2Kernel)->Args({0, 0})->Args({0, 1})->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterScalarKernel)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(3)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterReference)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Repetitions(3)->ReportAggregatesOnly();

@@ -7,6 +7,9 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
+#include <cstdlib>
+#include <type_traits>
 
 #include "filter_layout.h"
 #include "simd_exp2.h"
@@ -20,29 +23,6 @@ struct Centre {
     typename V::F noise_limit;
 };
 
-/// Lanes' membership of the neighbour at offset `off`: all channels pass
-/// (μ̃_i − μ̃_j)² − T_j ≤ T_i. This is the fast form of method.md §4,
-/// (μ̃_i − μ̃_j)² ≤ γ_i²v_i + γ_j²v_j, kept in difference form: expanding it into
-/// D_i + D_j ≤ 2μ̃_iμ̃_j cancels catastrophically in float once v ≪ μ̃² (high spp).
-template <class V, int NC, bool kGuard>
-inline typename V::M members(const FilterLayout& L, const Centre<V, NC>& ctr, std::ptrdiff_t off)
-{
-    auto excess = [&](int c) {
-        const auto d = V::sub(ctr.mean[c], V::load(L.mean[c] + off));
-        return V::fmsub(d, d, V::load(L.threshold[c] + off));
-    };
-    typename V::M m;
-    if constexpr (kGuard) {  // the firefly guard starts the mask chain
-        m = V::le(V::load(L.noise + off), ctr.noise_limit);
-        m = V::le_and(m, excess(0), ctr.threshold[0]);
-    } else {
-        m = V::le(excess(0), ctr.threshold[0]);
-    }
-    for (int c = 1; c < NC; ++c)
-        m = V::le_and(m, excess(c), ctr.threshold[c]);
-    return m;
-}
-
 /// What a chunk of lanes has gathered so far; carried from one band of rows to the next.
 template <class V, int NC>
 struct Partial {
@@ -52,49 +32,91 @@ struct Partial {
     typename V::F inverse_sum;  // Σ W_ij² / n_j, for the effective sample count
 };
 
-/// Adds the taps of window rows [dy0, dy1] to the chunk of lanes starting at (x0, y).
-template <class V, int NC, int NG, bool kDiagnostics, bool kGuard>
-void add_band(const FilterLayout& L, int y, int x0, int dy0, int dy1, Partial<V, NC>& partial)
+/// One centre chunk's registers: its test values and value, and what it has gathered.
+template <class V, int NC, int NG>
+struct CentreState {
+    using F = typename V::F;
+    Centre<V, NC> test;
+    F value[NC], acc[NC];
+    F guide[NG > 0 ? NG : 1];
+    F weight_sum, member_count, inverse_sum;
+};
+
+template <int K>
+using Row = std::integral_constant<int, K>;
+
+/// Adds the taps of absolute window rows [y_first, y_last] to the R chunks of lanes that
+/// start at (x0, y), (x0, y + 1), …: R = 2 centre rows share every neighbour load, which
+/// halves the loads per tap where they, not the arithmetic, bound the loop.
+template <class V, int NC, int NG, int R, bool kDiagnostics, bool kGuard>
+void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Partial<V, NC>* partial)
 {
     using F = typename V::F;
-    const std::ptrdiff_t centre = std::ptrdiff_t(y) * L.stride + x0;
-    Centre<V, NC> ctr;
-    // Σ W_ij (F_j − F_i) rather than Σ W_ij F_j: out_i = F_i + that / Σ W_ij is the same
-    // average, but members equal to the centre add exactly nothing, so flat regions come
-    // back bit for bit and large offsets (HDR) lose no digits.
-    F value[NC], acc[NC];
-    for (int c = 0; c < NC; ++c) {
-        ctr.mean[c] = V::load(L.mean[c] + centre);
-        ctr.threshold[c] = V::load(L.threshold[c] + centre);
-        value[c] = V::load(L.value[c] + centre);
-        acc[c] = partial.acc[c];
-    }
-    if constexpr (kGuard)
-        ctr.noise_limit = V::load(L.noise_limit + centre);
-    F guide[NG > 0 ? NG : 1];
-    for (int g = 0; g < NG; ++g)
-        guide[g] = V::load(L.guide[g] + centre);
-    F weight_sum = partial.weight_sum;
-    F member_count = partial.member_count;
-    F inverse_sum = partial.inverse_sum;
-
-    auto tap = [&](int dx, int dy) {
-        const std::ptrdiff_t off = centre + std::ptrdiff_t(dy) * L.stride + dx;
-        const auto m = members<V, NC, kGuard>(L, ctr, off);
-        if constexpr (NG > 0) {
-            // The guide weight costs an exp; a tap no lane accepts adds nothing anyway.
-            if (V::none(m))
-                return;
+    CentreState<V, NC, NG> ctr[R];
+    for (int k = 0; k < R; ++k) {
+        // Σ W_ij (F_j − F_i) rather than Σ W_ij F_j: out_i = F_i + that / Σ W_ij is the
+        // same average, but members equal to the centre add exactly nothing, so flat
+        // regions come back bit for bit and large offsets (HDR) lose no digits.
+        const std::ptrdiff_t centre = std::ptrdiff_t(y + k) * L.stride + x0;
+        CentreState<V, NC, NG>& s = ctr[k];
+        for (int c = 0; c < NC; ++c) {
+            s.test.mean[c] = V::load(L.mean[c] + centre);
+            s.test.threshold[c] = V::load(L.threshold[c] + centre);
+            s.value[c] = V::load(L.value[c] + centre);
+            s.acc[c] = partial[k].acc[c];
         }
-        F w;
+        if constexpr (kGuard)
+            s.test.noise_limit = V::load(L.noise_limit + centre);
+        for (int g = 0; g < NG; ++g)
+            s.guide[g] = V::load(L.guide[g] + centre);
+        s.weight_sum = partial[k].weight_sum;
+        s.member_count = partial[k].member_count;
+        s.inverse_sum = partial[k].inverse_sum;
+    }
+
+    // The taps at column offset dx of window row wy for the centre rows y + k,
+    // k ∈ [First, Last): channel by channel, so each neighbour value is loaded once for all.
+    auto taps = [&](auto first, auto last, int dx, int wy) {
+        constexpr int First = decltype(first)::value, Last = decltype(last)::value;
+        static_assert(NG == 0 || Last - First == 1, "guided taps serve one centre row");
+        const std::ptrdiff_t off = std::ptrdiff_t(wy) * L.stride + x0 + dx;
+        // Membership: all channels pass (μ̃_i − μ̃_j)² − T_j ≤ T_i, the fast form of
+        // method.md §4, (μ̃_i − μ̃_j)² ≤ γ_i²v_i + γ_j²v_j, kept in difference form:
+        // expanding it into D_i + D_j ≤ 2μ̃_iμ̃_j cancels catastrophically in float once
+        // v ≪ μ̃² (high spp). The firefly guard, where needed, starts the mask chain.
+        typename V::M m[R];
+        if constexpr (kGuard) {
+            const F level = V::load(L.noise + off);
+            for (int k = First; k < Last; ++k)
+                m[k] = V::le(level, ctr[k].test.noise_limit);
+        }
+        for (int c = 0; c < NC; ++c) {
+            F mean = V::load(L.mean[c] + off), threshold = V::load(L.threshold[c] + off);
+            if constexpr (Last - First > 1) {
+                V::in_register(mean);
+                V::in_register(threshold);
+            }
+            for (int k = First; k < Last; ++k) {
+                const F d = V::sub(ctr[k].test.mean[c], mean);
+                const F excess = V::fmsub(d, d, threshold);
+                m[k] = c == 0 && !kGuard ? V::le(excess, ctr[k].test.threshold[c])
+                                         : V::le_and(m[k], excess, ctr[k].test.threshold[c]);
+            }
+        }
+        F w[R];
         if constexpr (NG == 0) {
-            w = V::set1(L.spatial(dx, dy));
+            for (int k = First; k < Last; ++k)
+                w[k] = V::set1(L.spatial(dx, wy - y - k));
         } else {
+            // The guide weight costs an exp; a tap no lane accepts adds nothing anyway.
+            if (V::none(m[First]))
+                return;
             // log2 w = spatial − Σ (Δg)² (guides are stored pre-scaled), summed as two
             // chains joined at the end: the weight's latency bounds this loop.
-            auto difference = [&](int g) { return V::sub(guide[g], V::load(L.guide[g] + off)); };
+            const CentreState<V, NC, NG>& s = ctr[First];
+            auto difference = [&](int g) { return V::sub(s.guide[g], V::load(L.guide[g] + off)); };
             constexpr int kHalf = (NG + 1) / 2;
-            F near = V::set1(L.spatial_log2(dx, dy));
+            F near = V::set1(L.spatial_log2(dx, wy - y - First));
             for (int g = 0; g < kHalf; ++g) {
                 const F d = difference(g);
                 near = V::fnmadd(d, d, near);
@@ -104,34 +126,83 @@ void add_band(const FilterLayout& L, int y, int x0, int dy0, int dy1, Partial<V,
                 const F d = difference(g);
                 far = g == kHalf ? V::mul(d, d) : V::fmadd(d, d, far);
             }
-            w = simd::exp2_nonpositive<V>(V::sub(near, far));
+            w[First] = simd::exp2_nonpositive<V>(V::sub(near, far));
         }
-        for (int c = 0; c < NC; ++c)
-            acc[c] = V::masked_fmadd(m, w, V::sub(V::load(L.value[c] + off), value[c]), acc[c]);
-        weight_sum = V::masked_add(m, weight_sum, w);
-        if constexpr (kDiagnostics) {
-            member_count = V::masked_add(m, member_count, V::set1(1.f));
-            inverse_sum = V::masked_fmadd(m, V::mul(w, w), V::load(L.inverse_count + off), inverse_sum);
+        for (int c = 0; c < NC; ++c) {
+            F value = V::load(L.value[c] + off);
+            if constexpr (Last - First > 1)
+                V::in_register(value);
+            for (int k = First; k < Last; ++k)
+                ctr[k].acc[c] = V::masked_fmadd(m[k], w[k], V::sub(value, ctr[k].value[c]), ctr[k].acc[c]);
+        }
+        for (int k = First; k < Last; ++k) {
+            CentreState<V, NC, NG>& s = ctr[k];
+            s.weight_sum = V::masked_add(m[k], s.weight_sum, w[k]);
+            if constexpr (kDiagnostics) {
+                s.member_count = V::masked_add(m[k], s.member_count, V::set1(1.f));
+                s.inverse_sum = V::masked_fmadd(m[k], V::mul(w[k], w[k]), V::load(L.inverse_count + off), s.inverse_sum);
+            }
         }
     };
+    auto tap = [&](auto row, int dx, int wy) { taps(row, Row<decltype(row)::value + 1>{}, dx, wy); };
+    auto half_width = [&](int k, int wy) {  // −1 where row wy is outside centre k's window
+        const int dy = wy - (y + k);
+        return std::abs(dy) <= L.pad_y ? L.half_width[dy + L.pad_y] : -1;
+    };
+    // One centre's taps of a row, dx ascending; the centre itself is in already.
+    auto row_of_one = [&](auto row, int wy, int hw) {
+        const bool own_row = wy == y + decltype(row)::value;
+        for (int dx = -hw; dx <= hw; ++dx)
+            if (dx != 0 || !own_row)
+                tap(row, dx, wy);
+    };
 
-    for (int dy = dy0; dy <= dy1; ++dy) {
-        const int hw = L.half_width[dy + L.pad_y];
-        if (dy != 0) {
-            for (int dx = -hw; dx <= hw; ++dx)
-                tap(dx, dy);
-        } else {  // the centre is in already, with weight 1
-            for (int dx = -hw; dx < 0; ++dx)
-                tap(dx, 0);
-            for (int dx = 1; dx <= hw; ++dx)
-                tap(dx, 0);
+    for (int wy = y_first; wy <= y_last; ++wy) {
+        if constexpr (R == 1) {
+            row_of_one(Row<0>{}, wy, half_width(0, wy));
+        } else {
+            // Both centres take the columns both disks cover, sharing the neighbour's
+            // loads; the wider disk's rim goes alone. Each
+            // centre still sums its taps in dx order, as with R = 1: the bits do not
+            // depend on how rows were paired.
+            const int hw0 = half_width(0, wy), hw1 = half_width(1, wy);
+            const int narrow = std::min(hw0, hw1), wide = std::max(hw0, hw1);
+            if (narrow < 0) {
+                if (hw0 >= 0)
+                    row_of_one(Row<0>{}, wy, hw0);
+                else
+                    row_of_one(Row<1>{}, wy, hw1);
+                continue;
+            }
+            auto rim = [&](int dx0, int dx1) {
+                for (int dx = dx0; dx <= dx1; ++dx) {
+                    if (hw0 > hw1)
+                        tap(Row<0>{}, dx, wy);
+                    else
+                        tap(Row<1>{}, dx, wy);
+                }
+            };
+            auto both = [&](int dx0, int dx1) {
+                for (int dx = dx0; dx <= dx1; ++dx)
+                    taps(Row<0>{}, Row<2>{}, dx, wy);
+            };
+            rim(-wide, -narrow - 1);
+            both(-narrow, -1);
+            if (wy != y)
+                tap(Row<0>{}, 0, wy);
+            if (wy != y + 1)
+                tap(Row<1>{}, 0, wy);
+            both(1, narrow);
+            rim(narrow + 1, wide);
         }
     }
-    for (int c = 0; c < NC; ++c)
-        partial.acc[c] = acc[c];
-    partial.weight_sum = weight_sum;
-    partial.member_count = member_count;
-    partial.inverse_sum = inverse_sum;
+    for (int k = 0; k < R; ++k) {
+        for (int c = 0; c < NC; ++c)
+            partial[k].acc[c] = ctr[k].acc[c];
+        partial[k].weight_sum = ctr[k].weight_sum;
+        partial[k].member_count = ctr[k].member_count;
+        partial[k].inverse_sum = ctr[k].inverse_sum;
+    }
 }
 
 template <class V, int NC, bool kDiagnostics>
@@ -167,36 +238,60 @@ void write_chunk(const FilterLayout& L, const std::vector<Plane>& out, const Fil
 /// (~70 KB at r = 20) streams it from L2 and runs at half the speed.
 constexpr int kBandRows = 4;
 
+/// Centre rows per pass: two where both rows' registers fit in AVX-512's 32 (up to three
+/// channels, no guides, no diagnostics), one elsewhere.
+template <class V, int NC, int NG, bool kDiagnostics>
+constexpr int centre_rows()
+{
+    return V::kWidth == 16 && NC <= 3 && NG == 0 && !kDiagnostics ? 2 : 1;
+}
+
 template <class V, int NC, int NG, bool kDiagnostics>
 void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
                       const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
-    std::vector<Partial<V, NC>> partials(chunk1 - chunk0);
-    for (int y = y0; y < y1; ++y) {
-        for (auto& p : partials) {
-            for (int c = 0; c < NC; ++c)
-                p.acc[c] = V::zero();
-            p.weight_sum = V::set1(1.f);  // the centre
-            p.member_count = V::set1(1.f);
-            p.inverse_sum = V::zero();
-        }
-        if constexpr (kDiagnostics)
-            for (int k = chunk0; k < chunk1; ++k)
-                partials[k - chunk0].inverse_sum =
-                    V::load(L.inverse_count + std::ptrdiff_t(y) * L.stride + k * V::kWidth);
-        // Bands in a fixed order: each pixel sums its taps in the same order whatever the
-        // tiling, so results stay bitwise identical for any thread count.
-        for (int dy0 = -L.pad_y; dy0 <= L.pad_y; dy0 += kBandRows) {
-            const int dy1 = std::min(dy0 + kBandRows - 1, L.pad_y);
+    constexpr int R = centre_rows<V, NC, NG, kDiagnostics>();
+    std::vector<std::array<Partial<V, NC>, R>> partials(chunk1 - chunk0);
+    for (int y = y0; y < y1; y += R) {
+        const int rows = std::min(R, y1 - y);
+        for (int k = chunk0; k < chunk1; ++k)
+            for (int r = 0; r < rows; ++r) {
+                Partial<V, NC>& p = partials[k - chunk0][r];
+                for (int c = 0; c < NC; ++c)
+                    p.acc[c] = V::zero();
+                p.weight_sum = V::set1(1.f);  // the centre
+                p.member_count = V::set1(1.f);
+                p.inverse_sum = kDiagnostics
+                    ? V::load(L.inverse_count + std::ptrdiff_t(y + r) * L.stride + k * V::kWidth)
+                    : V::zero();
+            }
+        auto add = [&](auto centre_rows, int k, int wy0, int wy1) {
+            constexpr int kRows = decltype(centre_rows)::value;
+            Partial<V, NC>* p = partials[k - chunk0].data();
+            bool guard = false;
+            for (int r = 0; r < kRows; ++r)
+                guard = guard || L.needs_guard(y + r, k);
+            if (guard)
+                add_band<V, NC, NG, kRows, kDiagnostics, true>(L, y, k * V::kWidth, wy0, wy1, p);
+            else
+                add_band<V, NC, NG, kRows, kDiagnostics, false>(L, y, k * V::kWidth, wy0, wy1, p);
+        };
+        // Bands of window rows in a fixed order, and taps in a fixed order within each:
+        // every pixel sums its taps in the same order whatever the tiling and pairing of
+        // rows, so results stay bitwise identical for any thread count.
+        const int last_row = y + rows - 1 + L.pad_y;
+        for (int wy0 = y - L.pad_y; wy0 <= last_row; wy0 += kBandRows) {
+            const int wy1 = std::min(wy0 + kBandRows - 1, last_row);
             for (int k = chunk0; k < chunk1; ++k) {
-                if (L.needs_guard(y, k))
-                    add_band<V, NC, NG, kDiagnostics, true>(L, y, k * V::kWidth, dy0, dy1, partials[k - chunk0]);
+                if (rows == R)
+                    add(Row<R>{}, k, wy0, wy1);
                 else
-                    add_band<V, NC, NG, kDiagnostics, false>(L, y, k * V::kWidth, dy0, dy1, partials[k - chunk0]);
+                    add(Row<1>{}, k, wy0, wy1);
             }
         }
         for (int k = chunk0; k < chunk1; ++k)
-            write_chunk<V, NC, kDiagnostics>(L, out, diag, y, k * V::kWidth, partials[k - chunk0]);
+            for (int r = 0; r < rows; ++r)
+                write_chunk<V, NC, kDiagnostics>(L, out, diag, y + r, k * V::kWidth, partials[k - chunk0][r]);
     }
 }
 

@@ -30,6 +30,7 @@ struct Avx2 {
     static F masked_add(M m, F acc, F a) { return add(acc, select(m, a)); }
     static bool none(M m) { return _mm256_movemask_ps(m) == 0; }
     static void store(float* p, F v) { _mm256_storeu_ps(p, v); }
+    static void in_register(F& v) { asm("" : "+x"(v)); }
 
     static F round(F x) { return _mm256_round_ps(x, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC); }
     /// p·2^n for p ∈ [½, 2] by exponent arithmetic; 0 where 2^n would be denormal or

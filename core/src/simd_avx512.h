@@ -36,6 +36,9 @@ struct Avx512 {
     static F masked_add(M m, F acc, F a) { return _mm512_mask_add_ps(acc, m, acc, a); }
     static bool none(M m) { return m == 0; }
     static void store(float* p, F v) { _mm512_storeu_ps(p, v); }
+    /// Makes a loaded value live in a register: GCC would otherwise fold the load into
+    /// each of its users as a memory operand, loading it once per user.
+    static void in_register(F& v) { asm("" : "+v"(v)); }
 
     static F round(F x) { return _mm512_roundscale_ps(x, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC); }
     /// p·2^n by vscalefps for p ∈ [½, 2]; 0 where 2^n would be denormal or less, as in

@@ -31,6 +31,7 @@ struct Scalar {
     static F round(F x) { return std::nearbyint(x); }
     static F scale_by_power_of_two(F p, F n) { return n < -125.f ? 0.f : std::ldexp(p, int(n)); }
     static void store(float* p, F v) { *p = v; }
+    static void in_register(F&) {}
 };
 
 }  // namespace statmc::simd
