@@ -79,19 +79,6 @@ EstimatorImage::EstimatorImage(int w, int h, int c) : width(w), height(h), chann
     test_variance.assign(pixels() * c, kUntestable);
 }
 
-bool EstimatorImage::testable(int x, int y) const
-{
-    if (!(count[index(0, x, y)] >= 2))
-        return false;
-    for (int c = 0; c < channels; ++c) {
-        const float m = test_mean[index(c, x, y)];
-        const float v = test_variance[index(c, x, y)];
-        if (!std::isfinite(m) || !std::isfinite(v) || v < 0)
-            return false;
-    }
-    return true;
-}
-
 EstimatorImage estimators_from_statistics(const StatisticsView& stats, TestDomain domain)
 {
     require_channels(stats.channels);

@@ -78,25 +78,28 @@ void mark_guarded_chunks(FilterLayout& L, const NoiseLevels& noise)
     constexpr int kBlock = 16;
     const int bw = (L.width + kBlock - 1) / kBlock, bh = (L.height + kBlock - 1) / kBlock;
     std::vector<float> block_max(std::size_t(bw) * bh, 0.f);
-    for (int y = 0; y < L.height; ++y)
-        for (int x = 0; x < L.width; ++x) {
-            float& m = block_max[std::size_t(y / kBlock) * bw + x / kBlock];
-            m = std::max(m, noise.level[std::size_t(y) * L.width + x]);
-        }
-    for (int y = 0; y < L.height; ++y)
-        for (int k = 0; k < L.chunks; ++k) {
-            const int x0 = k * L.lanes, x1 = std::min(L.width, x0 + L.lanes) - 1;
-            float least = kAny;
-            for (int x = x0; x <= x1; ++x)
-                least = std::min(least, noise.limit[std::size_t(y) * L.width + x]);
-            if (least == kAny)
-                continue;
-            float most = 0;
-            for (int by = std::max(0, (y - L.pad_y) / kBlock); by <= std::min(bh - 1, (y + L.pad_y) / kBlock); ++by)
-                for (int bx = std::max(0, (x0 - L.pad_x) / kBlock); bx <= std::min(bw - 1, (x1 + L.pad_x) / kBlock); ++bx)
-                    most = std::max(most, block_max[std::size_t(by) * bw + bx]);
-            L.guarded[std::size_t(y) * L.chunks + k] = most > least;
-        }
+    tbb::parallel_for(0, bh, [&](int by) {
+        float* row_max = block_max.data() + std::size_t(by) * bw;
+        for (int y = by * kBlock; y < std::min(L.height, (by + 1) * kBlock); ++y)
+            for (int x = 0; x < L.width; ++x)
+                row_max[x / kBlock] = std::max(row_max[x / kBlock], noise.level[std::size_t(y) * L.width + x]);
+    });
+    tbb::parallel_for(tbb::blocked_range<int>(0, L.height, 16), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y)
+            for (int k = 0; k < L.chunks; ++k) {
+                const int x0 = k * L.lanes, x1 = std::min(L.width, x0 + L.lanes) - 1;
+                float least = kAny;
+                for (int x = x0; x <= x1; ++x)
+                    least = std::min(least, noise.limit[std::size_t(y) * L.width + x]);
+                if (least == kAny)
+                    continue;
+                float most = 0;
+                for (int by = std::max(0, (y - L.pad_y) / kBlock); by <= std::min(bh - 1, (y + L.pad_y) / kBlock); ++by)
+                    for (int bx = std::max(0, (x0 - L.pad_x) / kBlock); bx <= std::min(bw - 1, (x1 + L.pad_x) / kBlock); ++bx)
+                        most = std::max(most, block_max[std::size_t(by) * bw + bx]);
+                L.guarded[std::size_t(y) * L.chunks + k] = most > least;
+            }
+    });
 }
 
 }  // namespace

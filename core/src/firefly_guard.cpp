@@ -22,20 +22,15 @@ void for_each_row(int height, Body&& body)
     });
 }
 
-/// The upper median of k values (the k/2-th smallest), robust to a noisy pixel or two
-/// next door. All eight neighbours, the common case, go through a sorting network.
-float upper_median(float* v, int k)
+/// The upper median (fifth smallest) of eight values by Batcher's odd-even merge sort:
+/// branch-free, so a row of them vectorises.
+inline float upper_median_of_eight(float* v)
 {
-    if (k != 8) {
-        std::nth_element(v, v + k / 2, v + k);
-        return v[k / 2];
-    }
     auto order = [&](int a, int b) {
         const float lo = std::min(v[a], v[b]), hi = std::max(v[a], v[b]);
         v[a] = lo;
         v[b] = hi;
     };
-    // Batcher's odd-even merge sort of eight values.
     order(0, 1); order(2, 3); order(4, 5); order(6, 7);
     order(0, 2); order(1, 3); order(4, 6); order(5, 7);
     order(1, 2); order(5, 6);
@@ -43,6 +38,16 @@ float upper_median(float* v, int k)
     order(2, 4); order(3, 5);
     order(1, 2); order(3, 4); order(5, 6);
     return v[4];
+}
+
+/// The upper median of k values (the k/2-th smallest), robust to a noisy pixel or two
+/// next door.
+float upper_median(float* v, int k)
+{
+    if (k == 8)
+        return upper_median_of_eight(v);
+    std::nth_element(v, v + k / 2, v + k);
+    return v[k / 2];
 }
 
 bool all_zero(const EstimatorImage& est, int x, int y)
@@ -63,43 +68,64 @@ bool firefly_guard_applies(const EstimatorImage& est, float ratio)
 NoiseLevels noise_levels(const EstimatorImage& est, float ratio)
 {
     const int w = est.width, h = est.height;
-    NoiseLevels out{std::vector<float>(est.pixels(), 0.f), std::vector<float>(est.pixels(), kAny)};
+    NoiseLevels out{std::vector<float>(est.pixels()), std::vector<float>(est.pixels())};
     std::vector<std::uint8_t> testable(est.pixels());
+    std::vector<std::uint8_t> row_testable(h);  // every pixel of the row is
     for_each_row(h, [&](int y) {
+        bool all = true;
         for (int x = 0; x < w; ++x) {
             const std::size_t i = std::size_t(y) * w + x;
             testable[i] = est.testable(x, y);
-            if (!testable[i])
-                continue;
+            all = all && testable[i];
             float level = 0;
-            for (int c = 0; c < est.channels; ++c)
-                level = std::max(level, est.test_variance[est.index(c, x, y)] * est.count[i]);
+            if (testable[i])
+                for (int c = 0; c < est.channels; ++c)
+                    level = std::max(level, est.test_variance[est.index(c, x, y)] * est.count[i]);
             out.level[i] = level;
         }
+        row_testable[y] = all;
     });
-    if (!firefly_guard_applies(est, ratio))
+    if (!firefly_guard_applies(est, ratio)) {
+        std::fill(out.limit.begin(), out.limit.end(), kAny);
         return out;
+    }
+    auto level = [&](int x, int y) { return out.level[std::size_t(y) * w + x]; };
     for_each_row(h, [&](int y) {
-        float around[8];
+        float* limit = out.limit.data() + std::size_t(y) * w;
+        // Inside rows whose 3×3 neighbourhoods are all testable — nearly every row — the
+        // eight neighbours' medians go through the sorting network a whole row at a time,
+        // which the compiler vectorises.
+        std::vector<float> median(w, -1.f);  // −1: not computed
+        if (y > 0 && y + 1 < h && row_testable[y - 1] && row_testable[y] && row_testable[y + 1])
+            for (int x = 1; x + 1 < w; ++x) {
+                float around[8] = {level(x - 1, y - 1), level(x, y - 1), level(x + 1, y - 1), level(x - 1, y),
+                                   level(x + 1, y),     level(x - 1, y + 1), level(x, y + 1), level(x + 1, y + 1)};
+                median[x] = upper_median_of_eight(around);
+            }
         for (int x = 0; x < w; ++x) {
-            const std::size_t i = std::size_t(y) * w + x;
-            if (!testable[i])
+            limit[x] = kAny;
+            if (!testable[std::size_t(y) * w + x])
                 continue;
-            int k = 0;
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const int u = x + dx, v = y + dy;
-                    if ((dx || dy) && u >= 0 && v >= 0 && u < w && v < h &&
-                        testable[std::size_t(v) * w + u])
-                        around[k++] = out.level[std::size_t(v) * w + u];
-                }
-            if (k < kMinNeighbours)
-                continue;
-            const float reference = std::max(out.level[i], upper_median(around, k));
+            float m = median[x];
+            if (m < 0) {  // a border, or an untestable pixel nearby
+                float around[8];
+                int k = 0;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const int u = x + dx, v = y + dy;
+                        if ((dx || dy) && u >= 0 && v >= 0 && u < w && v < h &&
+                            testable[std::size_t(v) * w + u])
+                            around[k++] = level(u, v);
+                    }
+                if (k < kMinNeighbours)
+                    continue;
+                m = upper_median(around, k);
+            }
+            const float reference = std::max(level(x, y), m);
             if (reference > 0)
-                out.limit[i] = ratio * reference;
+                limit[x] = ratio * reference;
             else if (!all_zero(est, x, y))
-                out.limit[i] = 0;  // noise-free and lit (an emitter): certain, takes only its equals
+                limit[x] = 0;  // noise-free and lit (an emitter): certain, takes only its equals
         }
     });
     return out;

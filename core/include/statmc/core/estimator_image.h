@@ -2,6 +2,7 @@
 // of statistics a renderer can give.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -43,7 +44,18 @@ struct EstimatorImage {
     {
         return std::size_t(c) * pixels() + std::size_t(y) * width + x;
     }
-    bool testable(int x, int y) const;
+    bool testable(int x, int y) const
+    {
+        if (!(count[index(0, x, y)] >= 2))
+            return false;
+        for (int c = 0; c < channels; ++c) {
+            const float m = test_mean[index(c, x, y)];
+            const float v = test_variance[index(c, x, y)];
+            if (!std::isfinite(m) || !std::isfinite(v) || v < 0)
+                return false;
+        }
+        return true;
+    }
 };
 
 /// Full statistics (mode 1) or mean + variance + count (mode 2, TestDomain::Untransformed).
