@@ -17,24 +17,35 @@ using namespace statmc;
 
 constexpr int kWidth = 1280, kHeight = 720, kSamples = 64;
 
-// A render-like frame: smooth shading, a few hard edges, exponential noise.
-const StatisticsPlanes& frame()
+// A render-like frame: smooth shading, a few hard edges, exponential noise. With
+// fireflies, one pixel in 500 has one sample 1000× brighter, so the firefly guard has
+// work to do in most chunks.
+StatisticsPlanes make_frame(bool fireflies)
 {
-    static const StatisticsPlanes planes = [] {
-        std::mt19937_64 rng(1);
-        StatisticsImage<3> img(kWidth, kHeight);
-        for (int y = 0; y < kHeight; ++y)
-            for (int x = 0; x < kWidth; ++x) {
-                const float shade = 0.2f + 0.6f * float(x) / kWidth + ((x / 160 + y / 120) % 2) * 0.5f;
-                std::exponential_distribution<float> expo(1.f / shade);
-                for (int i = 0; i < kSamples; ++i) {
-                    const float s[3] = {expo(rng), 0.8f * expo(rng), 0.6f * expo(rng)};
-                    img.add(x, y, s);
-                }
+    std::mt19937_64 rng(1);
+    std::uniform_int_distribution<int> one_in_500(0, 499);
+    StatisticsImage<3> img(kWidth, kHeight);
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const float shade = 0.2f + 0.6f * float(x) / kWidth + ((x / 160 + y / 120) % 2) * 0.5f;
+            std::exponential_distribution<float> expo(1.f / shade);
+            const bool firefly = fireflies && one_in_500(rng) == 0;
+            for (int i = 0; i < kSamples; ++i) {
+                const float gain = firefly && i == 0 ? 1000.f : 1.f;
+                const float s[3] = {gain * expo(rng), gain * 0.8f * expo(rng), gain * 0.6f * expo(rng)};
+                img.add(x, y, s);
             }
-        return img.planes();
-    }();
-    return planes;
+        }
+    return img.planes();
+}
+
+const StatisticsPlanes& frame(bool fireflies = false)
+{
+    static const StatisticsPlanes clean = make_frame(false);
+    if (!fireflies)
+        return clean;
+    static const StatisticsPlanes with_fireflies = make_frame(true);
+    return with_fireflies;
 }
 
 struct GuidePlanes {
@@ -84,9 +95,10 @@ EstimatorImage crop(const EstimatorImage& full, int w, int h)
 }
 
 void run(benchmark::State& state, bool with_guides, SimdLevel level, bool reference,
-         float firefly_ratio = DenoiseOptions{}.firefly_ratio, int radius = DenoiseOptions{}.radius)
+         float firefly_ratio = DenoiseOptions{}.firefly_ratio, int radius = DenoiseOptions{}.radius,
+         bool fireflies = false)
 {
-    EstimatorImage est = estimators_from_statistics(frame().view(), TestDomain::BoxCox);
+    EstimatorImage est = estimators_from_statistics(frame(fireflies).view(), TestDomain::BoxCox);
     if (reference)
         est = crop(est, kWidth / 4, kHeight / 4);
     static GuidePlanes guide_planes;
@@ -110,6 +122,8 @@ void run(benchmark::State& state, bool with_guides, SimdLevel level, bool refere
     std::string label = reference ? "reference (double, 1 thread, 320x180 crop)" : simd_level_name(level);
     if (firefly_ratio == 0)
         label += ", no firefly guard";
+    if (fireflies)
+        label += ", 1 pixel in 500 a firefly";
     if (radius == 0)
         label += ", r = 0: the per-call cost outside the window walk";
     state.SetLabel(label);
@@ -118,6 +132,7 @@ void run(benchmark::State& state, bool with_guides, SimdLevel level, bool refere
 void BM_Filter(benchmark::State& s) { run(s, false, detected_simd_level(), false); }
 void BM_FilterGuides(benchmark::State& s) { run(s, true, detected_simd_level(), false); }
 void BM_FilterNoGuard(benchmark::State& s) { run(s, false, detected_simd_level(), false, 0.f); }
+void BM_FilterFireflies(benchmark::State& s) { run(s, s.range(1) != 0, detected_simd_level(), false, DenoiseOptions{}.firefly_ratio, DenoiseOptions{}.radius, true); }
 void BM_FilterFixedCost(benchmark::State& s) { run(s, s.range(1) != 0, detected_simd_level(), false, DenoiseOptions{}.firefly_ratio, 0); }
 void BM_FilterAvx2Kernel(benchmark::State& s)
 {
@@ -137,6 +152,7 @@ BENCHMARK(BM_Filter)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime
 BENCHMARK(BM_FilterGuides)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterNoGuard)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
 // Args: threads, guides (0/1).
+BENCHMARK(BM_FilterFireflies)->Args({0, 0})->Args({0, 1})->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterFixedCost)->Args({0, 0})->Args({0, 1})->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterAvx2Kernel)->Args({0, 0})->Args({0, 1})->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
 BENCHMARK(BM_FilterScalarKernel)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(3)->ReportAggregatesOnly();

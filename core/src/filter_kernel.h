@@ -14,6 +14,10 @@
 #include "filter_layout.h"
 #include "simd_exp2.h"
 
+// The tap code must be inlined into its loops: GCC's size heuristics otherwise outline
+// it once it has a few call sites, and every call then pays a vzeroupper and spills.
+#define STATMC_INLINE __attribute__((always_inline))
+
 namespace statmc::detail {
 namespace {
 
@@ -76,7 +80,7 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Par
 
     // The taps at column offset dx of window row wy for the centre rows y + k,
     // k ∈ [First, Last): channel by channel, so each neighbour value is loaded once for all.
-    auto taps = [&](auto first, auto last, int dx, int wy) {
+    auto taps = [&](auto first, auto last, int dx, int wy) STATMC_INLINE {
         constexpr int First = decltype(first)::value, Last = decltype(last)::value;
         static_assert(NG == 0 || Last - First == 1, "guided taps serve one centre row");
         const std::ptrdiff_t off = std::ptrdiff_t(wy) * L.stride + x0 + dx;
@@ -144,17 +148,20 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Par
             }
         }
     };
-    auto tap = [&](auto row, int dx, int wy) { taps(row, Row<decltype(row)::value + 1>{}, dx, wy); };
+    auto tap = [&](auto row, int dx, int wy) STATMC_INLINE { taps(row, Row<decltype(row)::value + 1>{}, dx, wy); };
     auto half_width = [&](int k, int wy) {  // −1 where row wy is outside centre k's window
         const int dy = wy - (y + k);
         return std::abs(dy) <= L.pad_y ? L.half_width[dy + L.pad_y] : -1;
     };
     // One centre's taps of a row, dx ascending; the centre itself is in already.
-    auto row_of_one = [&](auto row, int wy, int hw) {
+    auto row_of_one = [&](auto row, int wy, int hw) STATMC_INLINE {
         const bool own_row = wy == y + decltype(row)::value;
-        for (int dx = -hw; dx <= hw; ++dx)
-            if (dx != 0 || !own_row)
-                tap(row, dx, wy);
+        for (int dx = -hw; dx < 0; ++dx)
+            tap(row, dx, wy);
+        if (!own_row && hw >= 0)
+            tap(row, 0, wy);
+        for (int dx = 1; dx <= hw; ++dx)
+            tap(row, dx, wy);
     };
 
     for (int wy = y_first; wy <= y_last; ++wy) {
@@ -174,7 +181,7 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Par
                     row_of_one(Row<1>{}, wy, hw1);
                 continue;
             }
-            auto rim = [&](int dx0, int dx1) {
+            auto rim = [&](int dx0, int dx1) STATMC_INLINE {
                 for (int dx = dx0; dx <= dx1; ++dx) {
                     if (hw0 > hw1)
                         tap(Row<0>{}, dx, wy);
@@ -182,7 +189,7 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Par
                         tap(Row<1>{}, dx, wy);
                 }
             };
-            auto both = [&](int dx0, int dx1) {
+            auto both = [&](int dx0, int dx1) STATMC_INLINE {
                 for (int dx = dx0; dx <= dx1; ++dx)
                     taps(Row<0>{}, Row<2>{}, dx, wy);
             };
@@ -331,3 +338,5 @@ void filter_rows(const FilterLayout& L, const std::vector<Plane>& out,
 
 }  // namespace
 }  // namespace statmc::detail
+
+#undef STATMC_INLINE
