@@ -8,62 +8,14 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench_frame.h"
 #include "statmc/core/filter.h"
-#include "statmc/core/statistics_image.h"
 
 namespace {
 
 using namespace statmc;
-
-constexpr int kWidth = 1280, kHeight = 720, kSamples = 64;
-
-// A render-like frame: smooth shading, a few hard edges, exponential noise. With
-// fireflies, one pixel in 500 has one sample 1000× brighter, so the firefly guard has
-// work to do in most chunks.
-StatisticsPlanes make_frame(bool fireflies)
-{
-    std::mt19937_64 rng(1);
-    std::uniform_int_distribution<int> one_in_500(0, 499);
-    StatisticsImage<3> img(kWidth, kHeight);
-    for (int y = 0; y < kHeight; ++y)
-        for (int x = 0; x < kWidth; ++x) {
-            const float shade = 0.2f + 0.6f * float(x) / kWidth + ((x / 160 + y / 120) % 2) * 0.5f;
-            std::exponential_distribution<float> expo(1.f / shade);
-            const bool firefly = fireflies && one_in_500(rng) == 0;
-            for (int i = 0; i < kSamples; ++i) {
-                const float gain = firefly && i == 0 ? 1000.f : 1.f;
-                const float s[3] = {gain * expo(rng), gain * 0.8f * expo(rng), gain * 0.6f * expo(rng)};
-                img.add(x, y, s);
-            }
-        }
-    return img.planes();
-}
-
-const StatisticsPlanes& frame(bool fireflies = false)
-{
-    static const StatisticsPlanes clean = make_frame(false);
-    if (!fireflies)
-        return clean;
-    static const StatisticsPlanes with_fireflies = make_frame(true);
-    return with_fireflies;
-}
-
-struct GuidePlanes {
-    std::vector<float> data = std::vector<float>(std::size_t(6) * kWidth * kHeight);
-    Guides guides;
-    GuidePlanes()
-    {
-        const std::size_t n = std::size_t(kWidth) * kHeight;
-        for (int y = 0; y < kHeight; ++y)
-            for (int x = 0; x < kWidth; ++x)
-                for (int k = 0; k < 6; ++k)
-                    data[k * n + std::size_t(y) * kWidth + x] = 0.1f * k + ((x / 160 + y / 120) % 2) * 0.3f;
-        for (int k = 0; k < 3; ++k) {
-            guides.albedo[k] = dense_plane(data.data() + k * n, kWidth);
-            guides.normal[k] = dense_plane(data.data() + (k + 3) * n, kWidth);
-        }
-    }
-};
+using bench::kHeight;
+using bench::kWidth;
 
 double taps_per_image(int width, int height, int radius)
 {
@@ -98,10 +50,10 @@ void run(benchmark::State& state, bool with_guides, SimdLevel level, bool refere
          float firefly_ratio = DenoiseOptions{}.firefly_ratio, int radius = DenoiseOptions{}.radius,
          bool fireflies = false)
 {
-    EstimatorImage est = estimators_from_statistics(frame(fireflies).view(), TestDomain::BoxCox);
+    EstimatorImage est = estimators_from_statistics(bench::frame(fireflies).view(), TestDomain::BoxCox);
     if (reference)
         est = crop(est, kWidth / 4, kHeight / 4);
-    static GuidePlanes guide_planes;
+    static const bench::GuidePlanes guide_planes;
     const Guides guides = with_guides ? guide_planes.guides : Guides{};
     std::vector<float> out(est.value.size());
     std::vector<Plane> planes;

@@ -1,0 +1,77 @@
+// The denoise operator end to end on an in-memory image, file I/O left out: what
+// `statmc in.exr --denoise` adds to reading and writing the frame, and the stages it
+// spends that on besides the filter (bench_filter). 1280×720 RGB, Box-Cox statistics,
+// n = 64, r = 20; medians over 5 repetitions.
+#include <benchmark/benchmark.h>
+
+#include <OpenImageIO/imagebuf.h>
+
+#include "bench_frame.h"
+#include "statmc/core/estimator_image.h"
+#include "statmc/denoise/denoise.h"
+#include "statmc/layers/statistics_layers.h"
+#include "statmc/layers/statistics_validation.h"
+
+namespace {
+
+using namespace statmc;
+
+// The frame under the EXR layer contract, with albedo and normal layers.
+const OIIO::ImageBuf& image()
+{
+    static const bench::GuidePlanes guides;
+    static const OIIO::ImageBuf buf = [] {
+        layers::GuidePlanes planes;
+        planes.albedo = {guides.guides.albedo[0], guides.guides.albedo[1], guides.guides.albedo[2]};
+        planes.normal = {guides.guides.normal[0], guides.guides.normal[1], guides.guides.normal[2]};
+        return layers::make_statistics_image(bench::frame(), {}, planes);
+    }();
+    return buf;
+}
+
+void BM_DenoiseOperator(benchmark::State& state)
+{
+    DenoiseImageOptions opt;
+    const GuideUse use = state.range(1) ? GuideUse::Required : GuideUse::Off;
+    opt.guides.albedo = opt.guides.normal = use;
+    OIIO::ImageBuf out;
+    for (auto _ : state) {
+        if (!denoise(out, image(), opt, {}, int(state.range(0))))
+            state.SkipWithError(out.geterror().c_str());
+        benchmark::DoNotOptimize(out.localpixels());
+    }
+    state.SetLabel(state.range(1) ? "albedo + normal guides" : "no guides");
+}
+
+// The stages outside the filter, on all cores.
+void BM_StageValidate(benchmark::State& state)
+{
+    const layers::StatisticsChannels ch = layers::find_statistics(image().spec());
+    for (auto _ : state)
+        benchmark::DoNotOptimize(layers::validate_statistics(image(), ch));
+}
+
+void BM_StageEstimators(benchmark::State& state)
+{
+    const StatisticsView view = layers::read_statistics(image());
+    for (auto _ : state)
+        benchmark::DoNotOptimize(estimators_from_statistics(view, TestDomain::BoxCox));
+}
+
+void BM_StageCopy(benchmark::State& state)
+{
+    for (auto _ : state) {
+        OIIO::ImageBuf copy = image().copy(OIIO::TypeDesc::FLOAT);
+        benchmark::DoNotOptimize(copy.localpixels());
+    }
+}
+
+// Args: threads (0 = all cores), guides (0/1).
+BENCHMARK(BM_DenoiseOperator)->Args({0, 0})->Args({0, 1})->Args({1, 0})->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
+BENCHMARK(BM_StageValidate)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
+BENCHMARK(BM_StageEstimators)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
+BENCHMARK(BM_StageCopy)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
+
+}  // namespace
+
+BENCHMARK_MAIN();

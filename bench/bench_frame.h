@@ -1,0 +1,64 @@
+// The benchmarks' frame: the reference size, 1280×720 RGB at n = 64, with
+// render-like statistics and guides. Shared by the filter and operator benchmarks.
+#pragma once
+
+#include <random>
+#include <vector>
+
+#include "statmc/core/filter.h"
+#include "statmc/core/statistics_image.h"
+
+namespace statmc::bench {
+
+constexpr int kWidth = 1280, kHeight = 720, kSamples = 64;
+
+// A render-like frame: smooth shading, a few hard edges, exponential noise. With
+// fireflies, one pixel in 500 has one sample 1000× brighter, so the firefly guard has
+// work to do in most chunks.
+inline StatisticsPlanes make_frame(bool fireflies)
+{
+    std::mt19937_64 rng(1);
+    std::uniform_int_distribution<int> one_in_500(0, 499);
+    StatisticsImage<3> img(kWidth, kHeight);
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const float shade = 0.2f + 0.6f * float(x) / kWidth + ((x / 160 + y / 120) % 2) * 0.5f;
+            std::exponential_distribution<float> expo(1.f / shade);
+            const bool firefly = fireflies && one_in_500(rng) == 0;
+            for (int i = 0; i < kSamples; ++i) {
+                const float gain = firefly && i == 0 ? 1000.f : 1.f;
+                const float s[3] = {gain * expo(rng), gain * 0.8f * expo(rng), gain * 0.6f * expo(rng)};
+                img.add(x, y, s);
+            }
+        }
+    return img.planes();
+}
+
+inline const StatisticsPlanes& frame(bool fireflies = false)
+{
+    static const StatisticsPlanes clean = make_frame(false);
+    if (!fireflies)
+        return clean;
+    static const StatisticsPlanes with_fireflies = make_frame(true);
+    return with_fireflies;
+}
+
+/// Albedo and normal planes with the frame's edges.
+struct GuidePlanes {
+    std::vector<float> data = std::vector<float>(std::size_t(6) * kWidth * kHeight);
+    Guides guides;
+    GuidePlanes()
+    {
+        const std::size_t n = std::size_t(kWidth) * kHeight;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x)
+                for (int k = 0; k < 6; ++k)
+                    data[k * n + std::size_t(y) * kWidth + x] = 0.1f * k + ((x / 160 + y / 120) % 2) * 0.3f;
+        for (int k = 0; k < 3; ++k) {
+            guides.albedo[k] = dense_plane(data.data() + k * n, kWidth);
+            guides.normal[k] = dense_plane(data.data() + (k + 3) * n, kWidth);
+        }
+    }
+};
+
+}  // namespace statmc::bench
