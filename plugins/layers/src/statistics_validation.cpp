@@ -1,6 +1,9 @@
 #include "statmc/layers/statistics_validation.h"
 
+#include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -48,6 +51,24 @@ bool is_bad(Check check, float v)
     return false;
 }
 
+/// The values each check accepts: is_bad(check, v) implies v ∉ [lo, hi] (NaN is in no
+/// range), so a pixel inside every range of its checks passes them all.
+struct Range {
+    float lo = -std::numeric_limits<float>::infinity();
+    float hi = std::numeric_limits<float>::infinity();
+};
+
+Range accepted(Check check)
+{
+    switch (check) {
+    case Check::NonFinite: return {-FLT_MAX, FLT_MAX};
+    case Check::Negative: return {0.f, Range{}.hi};
+    case Check::BelowBoxCoxMinimum: return {-2.f, Range{}.hi};
+    case Check::CountBelowOne: return {1.f, Range{}.hi};
+    }
+    return {};
+}
+
 /// One check of one channel, and what it found: how many bad pixels, and the first.
 struct Task {
     ConstPlane plane;
@@ -60,18 +81,52 @@ struct Found {
     int first_x = -1;
 };
 
+/// A channel with the intersection of the ranges its checks accept.
+struct Bound {
+    ConstPlane plane;
+    Range range;
+};
+
+std::vector<Bound> bounds_of(const std::vector<Task>& tasks)
+{
+    std::vector<Bound> bounds;
+    for (const Task& t : tasks) {
+        auto same = std::find_if(bounds.begin(), bounds.end(), [&](const Bound& b) { return b.plane.data == t.plane.data; });
+        if (same == bounds.end())
+            same = bounds.insert(bounds.end(), Bound{t.plane, {}});
+        const Range r = accepted(t.check);
+        same->range.lo = std::max(same->range.lo, r.lo);
+        same->range.hi = std::min(same->range.hi, r.hi);
+    }
+    return bounds;
+}
+
 // One pass over the pixels checks every channel: the channels of a pixel are adjacent
-// in memory, so a pass per channel would read the whole image once for each. Rows run
-// in parallel and are combined in order, so the pixel reported is always the first bad
-// one in raster order.
+// in memory, so a pass per channel would read the whole image once for each. A row is
+// first checked against each channel's accepted range, branch-free; only a row that
+// fails it (a rare, bad row) runs the checks one by one to count and locate what is
+// wrong. Rows run in parallel and are combined in order, so the pixel reported is
+// always the first bad one in raster order.
 void run(const std::vector<Task>& tasks, const Region& r, std::vector<StatisticsProblem>& problems)
 {
     const int rows = r.y1 - r.y0, n = int(tasks.size());
     if (rows <= 0 || n == 0)
         return;
+    const std::vector<Bound> bounds = bounds_of(tasks);
+    auto row_passes = [&](int y) {
+        bool inside = true;
+        for (int x = r.x0; x < r.x1; ++x)
+            for (const Bound& b : bounds) {
+                const float v = b.plane(x, y);
+                inside &= (v >= b.range.lo) & (v <= b.range.hi);
+            }
+        return inside;
+    };
     std::vector<Found> found(std::size_t(rows) * n);
     tbb::parallel_for(tbb::blocked_range<int>(r.y0, r.y1, 16), [&](const tbb::blocked_range<int>& range) {
         for (int y = range.begin(); y < range.end(); ++y) {
+            if (row_passes(y))
+                continue;
             Found* row = &found[std::size_t(y - r.y0) * n];
             for (int x = r.x0; x < r.x1; ++x)
                 for (int t = 0; t < n; ++t)
