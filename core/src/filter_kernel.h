@@ -1,6 +1,7 @@
-// The filter's inner loop, written once over a SIMD type V (simd_scalar.h, simd_avx2.h).
-// Lanes are consecutive output pixels of one row; every tap is two unaligned loads per
-// tested channel, so the window walk is pure streaming arithmetic.
+// The filter's inner loop, written once over a SIMD type V (simd_scalar.h, simd_avx2.h,
+// simd_avx512.h). Lanes are consecutive output pixels of one row, so a tap is a few
+// unaligned loads and streaming arithmetic; where the registers allow, two rows walk
+// their windows together (centre_rows()).
 //
 // Everything here has internal linkage on purpose: the header is compiled once per
 // instruction set, and shared inline symbols could let the linker mix the two builds.
@@ -51,7 +52,7 @@ using Row = std::integral_constant<int, K>;
 
 /// Adds the taps of absolute window rows [y_first, y_last] to the R chunks of lanes that
 /// start at (x0, y), (x0, y + 1), …: R = 2 centre rows share every neighbour load, which
-/// halves the loads per tap where they, not the arithmetic, bound the loop.
+/// halves the loads per tap, and with guides lets two rows' weight chains overlap.
 template <class V, int NC, int NG, int R, bool kDiagnostics, bool kGuard>
 void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Partial<V, NC>* partial)
 {
