@@ -75,7 +75,7 @@ void run_operator(const statmc::OperatorSpec& op, ToolContext& ctx, const Invoca
     const std::size_t count = input_count(op, inv, ctx);
     if (count > 0)
         ctx.stack.top(inv.name);  // "the image stack is empty" says more than "needs 1"
-    const std::vector<StackImage> popped = ctx.stack.pop(count, inv.name);
+    std::vector<StackImage> popped = ctx.stack.pop(count, inv.name);
     std::vector<const OIIO::ImageBuf*> images;
     statmc::RunContext run_context;
     run_context.nthreads = ctx.nthreads;
@@ -85,7 +85,16 @@ void run_operator(const statmc::OperatorSpec& op, ToolContext& ctx, const Invoca
         images.push_back(&s.image());
         run_context.input_labels.push_back(s.label);
     }
-    StackImage result{op.run(images, inv.modifiers.values(), run_context), ""};
+    StackImage result;
+    if (op.run_in_place && popped.size() == 1) {
+        // The popped image is the stack's own, so the operator may reuse it (statmc's
+        // operators read subimage 0 and push a one-part image either way).
+        OIIO::ImageBuf image = std::move(popped[0].subimages.front());
+        op.run_in_place(image, inv.modifiers.values(), run_context);
+        result = StackImage{std::move(image), ""};
+    } else {
+        result = StackImage{op.run(images, inv.modifiers.values(), run_context), ""};
+    }
     // One input is named in the message; several are named by the operator itself.
     const std::string where = popped.size() == 1 ? popped[0].label + ": " : "";
     if (result.image().has_error())

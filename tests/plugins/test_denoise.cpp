@@ -1,6 +1,7 @@
 // The denoise operator must give exactly what core's filter gives on the same
 // statistics, and touch nothing else.
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 
@@ -251,6 +252,48 @@ TEST(DenoiseOperator, DstMayBeSrcAndThreadCountDoesNotMatter)
         for (int x = 0; x < kW; ++x)
             ASSERT_TRUE(same_bits(channel_value(in_place, "B", x, y),
                                   channel_value(once, "B", x, y)));
+}
+
+// Every channel's pixels bit for bit, the channel names and every header attribute.
+void expect_identical_images(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b)
+{
+    ASSERT_EQ(a.spec().channelnames, b.spec().channelnames);
+    ASSERT_EQ(a.roi(), b.roi());
+    EXPECT_EQ(a.spec().serialize(OIIO::ImageSpec::SerialText), b.spec().serialize(OIIO::ImageSpec::SerialText));
+    std::vector<float> pa(a.spec().image_pixels() * a.nchannels()), pb(pa.size());
+    ASSERT_TRUE(a.get_pixels(a.roi(), OIIO::TypeDesc::FLOAT, pa.data()));
+    ASSERT_TRUE(b.get_pixels(b.roi(), OIIO::TypeDesc::FLOAT, pb.data()));
+    EXPECT_EQ(std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(float)), 0);
+}
+
+TEST(DenoiseOperator, InPlaceGivesTheCopysImageForEveryInputForm)
+{
+    // In place the means are patched into the input's float pixels (or its float
+    // conversion) instead of a copy; nothing else may differ.
+    Frame f;
+    f.image.set_origin(3, -2);
+    const OIIO::ROI corner(3, 20, -2, 9);
+    DenoiseImageOptions with_diagnostics = options();
+    with_diagnostics.diagnostics = true;
+    struct Form {
+        const char* what;
+        OIIO::TypeDesc type;
+        OIIO::ROI roi;
+        DenoiseImageOptions opt;
+    };
+    for (const Form& form : {Form{"float", OIIO::TypeDesc::FLOAT, {}, options()},
+                             Form{"half", OIIO::TypeDesc::HALF, {}, options()},
+                             Form{"float, ROI", OIIO::TypeDesc::FLOAT, corner, options()},
+                             Form{"float, diagnostics", OIIO::TypeDesc::FLOAT, {}, with_diagnostics}}) {
+        SCOPED_TRACE(form.what);
+        const OIIO::ImageBuf input = f.image.copy(form.type);
+        const OIIO::ImageBuf copied = denoise(input, form.opt, form.roi);
+        ASSERT_FALSE(copied.has_error()) << copied.geterror();
+        OIIO::ImageBuf in_place = input.copy(form.type);
+        ASSERT_TRUE(denoise(in_place, in_place, form.opt, form.roi)) << in_place.geterror();
+        expect_identical_images(in_place, copied);
+        EXPECT_GT(changed_pixels(in_place, f.image.copy(OIIO::TypeDesc::FLOAT)), 0u);
+    }
 }
 
 TEST(DenoiseOperator, NonFiniteStatisticsAreRefusedOrZeroed)

@@ -171,25 +171,22 @@ void write_region(OIIO::ImageBuf& result, int channel, const float* dense, const
             to(x, y) = from(x, y);
 }
 
-// A float copy of `in`, every channel and attribute kept, whose mean channels inside the
-// output region hold the filtered values. One parallel pass that patches each row while
-// it is in cache: copying the ~80 MB of a 1280×720 statistics image and then patching it
-// walked it twice, on one thread.
-OIIO::ImageBuf denoised_copy(const OIIO::ImageBuf& in, const StatisticsChannels& ch,
-                             const Filtered& f, const Regions& regions, int nthreads)
+// Writes the filtered means into `image` over the output region, row by row in parallel.
+// With `source`, each row is first copied from it (same spec): copying a 1280×720
+// statistics image (~80 MB) and then patching it walked it twice, on one thread.
+void patch_means(OIIO::ImageBuf& image, const OIIO::ImageBuf* source, const StatisticsChannels& ch,
+                 const Filtered& f, const Regions& regions, int nthreads)
 {
-    OIIO::ImageBuf result(in.spec(), OIIO::InitializePixels::No);
-    if (result.has_error() || !layers::has_local_float_pixels(result))
-        throw std::runtime_error("cannot allocate the output image: " + result.geterror());
-    const OIIO::ImageSpec& spec = in.spec();
+    const OIIO::ImageSpec& spec = image.spec();
     const OIIO::ROI& out = regions.output;
     const OIIO::ROI& input = regions.input;
     const std::size_t pixels = std::size_t(input.width()) * input.height();
-    const std::size_t row_bytes = std::size_t(spec.width) * in.pixel_stride();
-    OIIO::ImageBufAlgo::parallel_image(in.roi(), OIIO::paropt(thread_count(nthreads)), [&](OIIO::ROI rows) {
+    const std::size_t row_bytes = std::size_t(spec.width) * image.pixel_stride();
+    OIIO::ImageBufAlgo::parallel_image(image.roi(), OIIO::paropt(thread_count(nthreads)), [&](OIIO::ROI rows) {
         for (int y = rows.ybegin; y < rows.yend; ++y) {
-            float* to = static_cast<float*>(result.pixeladdr(spec.x, y));
-            std::memcpy(to, in.pixeladdr(spec.x, y), row_bytes);
+            float* to = static_cast<float*>(image.pixeladdr(spec.x, y));
+            if (source)
+                std::memcpy(to, source->pixeladdr(spec.x, y), row_bytes);
             if (y < out.ybegin || y >= out.yend)
                 continue;
             const std::size_t row = std::size_t(y - input.ybegin) * input.width();
@@ -200,6 +197,16 @@ OIIO::ImageBuf denoised_copy(const OIIO::ImageBuf& in, const StatisticsChannels&
             }
         }
     });
+}
+
+// A float copy of `in`, every channel and attribute kept, with the filtered means.
+OIIO::ImageBuf denoised_copy(const OIIO::ImageBuf& in, const StatisticsChannels& ch,
+                             const Filtered& f, const Regions& regions, int nthreads)
+{
+    OIIO::ImageBuf result(in.spec(), OIIO::InitializePixels::No);
+    if (result.has_error() || !layers::has_local_float_pixels(result))
+        throw std::runtime_error("cannot allocate the output image: " + result.geterror());
+    patch_means(result, &in, ch, f, regions, nthreads);
     return result;
 }
 
@@ -261,7 +268,15 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
     const Filtered filtered =
         filter_region(window, domain, window_guides, opt.filter, opt.diagnostics, nthreads);
 
-    OIIO::ImageBuf result = denoised_copy(in, ch, filtered, regions, nthreads);
+    OIIO::ImageBuf result;
+    if (&dst == &src) {
+        // In place (ImageBufAlgo's dst == src): the float pixels the filter read are
+        // patched, so the input is never copied. The filter's output is already apart.
+        result = &in == &src ? std::move(dst) : std::move(scratch);
+        patch_means(result, nullptr, ch, filtered, regions, nthreads);
+    } else {
+        result = denoised_copy(in, ch, filtered, regions, nthreads);
+    }
     if (opt.diagnostics) {
         int members = -1, effective = -1;
         result = with_diagnostics_channels(result, opt.aov, members, effective);
@@ -269,7 +284,7 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
         write_region(result, effective, filtered.effective_samples.data(), regions);
     }
     result.specmod().attribute(layers::attr::kDenoised, 1);
-    dst = std::move(result);  // last, since dst may be src
+    dst = std::move(result);
     return true;
 }
 

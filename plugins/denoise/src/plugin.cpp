@@ -114,6 +114,9 @@ void register_denoise(statmc::PluginRegistry& registry)
                 const statmc::RunContext& ctx) {
         return statmc::denoise(*inputs[0], options_from(p), {}, ctx.nthreads);
     };
+    op.run_in_place = [](OIIO::ImageBuf& image, const ParameterValues& p, const statmc::RunContext& ctx) {
+        return statmc::denoise(image, image, options_from(p), {}, ctx.nthreads);
+    };
     registry.add(std::move(op));
 }
 

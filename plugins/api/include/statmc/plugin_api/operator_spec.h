@@ -32,6 +32,11 @@ using RunFunction = std::function<OIIO::ImageBuf(const std::vector<const OIIO::I
                                                  const ParameterValues& parameters,
                                                  const RunContext& context)>;
 
+/// The in-place form for one-input operators: the host hands over the image it popped,
+/// which becomes the result. Returns false with the message on the image. Must not throw.
+using RunInPlaceFunction = std::function<bool(OIIO::ImageBuf& image, const ParameterValues& parameters,
+                                              const RunContext& context)>;
+
 /// Cross-parameter checks beyond type and range, run before any image is read: "" when
 /// fine, else a message naming the parameter.
 using CheckFunction = std::function<std::string(const ParameterValues& parameters)>;
@@ -46,6 +51,9 @@ struct OperatorSpec {
     std::string input_noun = "images";   ///< "renders": for "needs at least 2 renders"
     CheckFunction check;                 ///< optional
     RunFunction run;
+    /// Optional, one-input operators only: when set, the host runs this instead of `run`
+    /// on an image it owns, sparing the operator a copy of its input.
+    RunInPlaceFunction run_in_place;
     std::string module;                  ///< set by the loader: the file it came from
 };
 

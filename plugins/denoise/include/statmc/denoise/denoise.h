@@ -23,8 +23,10 @@ namespace statmc {
 /// layers::validate_statistics): a count below 1, a negative variance, and, with
 /// NonfinitePolicy::Error, NaN or Inf, refuse the image.
 ///
-/// `dst` may be `src`. nthreads: 0 uses OIIO's global "threads" attribute, 1 the calling
-/// thread only; the result is bitwise the same for any thread count.
+/// `dst` may be `src`: the means are then patched in place and the image is not copied
+/// (a copy is the size of the whole statistics image). nthreads: 0 uses OIIO's global
+/// "threads" attribute, 1 the calling thread only; the result is bitwise the same for any
+/// thread count and either form.
 ///
 /// Returns false after `dst.errorfmt(...)` on any error (a missing layer or guide, bad
 /// options or statistics); never throws.
