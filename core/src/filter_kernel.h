@@ -22,12 +22,6 @@
 namespace statmc::detail {
 namespace {
 
-template <class V, int NC>
-struct Centre {
-    typename V::F mean[NC], threshold[NC];
-    typename V::F noise_limit;
-};
-
 /// What a chunk of lanes has gathered so far; carried from one band of rows to the next.
 template <class V, int NC>
 struct Partial {
@@ -37,14 +31,15 @@ struct Partial {
     typename V::F inverse_sum;  // Σ W_ij² / n_j, for the effective sample count
 };
 
-/// One centre chunk's registers: its test values and value, and what it has gathered.
+/// One centre chunk's registers during a band: what it tests and averages against, and
+/// what it has gathered.
 template <class V, int NC, int NG>
 struct CentreState {
     using F = typename V::F;
-    Centre<V, NC> test;
-    F value[NC], acc[NC];
+    F mean[NC], threshold[NC], noise_limit;
+    F value[NC];
     F guide[NG > 0 ? NG : 1];
-    F weight_sum, member_count, inverse_sum;
+    Partial<V, NC> gathered;
 };
 
 template <int K>
@@ -65,18 +60,15 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Par
         const std::ptrdiff_t centre = std::ptrdiff_t(y + k) * L.stride + x0;
         CentreState<V, NC, NG>& s = ctr[k];
         for (int c = 0; c < NC; ++c) {
-            s.test.mean[c] = V::load(L.mean[c] + centre);
-            s.test.threshold[c] = V::load(L.threshold[c] + centre);
+            s.mean[c] = V::load(L.mean[c] + centre);
+            s.threshold[c] = V::load(L.threshold[c] + centre);
             s.value[c] = V::load(L.value[c] + centre);
-            s.acc[c] = partial[k].acc[c];
         }
         if constexpr (kGuard)
-            s.test.noise_limit = V::load(L.noise_limit + centre);
+            s.noise_limit = V::load(L.noise_limit + centre);
         for (int g = 0; g < NG; ++g)
             s.guide[g] = V::load(L.guide[g] + centre);
-        s.weight_sum = partial[k].weight_sum;
-        s.member_count = partial[k].member_count;
-        s.inverse_sum = partial[k].inverse_sum;
+        s.gathered = partial[k];
     }
 
     // The taps at column offset dx of window row wy for the centre rows y + k,
@@ -92,7 +84,7 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Par
         if constexpr (kGuard) {
             const F level = V::load(L.noise + off);
             for (int k = First; k < Last; ++k)
-                m[k] = V::le(level, ctr[k].test.noise_limit);
+                m[k] = V::le(level, ctr[k].noise_limit);
         }
         for (int c = 0; c < NC; ++c) {
             F mean = V::load(L.mean[c] + off), threshold = V::load(L.threshold[c] + off);
@@ -101,10 +93,10 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Par
                 V::in_register(threshold);
             }
             for (int k = First; k < Last; ++k) {
-                const F d = V::sub(ctr[k].test.mean[c], mean);
+                const F d = V::sub(ctr[k].mean[c], mean);
                 const F excess = V::fmsub(d, d, threshold);
-                m[k] = c == 0 && !kGuard ? V::le(excess, ctr[k].test.threshold[c])
-                                         : V::le_and(m[k], excess, ctr[k].test.threshold[c]);
+                m[k] = c == 0 && !kGuard ? V::le(excess, ctr[k].threshold[c])
+                                         : V::le_and(m[k], excess, ctr[k].threshold[c]);
             }
         }
         F w[R];
@@ -146,14 +138,15 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Par
             if constexpr (Last - First > 1)
                 V::in_register(value);
             for (int k = First; k < Last; ++k)
-                ctr[k].acc[c] = V::masked_fmadd(m[k], w[k], V::sub(value, ctr[k].value[c]), ctr[k].acc[c]);
+                ctr[k].gathered.acc[c] =
+                    V::masked_fmadd(m[k], w[k], V::sub(value, ctr[k].value[c]), ctr[k].gathered.acc[c]);
         }
         for (int k = First; k < Last; ++k) {
-            CentreState<V, NC, NG>& s = ctr[k];
-            s.weight_sum = V::masked_add(m[k], s.weight_sum, w[k]);
+            Partial<V, NC>& g = ctr[k].gathered;
+            g.weight_sum = V::masked_add(m[k], g.weight_sum, w[k]);
             if constexpr (kDiagnostics) {
-                s.member_count = V::masked_add(m[k], s.member_count, V::set1(1.f));
-                s.inverse_sum = V::masked_fmadd(m[k], V::mul(w[k], w[k]), V::load(L.inverse_count + off), s.inverse_sum);
+                g.member_count = V::masked_add(m[k], g.member_count, V::set1(1.f));
+                g.inverse_sum = V::masked_fmadd(m[k], V::mul(w[k], w[k]), V::load(L.inverse_count + off), g.inverse_sum);
             }
         }
     };
@@ -178,9 +171,8 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Par
             row_of_one(Row<0>{}, wy, half_width(0, wy));
         } else {
             // Both centres take the columns both disks cover, sharing the neighbour's
-            // loads; the wider disk's rim goes alone. Each
-            // centre still sums its taps in dx order, as with R = 1: the bits do not
-            // depend on how rows were paired.
+            // loads; the wider disk's rim goes alone. Each centre still sums its taps in
+            // dx order, as with R = 1: the bits do not depend on how rows were paired.
             const int hw0 = half_width(0, wy), hw1 = half_width(1, wy);
             const int narrow = std::min(hw0, hw1), wide = std::max(hw0, hw1);
             if (narrow < 0) {
@@ -212,13 +204,8 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Par
             rim(narrow + 1, wide);
         }
     }
-    for (int k = 0; k < R; ++k) {
-        for (int c = 0; c < NC; ++c)
-            partial[k].acc[c] = ctr[k].acc[c];
-        partial[k].weight_sum = ctr[k].weight_sum;
-        partial[k].member_count = ctr[k].member_count;
-        partial[k].inverse_sum = ctr[k].inverse_sum;
-    }
+    for (int k = 0; k < R; ++k)
+        partial[k] = ctr[k].gathered;
 }
 
 template <class V, int NC, bool kDiagnostics>
@@ -229,10 +216,11 @@ void write_chunk(const FilterLayout& L, const std::vector<Plane>& out, const Fil
     float lanes[NC][V::kWidth], wsum[V::kWidth], count[V::kWidth], inverse[V::kWidth];
     for (int c = 0; c < NC; ++c)
         V::store(lanes[c], V::add(V::load(L.value[c] + centre), V::div(partial.acc[c], partial.weight_sum)));
-    V::store(wsum, partial.weight_sum);
-    V::store(count, partial.member_count);
-    if constexpr (kDiagnostics)
+    if constexpr (kDiagnostics) {
+        V::store(wsum, partial.weight_sum);
+        V::store(count, partial.member_count);
         V::store(inverse, partial.inverse_sum);
+    }
     const int n = std::min(V::kWidth, L.width - x0);
     for (int k = 0; k < n; ++k) {
         for (int c = 0; c < NC; ++c)
@@ -257,7 +245,7 @@ constexpr int kBandRows = 4;
 /// Centre rows per pass: two on AVX-512 (32 registers) for up to three channels without
 /// diagnostics, one elsewhere. With guides the two rows spill a few centre values to the
 /// stack, and still win: their two exp chains overlap (guided 350 → 293 ms).
-template <class V, int NC, int NG, bool kDiagnostics>
+template <class V, int NC, bool kDiagnostics>
 constexpr int centre_rows()
 {
     return V::kWidth == 16 && NC <= 3 && !kDiagnostics ? 2 : 1;
@@ -267,7 +255,7 @@ template <class V, int NC, int NG, bool kDiagnostics>
 void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
                       const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
-    constexpr int R = centre_rows<V, NC, NG, kDiagnostics>();
+    constexpr int R = centre_rows<V, NC, kDiagnostics>();
     std::vector<std::array<Partial<V, NC>, R>> partials(chunk1 - chunk0);
     for (int y = y0; y < y1; y += R) {
         const int rows = std::min(R, y1 - y);

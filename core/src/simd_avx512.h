@@ -31,7 +31,6 @@ struct Avx512 {
     // Ordered compare: a NaN operand gives false, so NaN never makes a member.
     static M le(F a, F b) { return _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ); }
     static M le_and(M m, F a, F b) { return _mm512_mask_cmp_ps_mask(m, a, b, _CMP_LE_OQ); }
-    static F select(M m, F a) { return _mm512_maskz_mov_ps(m, a); }
     static F masked_fmadd(M m, F a, F b, F c) { return _mm512_mask3_fmadd_ps(a, b, c, m); }
     static F masked_add(M m, F acc, F a) { return _mm512_mask_add_ps(acc, m, acc, a); }
     static bool none(M m) { return m == 0; }
