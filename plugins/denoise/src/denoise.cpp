@@ -155,32 +155,21 @@ Filtered filter_region(const StatisticsView& stats, TestDomain domain, const Gui
     return f;
 }
 
-// Channel `channel` of `result` over the output region, from a dense plane of the input
-// region.
-void write_region(OIIO::ImageBuf& result, int channel, const float* dense, const Regions& regions)
-{
-    const OIIO::ImageSpec& spec = result.spec();
-    const OIIO::ROI& in = regions.input;
-    const OIIO::ROI& out = regions.output;
-    const Plane to = layers::shifted(layers::channel_plane(result, channel),
-                                     out.xbegin - spec.x, out.ybegin - spec.y);
-    const ConstPlane from = layers::shifted(dense_plane(dense, in.width()),
-                                            out.xbegin - in.xbegin, out.ybegin - in.ybegin);
-    for (int y = 0; y < out.height(); ++y)
-        for (int x = 0; x < out.width(); ++x)
-            to(x, y) = from(x, y);
-}
+// A dense plane over the input region, and the channel of the image it is written to.
+struct ChannelWrite {
+    int channel;
+    const float* dense;
+};
 
-// Writes the filtered means into `image` over the output region, row by row in parallel.
-// With `source`, each row is first copied from it (same spec): copying a 1280×720
-// statistics image (~80 MB) and then patching it walked it twice, on one thread.
-void patch_means(OIIO::ImageBuf& image, const OIIO::ImageBuf* source, const StatisticsChannels& ch,
-                 const Filtered& f, const Regions& regions, int nthreads)
+// Writes each dense plane into its channel of `image` over the output region, row by row
+// in parallel. With `source`, each row is first copied from it (same spec): copying a
+// 1280×720 statistics image (~80 MB) and then patching it walked it twice, on one thread.
+void write_channels(OIIO::ImageBuf& image, const OIIO::ImageBuf* source,
+                    const std::vector<ChannelWrite>& writes, const Regions& regions, int nthreads)
 {
     const OIIO::ImageSpec& spec = image.spec();
     const OIIO::ROI& out = regions.output;
     const OIIO::ROI& input = regions.input;
-    const std::size_t pixels = std::size_t(input.width()) * input.height();
     const std::size_t row_bytes = std::size_t(spec.width) * image.pixel_stride();
     OIIO::ImageBufAlgo::parallel_image(image.roi(), OIIO::paropt(thread_count(nthreads)), [&](OIIO::ROI rows) {
         for (int y = rows.ybegin; y < rows.yend; ++y) {
@@ -189,14 +178,23 @@ void patch_means(OIIO::ImageBuf& image, const OIIO::ImageBuf* source, const Stat
                 std::memcpy(to, source->pixeladdr(spec.x, y), row_bytes);
             if (y < out.ybegin || y >= out.yend)
                 continue;
-            const std::size_t row = std::size_t(y - input.ybegin) * input.width();
+            const std::ptrdiff_t row = std::ptrdiff_t(y - input.ybegin) * input.width() - input.xbegin;
             for (int x = out.xbegin; x < out.xend; ++x) {
                 float* pixel = to + std::size_t(x - spec.x) * spec.nchannels;
-                for (int c = 0; c < ch.channels(); ++c)
-                    pixel[ch.mean[c]] = f.means[c * pixels + row + (x - input.xbegin)];
+                for (const ChannelWrite& w : writes)
+                    pixel[w.channel] = w.dense[row + x];
             }
         }
     });
+}
+
+std::vector<ChannelWrite> mean_writes(const StatisticsChannels& ch, const Filtered& f, const Regions& regions)
+{
+    const std::size_t pixels = std::size_t(regions.input.width()) * regions.input.height();
+    std::vector<ChannelWrite> writes;
+    for (int c = 0; c < ch.channels(); ++c)
+        writes.push_back({ch.mean[c], f.means.data() + c * pixels});
+    return writes;
 }
 
 // A float copy of `in`, every channel and attribute kept, with the filtered means.
@@ -206,7 +204,7 @@ OIIO::ImageBuf denoised_copy(const OIIO::ImageBuf& in, const StatisticsChannels&
     OIIO::ImageBuf result(in.spec(), OIIO::InitializePixels::No);
     if (result.has_error() || !layers::has_local_float_pixels(result))
         throw std::runtime_error("cannot allocate the output image: " + result.geterror());
-    patch_means(result, &in, ch, f, regions, nthreads);
+    write_channels(result, &in, mean_writes(ch, f, regions), regions, nthreads);
     return result;
 }
 
@@ -273,15 +271,16 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
         // In place (ImageBufAlgo's dst == src): the float pixels the filter read are
         // patched, so the input is never copied. The filter's output is already apart.
         result = &in == &src ? std::move(dst) : std::move(scratch);
-        patch_means(result, nullptr, ch, filtered, regions, nthreads);
+        write_channels(result, nullptr, mean_writes(ch, filtered, regions), regions, nthreads);
     } else {
         result = denoised_copy(in, ch, filtered, regions, nthreads);
     }
     if (opt.diagnostics) {
         int members = -1, effective = -1;
         result = with_diagnostics_channels(result, opt.aov, members, effective);
-        write_region(result, members, filtered.members.data(), regions);
-        write_region(result, effective, filtered.effective_samples.data(), regions);
+        write_channels(result, nullptr,
+                       {{members, filtered.members.data()}, {effective, filtered.effective_samples.data()}},
+                       regions, nthreads);
     }
     result.specmod().attribute(layers::attr::kDenoised, 1);
     dst = std::move(result);
