@@ -102,20 +102,17 @@ BounceEstimates BounceStatistics::denoise(const Guides& guides, const DenoiseOpt
     const int q_total = layout_.quantities();
     const std::size_t npix = std::size_t(width_) * height_;
     BounceEstimates est{layout_, std::vector<float>(npix * std::size_t(q_total))};
-    std::vector<float> filtered(npix * kGroup);
     for (std::size_t g = 0; g < groups_.size(); ++g) {
         const int first = int(g) * kGroup, channels = std::min(kGroup, q_total - first);
         const StatisticsPlanes planes = groups_[g].planes();
         StatisticsView view = planes.view();
         view.channels = channels;  // the last group's spare channels would only cost time
         const EstimatorImage e = estimators_from_statistics(view, TestDomain::BoxCox);
+        // The filter writes each channel straight into its slot of the pixel-major values.
         std::vector<Plane> out;
         for (int c = 0; c < channels; ++c)
-            out.push_back(dense_plane(filtered.data() + std::size_t(c) * npix, width_));
+            out.push_back(Plane{est.values.data() + first + c, q_total, std::ptrdiff_t(width_) * q_total});
         filter(e, guides, options, out, {}, threads);
-        for (int c = 0; c < channels; ++c)
-            for (std::size_t i = 0; i < npix; ++i)
-                est.values[i * std::size_t(q_total) + std::size_t(first + c)] = filtered[std::size_t(c) * npix + i];
     }
     return est;
 }
