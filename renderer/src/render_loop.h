@@ -63,9 +63,7 @@ struct RenderSettings {
 /// What one progressive iteration cost.
 struct IterationStats {
     int spp = 0;
-    std::uint64_t samples = 0;
-    double seconds = 0;          ///< rendering and, after it, denoising the estimates
-    double denoise_seconds = 0;  ///< the latter part
+    double denoise_seconds = 0;  ///< denoising the estimates it steered by, before rendering (0 without)
 };
 
 struct RenderStats {
@@ -74,7 +72,6 @@ struct RenderStats {
     bool interrupted = false;
     std::uint64_t samples = 0;
     std::uint64_t tile_cycles = 0;  ///< time stamp counter cycles inside tiles, all threads
-    std::vector<IterationStats> iterations;
 };
 
 /// Runs after an iteration with the film so far and what the iteration cost.
