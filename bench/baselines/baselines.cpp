@@ -55,6 +55,14 @@ void box_sum(const std::vector<float>& in, std::vector<float>& out, std::vector<
     });
 }
 
+/// How many of [i − f, i + f] ∩ [0, n) stay in [0, n) when shifted by d: the in-image
+/// pixels, along one axis, of the patch around i for the offset d.
+int patch_overlap(int i, int f, int n, int d)
+{
+    const int lo = std::max({i - f, 0, -d}), hi = std::min({i + f, n - 1, n - 1 - d});
+    return std::max(0, hi - lo + 1);
+}
+
 }  // namespace
 
 void nlm(const std::array<ConstPlane, 3>& mean, const std::array<ConstPlane, 3>& variance, int w,
@@ -64,7 +72,8 @@ void nlm(const std::array<ConstPlane, 3>& mean, const std::array<ConstPlane, 3>&
     const std::size_t n = std::size_t(w) * h;
     // A term this large already gives the patch a weight of 0; larger ones only cost precision.
     constexpr float kFar = 1e4f;
-    std::vector<float> distance(n), valid(n), distance_sum(n), valid_sum(n);
+    std::vector<float> distance(n), distance_sum(n);
+    std::vector<int> overlap_x(std::size_t(w), 0);
     std::vector<double> tmp(n);
     std::vector<double> acc(3 * n, 0.0), weight_sum(n, 0.0);
     for (int dy = -o.search_radius; dy <= o.search_radius; ++dy)
@@ -75,7 +84,7 @@ void nlm(const std::array<ConstPlane, 3>& mean, const std::array<ConstPlane, 3>&
                     const int qx = x + dx, qy = y + dy;
                     const std::size_t i = std::size_t(y) * w + x;
                     if (qx < 0 || qy < 0 || qx >= w || qy >= h) {
-                        distance[i] = valid[i] = 0;
+                        distance[i] = 0;
                         continue;
                     }
                     float d = 0;
@@ -85,18 +94,21 @@ void nlm(const std::array<ConstPlane, 3>& mean, const std::array<ConstPlane, 3>&
                         d += (diff * diff - o.alpha * (vp + std::min(vp, vq))) / (kEpsilon + o.k * o.k * (vp + vq));
                     }
                     distance[i] = std::isfinite(d) ? std::min(d / 3, kFar) : kFar;
-                    valid[i] = 1;
                 }
             });
             box_sum(distance, distance_sum, tmp, w, h, o.patch_radius);
-            box_sum(valid, valid_sum, tmp, w, h, o.patch_radius);
+            // The patch's pixel pairs with both ends in the image: a product of two overlaps.
+            for (int x = 0; x < w; ++x)
+                overlap_x[std::size_t(x)] = patch_overlap(x, o.patch_radius, w, dx);
             for_each_row(h, [&](int y) {
+                const int overlap_y = patch_overlap(y, o.patch_radius, h, dy);
                 for (int x = 0; x < w; ++x) {
                     const int qx = x + dx, qy = y + dy;
                     const std::size_t i = std::size_t(y) * w + x;
-                    if (qx < 0 || qy < 0 || qx >= w || qy >= h || valid_sum[i] <= 0)
+                    const int valid = overlap_x[std::size_t(x)] * overlap_y;
+                    if (qx < 0 || qy < 0 || qx >= w || qy >= h || valid <= 0)
                         continue;
-                    const double wgt = std::exp(-std::max(0.0, double(distance_sum[i]) / valid_sum[i]));
+                    const double wgt = std::exp(-std::max(0.0, double(distance_sum[i]) / valid));
                     for (int c = 0; c < 3; ++c)
                         acc[c * n + i] += wgt * mean[c](qx, qy);
                     weight_sum[i] += wgt;
