@@ -22,6 +22,7 @@
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/float_pixels.h"
 #include "statmc/layers/guide_layers.h"
+#include "statmc/layers/layer_names.h"
 #include "statmc/layers/statistics_layers.h"
 
 namespace {
@@ -70,8 +71,8 @@ struct BaselineInputs {
             mean[c] = dense_plane(est.value.data() + c * est.pixels(), est.width);
             variance[c] = dense_plane(est.test_variance.data() + c * est.pixels(), est.width);
         }
-        const auto albedo = layers::find_guide_layer(in.spec(), "albedo", true);
-        const auto normal = layers::find_guide_layer(in.spec(), "normal", false);
+        const auto albedo = layers::find_guide_layer(in.spec(), layers::kAlbedoLayer, true);
+        const auto normal = layers::find_guide_layer(in.spec(), layers::kNormalLayer, false);
         if (!albedo.empty())
             guides.albedo = layers::guide_planes(in, albedo);
         if (!normal.empty())
@@ -81,6 +82,8 @@ struct BaselineInputs {
 
 struct Method {
     std::string name;
+    int radius;  ///< the method's own filter radius (NL-means: its search radius; 0: none)
+    /// Empty for "noisy": the input itself, untimed.
     std::function<OIIO::ImageBuf(const OIIO::ImageBuf&)> run;
 };
 
@@ -102,23 +105,30 @@ OIIO::ImageBuf run_statmc(const OIIO::ImageBuf& in, const DenoiseImageOptions& o
 
 std::vector<Method> methods()
 {
-    DenoiseImageOptions moon = statmc_options(false, DenoiseOptions::paper());  // Moon et al. 2013-style test
+    const DenoiseImageOptions statmc = statmc_options(false), guided = statmc_options(true),
+                              paper = statmc_options(false, DenoiseOptions::paper());
+    DenoiseImageOptions moon = paper;  // Moon et al. 2013-style test
     moon.test = TestDomainChoice::Untransformed;
     moon.filter.alpha = 0.002;
+    const baselines::NlmOptions nlm;
+    const baselines::CrossBilateralOptions bilateral;
+    auto statmc_method = [](const char* name, const DenoiseImageOptions& o) {
+        return Method{name, o.filter.radius, [o](const OIIO::ImageBuf& in) { return run_statmc(in, o); }};
+    };
     return {
-        {"noisy", [](const OIIO::ImageBuf& in) { return in; }},
-        {"statmc", [](const OIIO::ImageBuf& in) { return run_statmc(in, statmc_options(false)); }},
-        {"statmc-guides", [](const OIIO::ImageBuf& in) { return run_statmc(in, statmc_options(true)); }},
-        {"statmc-paper", [](const OIIO::ImageBuf& in) { return run_statmc(in, statmc_options(false, DenoiseOptions::paper())); }},
-        {"moon-ci", [moon](const OIIO::ImageBuf& in) { return run_statmc(in, moon); }},
-        {"nlm", [](const OIIO::ImageBuf& in) {
+        {"noisy", 0, {}},
+        statmc_method("statmc", statmc),
+        statmc_method("statmc-guides", guided),
+        statmc_method("statmc-paper", paper),
+        statmc_method("moon-ci", moon),
+        {"nlm", nlm.search_radius, [nlm](const OIIO::ImageBuf& in) {
              const BaselineInputs b(in);
-             return rgb_image(in, [&](std::array<Plane, 3>& out) { baselines::nlm(b.mean, b.variance, b.est.width, b.est.height, {}, out); });
+             return rgb_image(in, [&](std::array<Plane, 3>& out) { baselines::nlm(b.mean, b.variance, b.est.width, b.est.height, nlm, out); });
          }},
-        {"cross-bilateral", [](const OIIO::ImageBuf& in) {
+        {"cross-bilateral", bilateral.radius, [bilateral](const OIIO::ImageBuf& in) {
              const BaselineInputs b(in);
              return rgb_image(in, [&](std::array<Plane, 3>& out) {
-                 baselines::cross_bilateral(b.mean, b.guides, b.est.width, b.est.height, {}, out);
+                 baselines::cross_bilateral(b.mean, b.guides, b.est.width, b.est.height, bilateral, out);
              });
          }},
     };
@@ -181,9 +191,13 @@ int main(int argc, char** argv)
                 continue;
             }
             for (const Method& method : methods()) {
+                if (!method.run) {
+                    row(method.name, method.radius, 0.0, in);
+                    continue;
+                }
                 OIIO::ImageBuf out;
-                const double s = method.name == "noisy" ? 0.0 : median_seconds(runs, [&] { out = method.run(in); });
-                row(method.name, method.name == "noisy" ? 0 : 20, s, method.name == "noisy" ? in : out);
+                const double s = median_seconds(runs, [&] { out = method.run(in); });
+                row(method.name, method.radius, s, out);
             }
         }
     } catch (const std::exception& e) {
