@@ -128,7 +128,7 @@ TEST(Unbiased, SelectiveMisAgreesWithStandardMis)
     // last iteration's estimates decide; BSDF sampling, mostly, which loses to the
     // lights' cone sampling on the plates).
     const Film& f = *b.film;
-    const BounceEstimates est = f.bounces->denoise({}, statmc::DenoiseOptions{});
+    const BounceEstimates est = f.bounces->denoise({}, RenderSettings{}.bounce_filter);  // as the render denoised them
     int skipped = 0;
     for (std::size_t i = 0; i < std::size_t(f.width) * f.height; ++i) {
         const PixelEstimates p = est.pixel(i);
