@@ -46,9 +46,24 @@ EstimatorImage crop(const EstimatorImage& full, int w, int h)
     return out;
 }
 
+/// The default options (α = 0.005) with the firefly guard off.
+DenoiseOptions no_guard()
+{
+    DenoiseOptions o;
+    o.firefly_ratio = 0;
+    return o;
+}
+
+/// The default options at radius 0.
+DenoiseOptions radius_zero()
+{
+    DenoiseOptions o;
+    o.radius = 0;
+    return o;
+}
+
 void run(benchmark::State& state, bool with_guides, SimdLevel level, bool reference,
-         float firefly_ratio = DenoiseOptions{}.firefly_ratio, int radius = DenoiseOptions{}.radius,
-         bool fireflies = false)
+         const DenoiseOptions& options = {}, bool fireflies = false)
 {
     EstimatorImage est = estimators_from_statistics(bench::frame(fireflies).view(), TestDomain::BoxCox);
     if (reference)
@@ -59,9 +74,6 @@ void run(benchmark::State& state, bool with_guides, SimdLevel level, bool refere
     std::vector<Plane> planes;
     for (int c = 0; c < 3; ++c)
         planes.push_back(dense_plane(out.data() + c * est.pixels(), est.width));
-    DenoiseOptions options;  // α = 0.005
-    options.firefly_ratio = firefly_ratio;
-    options.radius = radius;
     for (auto _ : state) {
         if (reference)
             filter_reference(est, guides, options, planes);
@@ -72,20 +84,20 @@ void run(benchmark::State& state, bool with_guides, SimdLevel level, bool refere
     state.counters["taps/s"] = benchmark::Counter(taps_per_image(est.width, est.height, options.radius) * state.iterations(),
                                                   benchmark::Counter::kIsRate);
     std::string label = reference ? "reference (double, 1 thread, 320x180 crop)" : simd_level_name(level);
-    if (firefly_ratio == 0)
+    if (options.firefly_ratio == 0)
         label += ", no firefly guard";
     if (fireflies)
         label += ", 1 pixel in 500 a firefly";
-    if (radius == 0)
+    if (options.radius == 0)
         label += ", r = 0: the per-call cost outside the window walk";
     state.SetLabel(label);
 }
 
 void BM_Filter(benchmark::State& s) { run(s, false, detected_simd_level(), false); }
 void BM_FilterGuides(benchmark::State& s) { run(s, true, detected_simd_level(), false); }
-void BM_FilterNoGuard(benchmark::State& s) { run(s, false, detected_simd_level(), false, 0.f); }
-void BM_FilterFireflies(benchmark::State& s) { run(s, s.range(1) != 0, detected_simd_level(), false, DenoiseOptions{}.firefly_ratio, DenoiseOptions{}.radius, true); }
-void BM_FilterFixedCost(benchmark::State& s) { run(s, s.range(1) != 0, detected_simd_level(), false, DenoiseOptions{}.firefly_ratio, 0); }
+void BM_FilterNoGuard(benchmark::State& s) { run(s, false, detected_simd_level(), false, no_guard()); }
+void BM_FilterFireflies(benchmark::State& s) { run(s, s.range(1) != 0, detected_simd_level(), false, {}, true); }
+void BM_FilterFixedCost(benchmark::State& s) { run(s, s.range(1) != 0, detected_simd_level(), false, radius_zero()); }
 void BM_FilterAvx2Kernel(benchmark::State& s)
 {
     const std::vector<SimdLevel> levels = supported_simd_levels();
