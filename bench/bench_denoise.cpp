@@ -22,8 +22,8 @@ const OIIO::ImageBuf& image()
     static const bench::GuidePlanes guides;
     static const OIIO::ImageBuf buf = [] {
         layers::GuidePlanes planes;
-        planes.albedo = {guides.guides.albedo[0], guides.guides.albedo[1], guides.guides.albedo[2]};
-        planes.normal = {guides.guides.normal[0], guides.guides.normal[1], guides.guides.normal[2]};
+        planes.albedo = guides.guides.albedo;
+        planes.normal = guides.guides.normal;
         return layers::make_statistics_image(bench::frame(), {}, planes);
     }();
     return buf;

@@ -155,6 +155,7 @@ RenderStats render(const Scene& scene, const Camera& camera, const RenderSetting
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
                     const std::size_t pixel = std::size_t(y) * settings.width + x;
+                    // PixelEstimates{} steers nothing, as no estimates would.
                     const PixelEstimates pixel_estimates = estimates ? estimates->pixel(pixel) : PixelEstimates{};
                     for (int s = 0; s < spp; ++s) {
                         Sampler sampler(settings.seed, pixel, first_sample + std::uint64_t(s));
@@ -162,7 +163,7 @@ RenderStats render(const Scene& scene, const Camera& camera, const RenderSetting
                         const Ray ray = camera.generate(float(x) + jx, float(y) + jy);
                         GuideSample guide;
                         const Rgb L = integrator.radiance(ray, sampler, guide, film.bounces ? &record : nullptr,
-                                                          estimates ? &pixel_estimates : nullptr);
+                                                          &pixel_estimates);
                         const float value[3] = {L.r, L.g, L.b};
                         film.stats.add(x, y, value);
                         if (film.bounces) {
