@@ -4,6 +4,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -12,28 +14,49 @@
 namespace statmc::render {
 
 struct SamplingOptions {
-    std::string rr = "classic";
-    std::string mis = "standard";
     RouletteSettings roulette;
-    MisSettings mis_settings;
+    MisSettings mis;
 
     /// Copies the choices into `settings` (maxdepth is left alone).
     void apply(IntegratorSettings& settings) const
     {
         settings.roulette = roulette;
-        settings.roulette.mode = rr == "acrr" ? RouletteMode::Acrr : RouletteMode::Classic;
-        settings.mis = mis_settings;
-        settings.mis.mode = mis == "selective" ? MisMode::Selective : MisMode::Standard;
+        settings.mis = mis;
     }
 };
 
+/// An option read straight into an enum field from its spellings: help, default and
+/// errors as CLI::IsMember over the spellings gives them ("x not in {a,b}"), and
+/// nothing else accepted (CLI::CheckedTransformer would also take the enum's numbers).
+template <class Mode>
+CLI::Option* add_mode_option(CLI::App& app, const std::string& name, Mode& mode,
+                             const std::vector<std::pair<std::string, Mode>>& spellings, const std::string& help)
+{
+    std::string set, current;
+    for (const auto& [spelling, value] : spellings) {
+        set += (set.empty() ? "{" : ",") + spelling;
+        if (value == mode)
+            current = spelling;
+    }
+    set += "}";
+    const CLI::Validator spelled(
+        [spellings, set](std::string& input) -> std::string {
+            for (const auto& [spelling, value] : spellings)
+                if (input == spelling) {
+                    input = std::to_string(int(value));
+                    return {};
+                }
+            return input + " not in " + set;
+        },
+        set);
+    return app.add_option(name, mode, help)->type_name("TEXT")->default_str(current)->transform(spelled);
+}
+
 inline void add_sampling_options(CLI::App& app, SamplingOptions& o)
 {
-    app.add_option("--rr", o.rr,
-                   "Russian roulette: classic (pbrt-v3, from the throughput) or acrr (approximate "
-                   "contribution from denoised per-bounce radiance, method.md §7)")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"classic", "acrr"}));
+    add_mode_option<RouletteMode>(app, "--rr", o.roulette.mode, {{"classic", RouletteMode::Classic}, {"acrr", RouletteMode::Acrr}},
+                                  "Russian roulette: classic (pbrt-v3, from the throughput) or acrr (approximate "
+                                  "contribution from denoised per-bounce radiance, method.md §7)");
     app.add_option("--rr-bounces", o.roulette.tracked_bounces,
                    "ACRR: tracked bounces beside the pixel (layers bounce0L..bounce<N>L)")
         ->capture_default_str()
@@ -42,16 +65,14 @@ inline void add_sampling_options(CLI::App& app, SamplingOptions& o)
                    "roulette after the BSDF sample at vertices >= this one (0 = first hit; 4 = pbrt-v3)")
         ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
-    app.add_option("--mis", o.mis,
-                   "MIS: standard (power heuristic) or selective (skip a technique whose denoised win "
-                   "share is below --mis-threshold, method.md §8)")
-        ->capture_default_str()
-        ->check(CLI::IsMember({"standard", "selective"}));
-    app.add_option("--mis-bounces", o.mis_settings.tracked_bounces,
+    add_mode_option<MisMode>(app, "--mis", o.mis.mode, {{"standard", MisMode::Standard}, {"selective", MisMode::Selective}},
+                             "MIS: standard (power heuristic) or selective (skip a technique whose denoised win "
+                             "share is below --mis-threshold, method.md §8)");
+    app.add_option("--mis-bounces", o.mis.tracked_bounces,
                    "SMIS: tracked vertices (layers bounce<j>LightWins, bounce<j>BsdfWins)")
         ->capture_default_str()
         ->check(CLI::Range(1, 32));
-    app.add_option("--mis-threshold", o.mis_settings.threshold, "SMIS: win-share threshold, in [0, 0.5)")
+    app.add_option("--mis-threshold", o.mis.threshold, "SMIS: win-share threshold, in [0, 0.5)")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 0.4999));
 }
