@@ -21,6 +21,8 @@ StackImage ImageStack::pop(const std::string& command)
 
 std::vector<StackImage> ImageStack::pop(std::size_t n, const std::string& command)
 {
+    if (n > 0)
+        top(command);  // "the image stack is empty" says more than "needs 1"
     if (n > images_.size())
         throw ToolError(command + ": needs " + std::to_string(n) + " images, the stack holds " +
                         std::to_string(images_.size()));

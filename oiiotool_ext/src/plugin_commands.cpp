@@ -73,8 +73,6 @@ std::size_t input_count(const statmc::OperatorSpec& op, const Invocation& inv,
 void run_operator(const statmc::OperatorSpec& op, ToolContext& ctx, const Invocation& inv)
 {
     const std::size_t count = input_count(op, inv, ctx);
-    if (count > 0)
-        ctx.stack.top(inv.name);  // "the image stack is empty" says more than "needs 1"
     std::vector<StackImage> popped = ctx.stack.pop(count, inv.name);
     std::vector<const OIIO::ImageBuf*> images;
     statmc::RunContext run_context;

@@ -61,7 +61,6 @@ ModifierSpec subimages_modifier()
 void apply_to_subimages(ToolContext& ctx, const Invocation& inv, std::size_t count,
                         const SubimageOp& op)
 {
-    ctx.stack.top(inv.name);
     std::vector<StackImage> inputs = ctx.stack.pop(count, inv.name);
     const std::vector<bool> selected = selected_subimages(ctx, inv, inputs[0]);
     const std::size_t n = selected.empty() ? 1 : selected.size();

@@ -48,7 +48,6 @@ Command siappend_command()
                 "joins the top n, bottom first)";
     c.modifiers = {statmc::int_parameter("n", 2, "how many images to join").at_least(2)};
     c.run = [](ToolContext& ctx, const Invocation& inv) {
-        ctx.stack.top(inv.name);
         std::vector<StackImage> images =
             ctx.stack.pop(std::size_t(inv.modifiers.get_int("n")), inv.name);
         StackImage joined = std::move(images[0]);
