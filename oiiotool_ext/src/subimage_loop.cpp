@@ -73,7 +73,8 @@ void apply_to_subimages(ToolContext& ctx, const Invocation& inv, std::size_t cou
     std::vector<OIIO::ImageBuf> results;
     for (std::size_t s = 0; s < n; ++s) {
         if (!selected.empty() && !selected[s]) {
-            results.push_back(inputs[0].subimages[s]);
+            // inputs is ours (popped) and subimage s is read no more: moved, not copied.
+            results.push_back(std::move(inputs[0].subimages[s]));
             continue;
         }
         std::vector<const OIIO::ImageBuf*> images;

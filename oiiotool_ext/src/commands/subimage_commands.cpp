@@ -32,7 +32,10 @@ Command subimage_command()
                                 " has one subimage; deleting it would leave no image");
             image.subimages.erase(image.subimages.begin() + std::ptrdiff_t(s));
         } else {
-            image.subimages = {image.subimages[s]};
+            // Moved, not copied: a copy of a failed ImageBuf is not safe in OIIO 2.4.
+            OIIO::ImageBuf kept = std::move(image.subimages[s]);
+            image.subimages.clear();
+            image.subimages.push_back(std::move(kept));
         }
         image.label += " (" + inv.name + " " + inv.args[0] + ")";
         ctx.stack.push(std::move(image));
