@@ -10,14 +10,6 @@ namespace statmc::tool {
 
 namespace {
 
-std::string join(const std::vector<std::string>& items, const char* separator)
-{
-    std::string text;
-    for (const std::string& item : items)
-        text += (text.empty() ? "" : separator) + item;
-    return text;
-}
-
 bool contains(const std::vector<std::string>& items, const std::string& item)
 {
     return std::find(items.begin(), items.end(), item) != items.end();
@@ -49,7 +41,7 @@ statmc::ParameterValue parse_text(const std::string& command, const ModifierSpec
         return text;
     case ModifierType::Choice:
         if (!contains(spec.choices, text))
-            throw ToolError(what + ": expected one of " + join(spec.choices, ", ") + ", got '" +
+            throw ToolError(what + ": expected one of " + join_text(spec.choices, ", ") + ", got '" +
                             text + "'");
         return text;
     case ModifierType::List: {
@@ -59,7 +51,7 @@ statmc::ParameterValue parse_text(const std::string& command, const ModifierSpec
         for (const std::string& item : items)
             if (!contains(spec.choices, item))
                 throw ToolError(what + ": unknown item '" + item + "' (expected a list of " +
-                                join(spec.choices, ", ") + ", or " + join(spec.keywords, " or ") +
+                                join_text(spec.choices, ", ") + ", or " + join_text(spec.keywords, " or ") +
                                 ")");
         return items;
     }
@@ -141,7 +133,7 @@ Modifiers Modifiers::parse(const std::string& command,
                 known.push_back(s.name);
             throw ToolError(command + ": unknown modifier '" + name + "' (" +
                             (known.empty() ? std::string("it takes no modifiers")
-                                           : "modifiers: " + join(known, ", ")) +
+                                           : "modifiers: " + join_text(known, ", ")) +
                             ")");
         }
         if (m.has(name))

@@ -17,29 +17,51 @@ namespace {
                     std::string(text) + "'");
 }
 
+// from_chars over the whole of `text`: errc() only when all of it is the number.
+template <typename T>
+std::errc parse_whole(std::string_view text, T& value)
+{
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ec != std::errc())
+        return ec;
+    return ptr != end || text.empty() ? std::errc::invalid_argument : std::errc();
+}
+
 }  // namespace
+
+std::optional<int> try_parse_int(std::string_view text)
+{
+    int value = 0;
+    if (parse_whole(text, value) != std::errc())
+        return std::nullopt;
+    return value;
+}
+
+std::optional<double> try_parse_float(std::string_view text)
+{
+    double value = 0;
+    // from_chars accepts "inf" and "nan"; no parameter means either.
+    if (parse_whole(text, value) != std::errc() || !std::isfinite(value))
+        return std::nullopt;
+    return value;
+}
 
 int parse_int(std::string_view text, std::string_view what)
 {
-    int value = 0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (ec == std::errc::result_out_of_range)
+    if (const std::optional<int> value = try_parse_int(text))
+        return *value;
+    int ignored = 0;
+    if (parse_whole(text, ignored) == std::errc::result_out_of_range)
         fail(what, "an integer in range", text);
-    if (ec != std::errc() || ptr != end || text.empty())
-        fail(what, "an integer", text);
-    return value;
+    fail(what, "an integer", text);
 }
 
 double parse_float(std::string_view text, std::string_view what)
 {
-    double value = 0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    // from_chars accepts "inf" and "nan"; no parameter means either.
-    if (ec != std::errc() || ptr != end || text.empty() || !std::isfinite(value))
-        fail(what, "a finite number", text);
-    return value;
+    if (const std::optional<double> value = try_parse_float(text))
+        return *value;
+    fail(what, "a finite number", text);
 }
 
 }  // namespace statmc::tool

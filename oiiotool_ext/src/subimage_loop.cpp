@@ -1,5 +1,6 @@
 #include "statmc/tool/subimage_loop.h"
 
+#include <optional>
 #include <string>
 
 #include "statmc/tool/number_parsing.h"
@@ -36,19 +37,17 @@ std::size_t find_subimage(const StackImage& image, const std::string& which,
     for (std::size_t s = 0; s < image.subimages.size(); ++s)
         if (image.subimages[s].spec().get_string_attribute("oiio:subimagename") == which)
             return s;
+    // Digits only: from_chars would take "-0" as an index.
     const bool digits =
         !which.empty() && which.find_first_not_of("0123456789") == std::string::npos;
-    if (digits) {
-        const int s = parse_int(which, command);
-        if (std::size_t(s) < image.subimages.size())
-            return std::size_t(s);
-    }
-    std::string names;
+    if (const std::optional<int> s = digits ? try_parse_int(which) : std::nullopt)
+        if (std::size_t(*s) < image.subimages.size())
+            return std::size_t(*s);
+    std::vector<std::string> names;
     for (const OIIO::ImageBuf& sub : image.subimages)
-        names += (names.empty() ? "" : ", ") +
-                 std::string(sub.spec().get_string_attribute("oiio:subimagename", "(unnamed)"));
+        names.push_back(sub.spec().get_string_attribute("oiio:subimagename", "(unnamed)"));
     throw ToolError(command + ": " + image.label + " has no subimage '" + which + "' (it has " +
-                    std::to_string(image.subimages.size()) + ": " + names + ")");
+                    std::to_string(image.subimages.size()) + ": " + join_text(names) + ")");
 }
 
 ModifierSpec subimages_modifier()

@@ -15,4 +15,12 @@ std::vector<std::string> split_text(const std::string& text, char separator)
     }
 }
 
+std::string join_text(const std::vector<std::string>& items, const std::string& separator)
+{
+    std::string text;
+    for (std::size_t k = 0; k < items.size(); ++k)
+        text += (k == 0 ? "" : separator) + items[k];
+    return text;
+}
+
 }  // namespace statmc::tool

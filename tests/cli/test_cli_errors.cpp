@@ -295,6 +295,9 @@ TEST_F(CliError, BadChannelLists)
                    "--ch: no channel 'Q' (the image has R, G, B, A, albedo.R, albedo.G, albedo.B)");
     expect_failure({in, "--ch", "R,9", "-o", out()},
                    "--ch: channel index 9 is out of range (the image has 7 channels)");
+    // A constant must be finite: "nan" is a channel name, and the image has none.
+    expect_failure({in, "--ch", "R,A=nan", "-o", out()},
+                   "--ch: no channel 'nan' (the image has R, G, B, A, albedo.R, albedo.G, albedo.B)");
     expect_failure({"-i:ch=R,variance.R", in, "-o", out()},
                    in + ": -i:ch: no channel 'variance.R'");
 }
