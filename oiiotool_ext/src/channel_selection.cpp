@@ -2,6 +2,8 @@
 
 #include <optional>
 
+#include <OpenImageIO/imagebufalgo.h>
+
 #include "statmc/tool/number_parsing.h"
 #include "statmc/tool/text_split.h"
 #include "statmc/tool/tool_error.h"
@@ -45,6 +47,14 @@ ChannelSelection parse_channel_selection(const std::string& list, const OIIO::Im
         sel.names.push_back(name);
     }
     return sel;
+}
+
+OIIO::ImageBuf select_channels(const OIIO::ImageBuf& image, const std::string& list,
+                               const std::string& what, int nthreads)
+{
+    const ChannelSelection sel = parse_channel_selection(list, image.spec(), what);
+    return OIIO::ImageBufAlgo::channels(image, int(sel.order.size()), sel.order, sel.values,
+                                        sel.names, false, nthreads);
 }
 
 }  // namespace statmc::tool

@@ -19,10 +19,7 @@ Command ch_command()
     c.modifiers = {subimages_modifier()};
     c.run = [](ToolContext& ctx, const Invocation& inv) {
         apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
-            const ChannelSelection sel = parse_channel_selection(inv.args[0], in[0]->spec(),
-                                                                 inv.name);
-            return OIIO::ImageBufAlgo::channels(*in[0], int(sel.order.size()), sel.order,
-                                                sel.values, sel.names, false, ctx.nthreads);
+            return select_channels(*in[0], inv.args[0], inv.name, ctx.nthreads);
         });
     };
     return c;

@@ -38,14 +38,6 @@ void check_compression(const std::string& name, const std::string& command)
                         "' is lossy; statmc writes none, rle, zip, zips or piz");
 }
 
-OIIO::ImageBuf read_channels(const OIIO::ImageBuf& image, const std::string& list,
-                             const std::string& what)
-{
-    const ChannelSelection sel = parse_channel_selection(list, image.spec(), what);
-    return OIIO::ImageBufAlgo::channels(image, int(sel.order.size()), sel.order, sel.values,
-                                        sel.names);
-}
-
 }  // namespace
 
 Command input_command()
@@ -73,7 +65,8 @@ Command input_command()
             print_all_stats(ctx.out, image, ctx.all_subimages, ctx.nthreads);
         if (inv.modifiers.has("ch"))
             for (OIIO::ImageBuf& sub : image.subimages) {
-                sub = read_channels(sub, inv.modifiers.get_string("ch"), path + ": -i:ch");
+                sub = select_channels(sub, inv.modifiers.get_string("ch"), path + ": -i:ch",
+                                      ctx.nthreads);
                 if (sub.has_error())
                     throw ToolError(path + ": -i:ch: " + sub.geterror());
             }

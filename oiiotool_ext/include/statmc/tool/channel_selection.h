@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
 
 namespace statmc::tool {
@@ -21,5 +22,10 @@ struct ChannelSelection {
 /// oiiotool would warn and fill with zero.
 ChannelSelection parse_channel_selection(const std::string& list, const OIIO::ImageSpec& spec,
                                          const std::string& what);
+
+/// `image` with the channels `list` selects (ImageBufAlgo::channels); parse errors throw
+/// as parse_channel_selection does, OIIO's are left on the result.
+OIIO::ImageBuf select_channels(const OIIO::ImageBuf& image, const std::string& list,
+                               const std::string& what, int nthreads);
 
 }  // namespace statmc::tool
