@@ -1,6 +1,6 @@
 // -i, -o and the settings for the outputs that follow (-d, --compression): images
 // between files and the stack.
-#include <OpenImageIO/imagebufalgo.h>
+#include <optional>
 
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/storage_rules.h"
@@ -36,6 +36,16 @@ void check_compression(const std::string& name, const std::string& command)
     if (!layers::is_lossless_compression(name))
         throw ToolError(command + ": '" + name +
                         "' is lossy; statmc writes none, rle, zip, zips or piz");
+}
+
+// -o's :type= or :datatype= (the later one wins), if either is given.
+std::optional<OIIO::TypeDesc> output_type(const Invocation& inv)
+{
+    std::optional<OIIO::TypeDesc> type;
+    for (const char* m : {"type", "datatype"})
+        if (inv.modifiers.has(m))
+            type = exr_type(inv.modifiers.get_string(m), inv.name + ":" + m);
+    return type;
 }
 
 }  // namespace
@@ -85,16 +95,11 @@ Command output_command()
                 "failed write leaves no file";
     c.modifiers = {statmc::string_parameter("type", "", "pixel type: half, float or uint32"),
                    statmc::string_parameter("datatype", "", "the same as type")};
-    c.check = [](const Invocation& inv) {
-        for (const char* m : {"type", "datatype"})
-            if (inv.modifiers.has(m))
-                exr_type(inv.modifiers.get_string(m), inv.name + ":" + m);
-    };
+    c.check = [](const Invocation& inv) { output_type(inv); };
     c.run = [](ToolContext& ctx, const Invocation& inv) {
         layers::WriteOptions options = ctx.output;
-        for (const char* m : {"type", "datatype"})
-            if (inv.modifiers.has(m))
-                options.format = exr_type(inv.modifiers.get_string(m), inv.name);
+        if (const std::optional<OIIO::TypeDesc> type = output_type(inv))
+            options.format = *type;
         if (ctx.verbose)
             ctx.out << "Writing " << inv.args[0] << "\n";
         layers::write_image_file(ctx.stack.top(inv.name).subimages, inv.args[0], options);
