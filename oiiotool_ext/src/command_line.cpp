@@ -11,14 +11,21 @@ namespace {
 
 bool is_command_word(const std::string& word) { return word.size() > 1 && word[0] == '-'; }
 
-// oiiotool treats one and two dashes alike ("-resize" is "--resize").
+// oiiotool treats one and two dashes alike ("-resize" is "--resize"): the two-dash
+// spelling of a one-dash name, else the name itself.
+std::string two_dash(const std::string& name)
+{
+    return name.size() > 2 && name[1] != '-' ? "-" + name : name;
+}
+
 const Command* find_either_spelling(std::string& name)
 {
     if (const Command* c = find_command(name))
         return c;
-    if (name.size() > 2 && name[1] != '-')
-        if (const Command* c = find_command("-" + name)) {
-            name = "-" + name;
+    const std::string dashed = two_dash(name);
+    if (dashed != name)
+        if (const Command* c = find_command(dashed)) {
+            name = dashed;
             return c;
         }
     return nullptr;
@@ -26,8 +33,7 @@ const Command* find_either_spelling(std::string& name)
 
 [[noreturn]] void unknown_command(const std::string& name)
 {
-    const std::string dashed = name.size() > 2 && name[1] != '-' ? "-" + name : name;
-    if (is_oiiotool_command(name) || is_oiiotool_command(dashed))
+    if (is_oiiotool_command(name) || is_oiiotool_command(two_dash(name)))
         throw ToolError(name + " is an oiiotool command that statmc does not support (run that "
                                "step with oiiotool; statmc --help lists the supported ones)");
     throw ToolError("unknown command '" + name + "' (see statmc --help)");
