@@ -1,13 +1,11 @@
 #include "statmc/tool/image_report.h"
 
 #include <algorithm>
-#include <cctype>
-#include <cstdarg>
-#include <cstdio>
 #include <sstream>
 #include <vector>
 
 #include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/strutil.h>
 
 namespace statmc::tool {
 
@@ -15,17 +13,6 @@ namespace {
 
 // oiiotool 2.4 counts both warnings and failures against 1e-6.
 constexpr float kDiffThreshold = 1e-6f;
-
-std::string printf_text(const char* format, ...) __attribute__((format(printf, 1, 2)));
-std::string printf_text(const char* format, ...)
-{
-    char buffer[512];
-    va_list args;
-    va_start(args, format);
-    std::vsnprintf(buffer, sizeof buffer, format, args);
-    va_end(args);
-    return buffer;
-}
 
 // The format the file stores (the stack holds float pixels; reports show the file's).
 const OIIO::ImageSpec& file_spec(const OIIO::ImageBuf& image)
@@ -50,15 +37,8 @@ std::string summary(const OIIO::ImageBuf& image)
     const std::string format = image.file_format_name().empty()
                                    ? std::string("openexr")
                                    : std::string(image.file_format_name());
-    return printf_text("%4d x %4d, %d channel, %s %s", spec.width, spec.height, spec.nchannels,
-                       type_text(spec).c_str(), format.c_str());
-}
-
-std::string lowercase(std::string text)
-{
-    std::transform(text.begin(), text.end(), text.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return text;
+    return OIIO::Strutil::sprintf("%4d x %4d, %d channel, %s %s", spec.width, spec.height,
+                                  spec.nchannels, type_text(spec).c_str(), format.c_str());
 }
 
 // oiiotool's order: plain names first, then namespaced ones, case-insensitively.
@@ -68,7 +48,7 @@ bool attribute_before(const OIIO::ParamValue* a, const OIIO::ParamValue* b)
     const bool ca = na.find(':') != std::string::npos, cb = nb.find(':') != std::string::npos;
     if (ca != cb)
         return !ca;
-    return lowercase(na) < lowercase(nb);
+    return OIIO::Strutil::iless(na, nb);
 }
 
 void print_details(std::ostream& out, const OIIO::ImageBuf& image)
@@ -136,7 +116,7 @@ std::string percent(std::size_t count, const OIIO::ImageBuf& image)
 
 std::string subimage_heading(std::size_t s, const OIIO::ImageBuf& image)
 {
-    return printf_text(" subimage %2zu: ", s) + summary(image) + "\n";
+    return OIIO::Strutil::sprintf(" subimage %2zu: ", s) + summary(image) + "\n";
 }
 
 void print_stats(std::ostream& out, const OIIO::ImageBuf& image, int nthreads)
@@ -145,7 +125,7 @@ void print_stats(std::ostream& out, const OIIO::ImageBuf& image, int nthreads)
     auto floats = [&](const char* what, const std::vector<float>& values) {
         out << "    Stats " << what << ":";
         for (float v : values)
-            out << printf_text(" %f", v);
+            out << OIIO::Strutil::sprintf(" %f", v);
         out << " (float)\n";
     };
     auto counts = [&](const char* what, const std::vector<OIIO::imagesize_t>& values) {
@@ -165,7 +145,7 @@ void print_stats(std::ostream& out, const OIIO::ImageBuf& image, int nthreads)
     if (OIIO::ImageBufAlgo::isConstantColor(image, 0.0f, constant, OIIO::ROI(), nthreads)) {
         out << "    Constant: Yes\n    Constant Color:";
         for (float v : constant)
-            out << printf_text(" %f", v);
+            out << OIIO::Strutil::sprintf(" %f", v);
         out << " (float)\n";
     } else {
         out << "    Constant: No\n";
@@ -180,8 +160,10 @@ void print_info(std::ostream& out, const std::string& name, const StackImage& im
                 bool verbose, bool all_subimages)
 {
     const bool several = image.subimages.size() > 1;
-    out << printf_text("%-20s : ", name.c_str()) << summary(image.image())
-        << (several && !verbose ? printf_text(" (%zu subimages)", image.subimages.size()) : "")
+    out << OIIO::Strutil::sprintf("%-20s : ", name.c_str()) << summary(image.image())
+        << (several && !verbose
+                ? OIIO::Strutil::sprintf(" (%zu subimages)", image.subimages.size())
+                : "")
         << "\n";
     if (!verbose)
         return;
