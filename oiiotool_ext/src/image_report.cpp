@@ -156,11 +156,10 @@ void print_stats(std::ostream& out, const OIIO::ImageBuf& image, int nthreads)
 
 }  // namespace
 
-void print_info(std::ostream& out, const std::string& name, const StackImage& image,
-                bool verbose, bool all_subimages)
+void print_info(std::ostream& out, const StackImage& image, bool verbose, bool all_subimages)
 {
     const bool several = image.subimages.size() > 1;
-    out << OIIO::Strutil::sprintf("%-20s : ", name.c_str()) << summary(image.image())
+    out << OIIO::Strutil::sprintf("%-20s : ", image.label) << summary(image.image())
         << (several && !verbose
                 ? OIIO::Strutil::sprintf(" (%zu subimages)", image.subimages.size())
                 : "")

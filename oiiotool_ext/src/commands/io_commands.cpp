@@ -69,8 +69,8 @@ Command input_command()
             ctx.out << "Reading " << path << "\n";
         StackImage image{layers::read_image_subimages(path), path};
         if (ctx.print_info || ctx.print_stats)
-            print_info(ctx.out, path, image,
-                       ctx.print_info && (ctx.verbose || ctx.info_verbose), ctx.all_subimages);
+            print_info(ctx.out, image, ctx.print_info && (ctx.verbose || ctx.info_verbose),
+                       ctx.all_subimages);
         if (ctx.print_stats)
             print_all_stats(ctx.out, image, ctx.all_subimages, ctx.nthreads);
         if (inv.modifiers.has("ch"))

@@ -11,10 +11,9 @@
 
 namespace statmc::tool {
 
-/// `name : W x H, C channel, type format`, then with `verbose` the channel list, the
+/// `label : W x H, C channel, type format`, then with `verbose` the channel list, the
 /// windows when they differ and every attribute; with `all_subimages` each subimage.
-void print_info(std::ostream& out, const std::string& name, const StackImage& image,
-                bool verbose, bool all_subimages);
+void print_info(std::ostream& out, const StackImage& image, bool verbose, bool all_subimages);
 
 /// The "Stats Min/Max/Avg/StdDev/NanCount/InfCount/FiniteCount", "Constant" and
 /// "Monochrome" lines of subimage 0, or with `all_subimages` of each under a heading.
