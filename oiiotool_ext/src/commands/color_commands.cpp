@@ -24,7 +24,8 @@ bool config_named(const ToolContext& ctx)
     return !ctx.colorconfig.empty() || (env && *env);
 }
 
-std::shared_ptr<OIIO::ColorConfig> color_config(const ToolContext& ctx, const std::string& command)
+std::shared_ptr<OIIO::ColorConfig> load_color_config(const ToolContext& ctx,
+                                                     const std::string& command)
 {
     auto config = std::make_shared<OIIO::ColorConfig>(ctx.colorconfig);
     // With neither a file nor $OCIO, OIIO reports the missing file but works with its
@@ -36,6 +37,14 @@ std::shared_ptr<OIIO::ColorConfig> color_config(const ToolContext& ctx, const st
                         (ctx.colorconfig.empty() ? std::string("from $OCIO") : ctx.colorconfig) +
                         ": " + config->geterror());
     return config;
+}
+
+// The config the colour commands use, loaded once (the first use, or --colorconfig).
+OIIO::ColorConfig& color_config(ToolContext& ctx, const std::string& command)
+{
+    if (!ctx.color_config)
+        ctx.color_config = load_color_config(ctx, command);
+    return *ctx.color_config;
 }
 
 // Off by default, as in oiiotool (ImageBufAlgo's own default is on).
@@ -55,7 +64,7 @@ Command colorconfig_command()
                 "OIIO's built-in linear/sRGB/Rec709)";
     c.run = [](ToolContext& ctx, const Invocation& inv) {
         ctx.colorconfig = inv.args[0];
-        color_config(ctx, inv.name);  // a bad file fails here, naming it
+        ctx.color_config = load_color_config(ctx, inv.name);  // a bad file fails here, naming it
     };
     return c;
 }
@@ -70,11 +79,11 @@ Command colorconvert_command()
     c.modifiers = {unpremult_modifier(),
                    subimages_modifier()};
     c.run = [](ToolContext& ctx, const Invocation& inv) {
-        const auto config = color_config(ctx, inv.name);
+        OIIO::ColorConfig& config = color_config(ctx, inv.name);
         const bool unpremult = inv.modifiers.get_bool("unpremult");
         apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
             return OIIO::ImageBufAlgo::colorconvert(*in[0], inv.args[0], inv.args[1], unpremult,
-                                                    "", "", config.get(), OIIO::ROI(), ctx.nthreads);
+                                                    "", "", &config, OIIO::ROI(), ctx.nthreads);
         });
     };
     return c;
@@ -97,19 +106,19 @@ Command ociodisplay_command()
         // defaults) without a config.
         if (!config_named(ctx))
             throw ToolError(inv.name + ": needs an OCIO config (--colorconfig FILE or $OCIO)");
-        const auto config = color_config(ctx, inv.name);
+        OIIO::ColorConfig& config = color_config(ctx, inv.name);
         auto text = [](const char* s) { return std::string(s ? s : ""); };
         std::string display = inv.args[0], view = inv.args[1];
         if (display.empty())
-            display = text(config->getDefaultDisplayName());
+            display = text(config.getDefaultDisplayName());
         if (view.empty())  // IBA refuses an empty view (ecosystem.md pitfall 8)
-            view = text(config->getDefaultViewName(display));
+            view = text(config.getDefaultViewName(display));
         const std::string from = inv.modifiers.values().get_string("from");
         const std::string looks = inv.modifiers.values().get_string("looks");
         const bool unpremult = inv.modifiers.get_bool("unpremult");
         apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
             return OIIO::ImageBufAlgo::ociodisplay(*in[0], display, view, from, looks, unpremult,
-                                                   "", "", config.get(), OIIO::ROI(), ctx.nthreads);
+                                                   "", "", &config, OIIO::ROI(), ctx.nthreads);
         });
     };
     return c;

@@ -1,8 +1,11 @@
 // The state commands share while the program runs.
 #pragma once
 
+#include <memory>
 #include <ostream>
 #include <string>
+
+#include <OpenImageIO/color.h>
 
 #include "statmc/layers/exr_files.h"
 #include "statmc/tool/image_stack.h"
@@ -25,6 +28,9 @@ struct ToolContext {
     bool print_stats = false;    ///< --stats
     layers::WriteOptions output; ///< -d, --compression
     std::string colorconfig;     ///< --colorconfig; empty = $OCIO, else OIIO's built-in
+    /// The loaded colorconfig: made by --colorconfig, else by the first colour command
+    /// (not const: ImageBufAlgo 2.4 takes a ColorConfig*).
+    std::shared_ptr<OIIO::ColorConfig> color_config;
 };
 
 }  // namespace statmc::tool
