@@ -308,6 +308,12 @@ TEST_F(CliError, BadGeometryTypesAndCompression)
     expect_failure({in, "--crop", "10y8", "-o", out()},
                    "--crop: geometry '10y8' is not WxH, WxH+X+Y or xmin,ymin,xmax,ymax");
     expect_failure({in, "--resize", "0x8", "-o", out()}, "--resize: geometry '0x8' has no pixels");
+    // The whole line is checked before anything runs: the -o before a bad GEOM writes
+    // nothing (expect_failure checks that no file was left).
+    expect_failure({in, "-o", out(), "--crop", "10y8"},
+                   "--crop: geometry '10y8' is not WxH, WxH+X+Y or xmin,ymin,xmax,ymax");
+    expect_failure({in, "-o", out(), "--resize", "0x8"},
+                   "--resize: geometry '0x8' has no pixels");
     expect_failure({in, "--compression", "dwaa", "-o", out()},
                    "--compression: 'dwaa' is lossy; statmc writes none, rle, zip, zips or piz");
     expect_failure({"-d", "uint8", in, "-o", out()},

@@ -17,12 +17,18 @@ struct Geometry {
     int width = 0, height = 0;
     bool has_origin = false;
     int x = 0, y = 0;
+    double percent = 0;  ///< "N%": the size is N% of each image's, set by sized_for
 };
 
+[[noreturn]] void no_pixels(const std::string& text, const std::string& command)
+{
+    throw ToolError(command + ": geometry '" + text + "' has no pixels");
+}
+
 // oiiotool's GEOM: "WxH", "WxH+X+Y" (signed offsets) or "xmin,ymin,xmax,ymax"
-// (inclusive); with `percent_of`, "N%" scales that window's size (rounded).
-Geometry parse_geometry(const std::string& text, const OIIO::ROI* percent_of,
-                        const std::string& command)
+// (inclusive); with `allow_percent`, "N%" (sized per image by sized_for). Parsed once,
+// in the command's check, so a bad GEOM fails before anything runs.
+Geometry parse_geometry(const std::string& text, bool allow_percent, const std::string& command)
 {
     Geometry g;
     char tail = 0;
@@ -36,16 +42,29 @@ Geometry parse_geometry(const std::string& text, const OIIO::ROI* percent_of,
                text.find_first_of("+-", text.find('x')) != std::string::npos) {
         g.has_origin = true;
     } else if (std::sscanf(text.c_str(), "%dx%d%c", &g.width, &g.height, &tail) == 2) {
-    } else if (percent_of && std::sscanf(text.c_str(), "%lf%%%c", &percent, &tail) == 1 &&
+    } else if (allow_percent && std::sscanf(text.c_str(), "%lf%%%c", &percent, &tail) == 1 &&
                percent > 0) {
-        g.width = int(std::lround(percent_of->width() * percent / 100.0));
-        g.height = int(std::lround(percent_of->height() * percent / 100.0));
+        g.percent = percent;
+        return g;
     } else {
         throw ToolError(command + ": geometry '" + text + "' is not WxH, WxH+X+Y" +
-                        (percent_of ? ", N%" : "") + " or xmin,ymin,xmax,ymax");
+                        (allow_percent ? ", N%" : "") + " or xmin,ymin,xmax,ymax");
     }
     if (g.width <= 0 || g.height <= 0)
-        throw ToolError(command + ": geometry '" + text + "' has no pixels");
+        no_pixels(text, command);
+    return g;
+}
+
+// `g` for an image whose display window is `full`: "N%" of its size (rounded).
+Geometry sized_for(Geometry g, const OIIO::ROI& full, const std::string& text,
+                   const std::string& command)
+{
+    if (g.percent <= 0)
+        return g;
+    g.width = int(std::lround(full.width() * g.percent / 100.0));
+    g.height = int(std::lround(full.height() * g.percent / 100.0));
+    if (g.width <= 0 || g.height <= 0)
+        no_pixels(text, command);
     return g;
 }
 
@@ -81,10 +100,11 @@ Command crop_command()
     c.summary = "Set the pixel data window (WxH+X+Y or xmin,ymin,xmax,ymax), cropping or "
                 "padding with zeros; the display window is kept";
     c.modifiers = {subimages_modifier()};
+    c.check = [](const Invocation& inv) { parse_geometry(inv.args[0], false, inv.name); };
     c.run = [](ToolContext& ctx, const Invocation& inv) {
+        const Geometry g = parse_geometry(inv.args[0], false, inv.name);
         apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
             const OIIO::ImageSpec& spec = in[0]->spec();
-            const Geometry g = parse_geometry(inv.args[0], nullptr, inv.name);
             const int x = g.has_origin ? g.x : spec.x, y = g.has_origin ? g.y : spec.y;
             const OIIO::ROI roi(x, x + g.width, y, y + g.height, spec.z, spec.z + spec.depth, 0,
                                 spec.nchannels);
@@ -105,12 +125,14 @@ Command resize_command()
                                                           "lanczos3 to shrink, blackman-harris "
                                                           "to enlarge)")};
     c.modifiers.push_back(subimages_modifier());
+    c.check = [](const Invocation& inv) { parse_geometry(inv.args[0], true, inv.name); };
     c.run = [](ToolContext& ctx, const Invocation& inv) {
         const std::string filter = inv.modifiers.values().get_string("filter");
+        const Geometry geometry = parse_geometry(inv.args[0], true, inv.name);
         apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
             const OIIO::ImageSpec& old = in[0]->spec();
-            const OIIO::ROI full = OIIO::get_roi_full(old);
-            const Geometry g = parse_geometry(inv.args[0], &full, inv.name);
+            const Geometry g =
+                sized_for(geometry, OIIO::get_roi_full(old), inv.args[0], inv.name);
             OIIO::ImageBuf resized(resized_spec(old, g));
             OIIO::ImageBufAlgo::resize(resized, *in[0], filter, 0.0f, resized.roi(),
                                        ctx.nthreads);
