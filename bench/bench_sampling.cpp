@@ -29,11 +29,11 @@
 
 #include "statmc/layers/exr_files.h"
 
-#include "camera.h"
-#include "render_loop.h"
+#include "statmc/render/camera.h"
+#include "statmc/render/render_loop.h"
 #include "sampling_options.h"
-#include "scene.h"
-#include "scene_parser.h"
+#include "statmc/render/scene.h"
+#include "statmc/render/scene_parser.h"
 
 using namespace statmc::render;
 

@@ -21,7 +21,7 @@ report=${REPORT:-docs/evaluation.md}
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" --target statmc-render statmc statmc-evaluate
 render=$build/renderer/statmc-render
-evaluate=$build/bench/statmc-evaluate
+evaluate=$build/bench/evaluation/statmc-evaluate
 mkdir -p "$out"
 csv=$out/results.csv
 timing=$out/timing.csv

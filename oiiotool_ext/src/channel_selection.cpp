@@ -1,11 +1,11 @@
-#include "statmc/tool/channel_selection.h"
+#include "channel_selection.h"
 
 #include <optional>
 
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "statmc/tool/number_parsing.h"
-#include "statmc/tool/text_split.h"
+#include "text_split.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {

@@ -1,8 +1,8 @@
 #include "statmc/tool/command_line.h"
 
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/oiiotool_commands.h"
-#include "statmc/tool/text_split.h"
+#include "oiiotool_commands.h"
+#include "text_split.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "statmc/tool/plugin_commands.h"
+#include "plugin_commands.h"
 
 namespace statmc::tool {
 

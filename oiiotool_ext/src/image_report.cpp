@@ -1,4 +1,4 @@
-#include "statmc/tool/image_report.h"
+#include "image_report.h"
 
 #include <algorithm>
 #include <sstream>

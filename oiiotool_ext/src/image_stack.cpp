@@ -1,4 +1,4 @@
-#include "statmc/tool/image_stack.h"
+#include "image_stack.h"
 
 #include "statmc/tool/tool_error.h"
 

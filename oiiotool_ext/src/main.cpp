@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "statmc/tool/tool.h"
+#include "tool.h"
 
 int main(int argc, char* argv[])
 {

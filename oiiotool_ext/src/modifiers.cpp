@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "statmc/tool/number_parsing.h"
-#include "statmc/tool/text_split.h"
+#include "text_split.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {

@@ -1,4 +1,4 @@
-#include "statmc/tool/oiiotool_commands.h"
+#include "oiiotool_commands.h"
 
 #include <algorithm>
 #include <array>

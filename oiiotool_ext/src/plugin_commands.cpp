@@ -1,4 +1,4 @@
-#include "statmc/tool/plugin_commands.h"
+#include "plugin_commands.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -7,8 +7,8 @@
 #include <sstream>
 #include <system_error>
 
-#include "statmc/plugin_api/plugin_loader.h"
-#include "statmc/tool/tool_context.h"
+#include "statmc/plugin_sdk/plugin_loader.h"
+#include "tool_context.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {

@@ -1,11 +1,11 @@
-#include "statmc/tool/subimage_loop.h"
+#include "subimage_loop.h"
 
 #include <optional>
 #include <string>
 
 #include "statmc/tool/number_parsing.h"
-#include "statmc/tool/text_split.h"
-#include "statmc/tool/tool_context.h"
+#include "text_split.h"
+#include "tool_context.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {

@@ -1,4 +1,4 @@
-#include "statmc/tool/text_split.h"
+#include "text_split.h"
 
 namespace statmc::tool {
 

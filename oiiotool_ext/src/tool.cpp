@@ -1,12 +1,12 @@
-#include "statmc/tool/tool.h"
+#include "tool.h"
 
 #include <new>
 
 #include "statmc/layers/file_error.h"
 #include "statmc/tool/command_line.h"
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/plugin_commands.h"
-#include "statmc/tool/tool_context.h"
+#include "plugin_commands.h"
+#include "tool_context.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {

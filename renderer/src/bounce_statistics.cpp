@@ -1,4 +1,4 @@
-#include "bounce_statistics.h"
+#include "statmc/render/bounce_statistics.h"
 
 #include <algorithm>
 #include <stdexcept>

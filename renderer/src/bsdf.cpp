@@ -1,4 +1,4 @@
-#include "bsdf.h"
+#include "statmc/render/bsdf.h"
 
 #include <cmath>
 

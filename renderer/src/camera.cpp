@@ -1,8 +1,8 @@
-#include "camera.h"
+#include "statmc/render/camera.h"
 
 #include <cmath>
 
-#include "tokenizer.h"
+#include "statmc/render/scene_error.h"
 
 namespace statmc::render {
 

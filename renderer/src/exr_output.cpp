@@ -1,4 +1,4 @@
-#include "exr_output.h"
+#include "statmc/render/exr_output.h"
 
 #include <filesystem>
 #include <stdexcept>

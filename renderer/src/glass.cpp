@@ -2,7 +2,7 @@
 // refract otherwise, so each branch's weight is Kr or Kt·(η_i/η_t)².
 #include <cmath>
 
-#include "bsdf.h"
+#include "statmc/render/bsdf.h"
 
 namespace statmc::render {
 

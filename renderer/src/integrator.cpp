@@ -1,9 +1,9 @@
-#include "integrator.h"
+#include "statmc/render/integrator.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "bsdf.h"
+#include "statmc/render/bsdf.h"
 
 namespace statmc::render {
 

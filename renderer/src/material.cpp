@@ -1,10 +1,10 @@
-#include "material.h"
+#include "statmc/render/material.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "bsdf.h"
-#include "texture.h"
+#include "statmc/render/bsdf.h"
+#include "statmc/render/texture.h"
 
 namespace statmc::render {
 

@@ -2,7 +2,7 @@
 // (they work in the hemisphere of wo, whichever side that is).
 #include <cmath>
 
-#include "bsdf.h"
+#include "statmc/render/bsdf.h"
 
 namespace statmc::render {
 

@@ -5,7 +5,7 @@
 // G1(wo)·D(wh)/(4·cos θo) and the sample weight F·G/G1(wo).
 #include <cmath>
 
-#include "bsdf.h"
+#include "statmc/render/bsdf.h"
 
 namespace statmc::render {
 

@@ -1,5 +1,5 @@
 // pbrt-v3 "mirror": perfect specular reflection with reflectance Kr (default 0.9).
-#include "bsdf.h"
+#include "statmc/render/bsdf.h"
 
 namespace statmc::render {
 

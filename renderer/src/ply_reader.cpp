@@ -1,4 +1,4 @@
-#include "ply_reader.h"
+#include "statmc/render/ply_reader.h"
 
 #include <cstring>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "progress.h"
+#include "statmc/render/progress.h"
 
 #include <cstdio>
 

@@ -1,4 +1,4 @@
-#include "russian_roulette.h"
+#include "statmc/render/russian_roulette.h"
 
 #include <algorithm>
 #include <cmath>

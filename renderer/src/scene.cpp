@@ -1,4 +1,4 @@
-#include "scene.h"
+#include "statmc/render/scene.h"
 
 #include <cmath>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "scene_parser.h"
+#include "statmc/render/scene_parser.h"
 
 #include <filesystem>
 #include <fstream>
@@ -6,9 +6,9 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "ply_reader.h"
-#include "texture.h"
-#include "tokenizer.h"
+#include "statmc/render/ply_reader.h"
+#include "statmc/render/texture.h"
+#include "statmc/render/tokenizer.h"
 
 namespace statmc::render {
 

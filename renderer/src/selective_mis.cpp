@@ -1,4 +1,4 @@
-#include "selective_mis.h"
+#include "statmc/render/selective_mis.h"
 
 #include <cmath>
 

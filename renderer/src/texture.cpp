@@ -1,4 +1,4 @@
-#include "texture.h"
+#include "statmc/render/texture.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "tokenizer.h"
+#include "statmc/render/tokenizer.h"
 
 #include <cctype>
 #include <cstdlib>

@@ -10,11 +10,11 @@
 
 #include <unistd.h>
 
-#include "camera.h"
-#include "integrator.h"
-#include "render_loop.h"
-#include "scene.h"
-#include "scene_description.h"
+#include "statmc/render/camera.h"
+#include "statmc/render/integrator.h"
+#include "statmc/render/render_loop.h"
+#include "statmc/render/scene.h"
+#include "statmc/render/scene_description.h"
 
 namespace statmc::render::test {
 

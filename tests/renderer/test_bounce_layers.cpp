@@ -14,12 +14,12 @@
 #include "statmc/core/filter.h"
 #include "statmc/layers/statistics_layers.h"
 
-#include "camera.h"
-#include "exr_output.h"
-#include "render_loop.h"
+#include "statmc/render/camera.h"
+#include "statmc/render/exr_output.h"
+#include "statmc/render/render_loop.h"
 #include "renderer_test_support.h"
-#include "scene.h"
-#include "scene_parser.h"
+#include "statmc/render/scene.h"
+#include "statmc/render/scene_parser.h"
 
 using namespace statmc::render;
 using statmc::render::test::ScratchDir;

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "bounce_statistics.h"
+#include "statmc/render/bounce_statistics.h"
 
 using namespace statmc::render;
 

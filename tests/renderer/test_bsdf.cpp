@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "bsdf.h"
-#include "sampler.h"
+#include "statmc/render/bsdf.h"
+#include "statmc/render/sampler.h"
 
 using namespace statmc::render;
 

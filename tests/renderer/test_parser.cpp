@@ -4,9 +4,9 @@
 #include <OpenImageIO/imagebuf.h>
 
 #include "renderer_test_support.h"
-#include "scene_parser.h"
-#include "texture.h"
-#include "tokenizer.h"
+#include "statmc/render/scene_parser.h"
+#include "statmc/render/texture.h"
+#include "statmc/render/tokenizer.h"
 
 using namespace statmc::render;
 using statmc::render::test::ScratchDir;

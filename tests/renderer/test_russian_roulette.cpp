@@ -6,12 +6,12 @@
 #include <limits>
 #include <vector>
 
-#include "camera.h"
-#include "integrator.h"
+#include "statmc/render/camera.h"
+#include "statmc/render/integrator.h"
 #include "renderer_test_support.h"
-#include "russian_roulette.h"
-#include "scene.h"
-#include "scene_parser.h"
+#include "statmc/render/russian_roulette.h"
+#include "statmc/render/scene.h"
+#include "statmc/render/scene_parser.h"
 
 using namespace statmc::render;
 

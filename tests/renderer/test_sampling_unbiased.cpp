@@ -18,11 +18,11 @@
 #include <utility>
 #include <sstream>
 
-#include "camera.h"
-#include "render_loop.h"
+#include "statmc/render/camera.h"
+#include "statmc/render/render_loop.h"
 #include "renderer_test_support.h"
-#include "scene.h"
-#include "scene_parser.h"
+#include "statmc/render/scene.h"
+#include "statmc/render/scene_parser.h"
 
 using namespace statmc::render;
 using statmc::render::test::Rendered;

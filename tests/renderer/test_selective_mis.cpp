@@ -5,12 +5,12 @@
 #include <limits>
 #include <vector>
 
-#include "camera.h"
-#include "integrator.h"
+#include "statmc/render/camera.h"
+#include "statmc/render/integrator.h"
 #include "renderer_test_support.h"
-#include "scene.h"
-#include "scene_parser.h"
-#include "selective_mis.h"
+#include "statmc/render/scene.h"
+#include "statmc/render/scene_parser.h"
+#include "statmc/render/selective_mis.h"
 
 using namespace statmc::render;
 

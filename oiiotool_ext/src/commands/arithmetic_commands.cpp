@@ -4,9 +4,9 @@
 
 #include "statmc/tool/command_table.h"
 #include "statmc/tool/number_parsing.h"
-#include "statmc/tool/subimage_loop.h"
-#include "statmc/tool/text_split.h"
-#include "statmc/tool/tool_context.h"
+#include "subimage_loop.h"
+#include "text_split.h"
+#include "tool_context.h"
 
 namespace statmc::tool {
 

@@ -1,11 +1,11 @@
 // --ch, --chnames, --chappend: selecting, renaming and joining channels.
 #include <OpenImageIO/imagebufalgo.h>
 
-#include "statmc/tool/channel_selection.h"
+#include "channel_selection.h"
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/subimage_loop.h"
-#include "statmc/tool/text_split.h"
-#include "statmc/tool/tool_context.h"
+#include "subimage_loop.h"
+#include "text_split.h"
+#include "tool_context.h"
 
 namespace statmc::tool {
 

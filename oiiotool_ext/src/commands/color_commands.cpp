@@ -8,8 +8,8 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/subimage_loop.h"
-#include "statmc/tool/tool_context.h"
+#include "subimage_loop.h"
+#include "tool_context.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {

@@ -3,8 +3,8 @@
 
 #include "statmc/tool/command_table.h"
 #include "statmc/tool/number_parsing.h"
-#include "statmc/tool/plugin_commands.h"
-#include "statmc/tool/tool_context.h"
+#include "plugin_commands.h"
+#include "tool_context.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {

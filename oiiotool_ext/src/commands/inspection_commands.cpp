@@ -2,8 +2,8 @@
 // (image_report.h). --info and --stats are flags, as in oiiotool: they report each input
 // read after them.
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/image_report.h"
-#include "statmc/tool/tool_context.h"
+#include "image_report.h"
+#include "tool_context.h"
 
 namespace statmc::tool {
 

@@ -4,10 +4,10 @@
 
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/storage_rules.h"
-#include "statmc/tool/channel_selection.h"
+#include "channel_selection.h"
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/image_report.h"
-#include "statmc/tool/tool_context.h"
+#include "image_report.h"
+#include "tool_context.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {

@@ -1,7 +1,7 @@
 // -a, --subimage, --siappend: the subimages (EXR parts) of stack images.
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/subimage_loop.h"
-#include "statmc/tool/tool_context.h"
+#include "subimage_loop.h"
+#include "tool_context.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {

@@ -15,7 +15,7 @@
 
 #include "statmc/compare/compare.h"
 #include "statmc/layers/exr_files.h"
-#include "statmc/plugin_api/plugin_interface.h"
+#include "statmc/plugin_sdk/plugin_interface.h"
 
 namespace {
 

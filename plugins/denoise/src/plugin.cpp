@@ -21,7 +21,7 @@
 #include <algorithm>
 
 #include "statmc/denoise/denoise.h"
-#include "statmc/plugin_api/plugin_interface.h"
+#include "statmc/plugin_sdk/plugin_interface.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 //
 // One input; pushes the display-encoded R,G,B (A kept).
 #include "statmc/display/display.h"
-#include "statmc/plugin_api/plugin_interface.h"
+#include "statmc/plugin_sdk/plugin_interface.h"
 
 namespace {
 

@@ -7,7 +7,7 @@
 //
 // Pops n statistics images (or the whole stack); pushes their merged statistics.
 #include "statmc/merge/merge.h"
-#include "statmc/plugin_api/plugin_interface.h"
+#include "statmc/plugin_sdk/plugin_interface.h"
 
 namespace {
 

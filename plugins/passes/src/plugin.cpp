@@ -7,7 +7,7 @@
 //
 // Pops n renders (or the whole stack); pushes mean, variance.* and sampleCount.Y = K.
 #include "statmc/passes/passes.h"
-#include "statmc/plugin_api/plugin_interface.h"
+#include "statmc/plugin_sdk/plugin_interface.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 // | reciprocal | bool  | 0       |             | divide instead            |
 #include <OpenImageIO/imagebufalgo.h>
 
-#include "statmc/plugin_api/plugin_interface.h"
+#include "statmc/plugin_sdk/plugin_interface.h"
 
 namespace {
 

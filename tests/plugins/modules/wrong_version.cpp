@@ -2,7 +2,7 @@
 // calling its registration function (which would otherwise misread the registry).
 #include <cstdlib>
 
-#include "statmc/plugin_api/plugin_interface.h"
+#include "statmc/plugin_sdk/plugin_interface.h"
 
 STATMC_PLUGIN_VISIBLE int statmc_plugin_interface_version()
 {

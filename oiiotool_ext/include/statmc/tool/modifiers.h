@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "statmc/plugin_api/parameter_spec.h"
-#include "statmc/plugin_api/parameter_values.h"
+#include "statmc/plugin_sdk/parameter_spec.h"
+#include "statmc/plugin_sdk/parameter_values.h"
 
 namespace statmc::tool {
 

@@ -1,0 +1,60 @@
+// An operator as a plugin registers it: name, help, typed parameters, inputs, and a run
+// function in the style of OIIO's ImageBufAlgo return form (errors set on the result).
+#pragma once
+
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/imagebuf.h>
+
+#include "statmc/plugin_sdk/parameter_spec.h"
+#include "statmc/plugin_sdk/parameter_values.h"
+
+namespace statmc {
+
+/// `OperatorSpec::inputs` for an operator taking a run of images: the value of its `n`
+/// parameter when given, else the whole stack (at least `min_inputs`).
+inline constexpr int kVariadicInputs = -1;
+
+/// What the host lends a running operator besides its images.
+struct RunContext {
+    int nthreads = 0;                       ///< 0 = OIIO's global "threads"; 1 = caller only
+    std::ostream* out = nullptr;            ///< for reports (compare's table); may be null
+    std::vector<std::string> input_labels;  ///< names of the inputs for messages (file names)
+    std::string module;                     ///< the operator's module file: data ships beside it
+};
+
+/// Inputs bottom of the stack first. Returns the image to push; on failure the result
+/// carries the message (`result.errorfmt(...)`, seen by `has_error()`). Must not throw.
+using RunFunction = std::function<OIIO::ImageBuf(const std::vector<const OIIO::ImageBuf*>& inputs,
+                                                 const ParameterValues& parameters,
+                                                 const RunContext& context)>;
+
+/// The in-place form for one-input operators: the host hands over the image it popped,
+/// which becomes the result. Returns false with the message on the image. Must not throw.
+using RunInPlaceFunction = std::function<bool(OIIO::ImageBuf& image, const ParameterValues& parameters,
+                                              const RunContext& context)>;
+
+/// Cross-parameter checks beyond type and range, run before any image is read: "" when
+/// fine, else a message naming the parameter.
+using CheckFunction = std::function<std::string(const ParameterValues& parameters)>;
+
+struct OperatorSpec {
+    std::string name;     ///< "denoise": the command is --denoise
+    std::string summary;  ///< one line
+    std::string help;     ///< a paragraph for --help OP
+    std::vector<ParameterSpec> parameters;
+    int inputs = 1;                      ///< images popped, or kVariadicInputs
+    int min_inputs = 1;                  ///< kVariadicInputs only
+    std::string input_noun = "images";   ///< "renders": for "needs at least 2 renders"
+    CheckFunction check;                 ///< optional
+    RunFunction run;
+    /// Optional, one-input operators only: when set, the host runs this instead of `run`
+    /// on an image it owns, sparing the operator a copy of its input.
+    RunInPlaceFunction run_in_place;
+    std::string module;                  ///< set by the loader: the file it came from
+};
+
+}  // namespace statmc

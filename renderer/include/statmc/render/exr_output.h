@@ -1,0 +1,36 @@
+// The renderer's output: the film's statistics and guides under the EXR layer contract
+// (built by layers/, never by hand), plus the render's own header attributes.
+#pragma once
+
+#include <string>
+
+#include <OpenImageIO/imagebuf.h>
+
+#include "statmc/render/render_loop.h"
+
+namespace statmc::render {
+
+/// Header attributes the renderer adds beside the contract's statmc:spp / statmc:seed.
+inline constexpr const char* kRenderTimeAttribute = "statmc:renderTime";  // float seconds
+inline constexpr const char* kSceneAttribute = "statmc:scene";            // string
+
+struct OutputInfo {
+    int spp = 0;  ///< the smallest per-pixel sample count
+    int seed = 0;
+    float render_seconds = 0;
+    std::string scene;
+};
+
+/// Mean, variance, Box-Cox statistics, sampleCount, the per-bounce AOVs the film tracks
+/// (bounce<j>L, bounce<j>LightWins, bounce<j>BsdfWins), albedo, normal and depth.
+OIIO::ImageBuf make_output_image(const Film& film, const OutputInfo& info);
+
+/// Writes `image` as OpenEXR under the contract's storage rules through
+/// layers::write_image_file (a temporary file renamed into place, so that a failed or
+/// interrupted write never leaves a partial file). Throws layers::FileError.
+void write_exr(const OIIO::ImageBuf& image, const std::string& path);
+
+/// Where --denoise writes: "out.exr" -> "out.denoised.exr".
+std::string denoised_path(const std::string& path);
+
+}  // namespace statmc::render

@@ -1,0 +1,30 @@
+// The film: what a render accumulates per pixel. The beauty goes into core's online
+// statistics (exact, mergeable), the guides into plain sums averaged on output, and the
+// per-bounce quantities of ACRR and SMIS into their own statistics.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "statmc/core/statistics_image.h"
+#include "statmc/render/bounce_statistics.h"
+
+namespace statmc::render {
+
+/// Per-pixel accumulators for the beauty, the guide sums and the per-bounce quantities.
+struct Film {
+    Film(int width, int height, BounceLayout bounce_layout = {});
+    int width, height;
+    StatisticsImage<3> stats;
+    std::vector<double> albedo_sum, normal_sum, depth_sum;  ///< channel-major sums
+    std::unique_ptr<BounceStatistics> bounces;              ///< null when nothing is tracked
+
+    /// Guide averages as dense channel-major float planes (3, 3 and 1 channels).
+    std::vector<float> albedo() const;
+    std::vector<float> normal() const;
+    std::vector<float> depth() const;
+    /// The smallest per-pixel sample count.
+    int min_samples() const;
+};
+
+}  // namespace statmc::render

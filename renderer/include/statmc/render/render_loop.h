@@ -1,0 +1,71 @@
+// The progressive render (method.md §6): iterations of 4, 4, 8, 16, ... samples per pixel
+// (totals 4, 8, 16, 32, ...), each over 16x16 tiles in parallel (TBB). Samples go straight
+// into core's per-pixel accumulators (StatisticsImage<3>): a tile owns its pixels and
+// adds their samples in sample-index order, so the statistics are exact and identical
+// for any thread count without a merge step. Guides are averaged alongside, and so are
+// the per-bounce statistics of ACRR and SMIS (bounce_statistics.h): after each iteration
+// but the last they are denoised, and the estimates steer the next iteration's samples.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "statmc/render/camera.h"
+#include "statmc/render/film.h"
+#include "statmc/render/integrator.h"
+#include "statmc/render/scene.h"
+
+namespace statmc::render {
+
+/// Per-iteration sample counts reaching `total_spp` (the last one clipped).
+std::vector<int> schedule_for_spp(int total_spp);
+/// The first `iterations` entries of the schedule: totals 4·2^(K−1).
+std::vector<int> schedule_for_iterations(int iterations);
+
+/// The per-bounce quantities a render with `settings` needs: L_0..L_B for ACRR, the win
+/// counts of M vertices for SMIS; with `record_all`, both whatever the modes (to inspect
+/// them in the EXR).
+BounceLayout bounce_layout_for(const IntegratorSettings& settings, bool record_all = false);
+
+struct RenderSettings {
+    int width = 0, height = 0;
+    std::vector<int> schedule;  ///< samples per pixel of each iteration
+    std::uint64_t seed = 0;
+    int threads = 0;            ///< 0: all cores
+    IntegratorSettings integrator;
+    /// How the per-bounce statistics are denoised: the paper's filter, without the firefly
+    /// guard, as ACRR and SMIS were measured (docs/sampling.md).
+    DenoiseOptions bounce_filter = DenoiseOptions::paper();
+    bool progress = false;
+};
+
+/// What one progressive iteration cost.
+struct IterationStats {
+    int spp = 0;
+    double denoise_seconds = 0;  ///< denoising the estimates it steered by, before rendering (0 without)
+};
+
+struct RenderStats {
+    double seconds = 0;
+    int iterations_done = 0;
+    bool interrupted = false;
+    std::uint64_t samples = 0;
+    std::uint64_t tile_cycles = 0;  ///< time stamp counter cycles inside tiles, all threads
+};
+
+/// Runs after an iteration with the film so far and what the iteration cost.
+using IterationCallback = std::function<void(int iteration, const Film&, const IterationStats&)>;
+
+/// Renders into `film`. When `cancel` becomes true, the iteration in progress finishes
+/// the tiles already started and skips the rest (never during the first iteration, so
+/// every pixel has samples), then the render stops. `after_iteration` runs after each
+/// iteration (the hook for per-iteration denoising). The film's layout must be
+/// bounce_layout_for(settings.integrator) or a superset of it (record_all).
+RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings, Film& film,
+                   const std::atomic<bool>* cancel = nullptr,
+                   const IterationCallback& after_iteration = {});
+
+}  // namespace statmc::render

@@ -1,0 +1,119 @@
+// The plugin interface on its own: parameter ranges, loading a module, refusing one
+// built against another interface version.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imagebufalgo.h>
+
+#include "statmc/plugin_sdk/plugin_interface.h"
+#include "statmc/plugin_sdk/plugin_loader.h"
+
+namespace statmc {
+namespace {
+
+const std::string kGood = std::string(STATMC_TEST_MODULE_DIR) + "/good/testscale.so";
+const std::string kWrong = std::string(STATMC_TEST_MODULE_DIR) + "/wrong/wrong_version.so";
+
+// The message of the PluginError `f` throws, or "" when it throws none.
+template <class F>
+std::string error_of(F&& f)
+{
+    try {
+        f();
+    } catch (const PluginError& e) {
+        return e.what();
+    }
+    return {};
+}
+
+TEST(PluginApi, RangesDescribeAndCheckThemselves)
+{
+    const ParameterSpec radius = int_parameter("radius", 20, "").between(0, 1000);
+    EXPECT_EQ(radius.range.text(), "[0, 1000]");
+    EXPECT_EQ(radius.range.violation("radius", 1000), "");
+    EXPECT_EQ(radius.range.violation("radius", -1), "radius must be in [0, 1000], got -1");
+    const ParameterSpec alpha = float_parameter("alpha", 0.005, "").open_between(0, 1);
+    EXPECT_EQ(alpha.default_value, "0.005");
+    EXPECT_EQ(alpha.range.violation("alpha", 1), "alpha must be in (0, 1), got 1");
+    EXPECT_EQ(float_parameter("s", 10, "").above(0).range.violation("s", 0),
+              "s must be > 0, got 0");
+    EXPECT_EQ(int_parameter("n", std::nullopt, "").at_least(2).range.violation("n", 1),
+              "n must be at least 2, got 1");
+    EXPECT_EQ(int_parameter("n", std::nullopt, "").default_value, "");
+}
+
+TEST(PluginApi, ValuesFallBackToTheirDefaults)
+{
+    ParameterValues values;
+    values.set("radius", 7);
+    EXPECT_EQ(values.get_int("radius", 20), 7);
+    EXPECT_EQ(values.get_float("alpha", 0.005), 0.005);
+    EXPECT_EQ(values.get_list("guides", {"auto"}), std::vector<std::string>{"auto"});
+}
+
+TEST(PluginApi, SearchPathsSplitOnColons)
+{
+    EXPECT_EQ(split_search_path("a:b::/c/d:"), (std::vector<std::string>{"a", "b", "/c/d"}));
+    EXPECT_TRUE(split_search_path("").empty());
+}
+
+TEST(PluginApi, LoadsAModuleAndRunsItsOperator)
+{
+    PluginRegistry registry;
+    load_plugin(kGood, registry);
+    const OperatorSpec* op = registry.find("testscale");
+    ASSERT_TRUE(op);
+    EXPECT_EQ(op->module, kGood);
+    EXPECT_EQ(op->inputs, 1);
+    ASSERT_EQ(op->parameters.size(), 2u);
+    EXPECT_EQ(op->parameters[0].range.text(), "[0.01, 100]");
+    EXPECT_EQ(op->parameters[1].type, ParameterType::Bool);
+
+    OIIO::ImageBuf in(OIIO::ImageSpec(2, 2, 3, OIIO::TypeDesc::FLOAT));
+    const float px[3] = {1.f, 2.f, 4.f};
+    OIIO::ImageBufAlgo::fill(in, px);
+    ParameterValues values;
+    values.set("factor", 3.0);
+    const OIIO::ImageBuf out = op->run({&in}, values, RunContext{});
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    EXPECT_FLOAT_EQ(out.getchannel(1, 1, 0, 2), 12.f);
+    values.set("reciprocal", true);
+    EXPECT_FLOAT_EQ(op->run({&in}, values, RunContext{}).getchannel(0, 0, 0, 1), 2.f / 3.f);
+}
+
+TEST(PluginApi, RefusesAModuleOfAnotherInterfaceVersion)
+{
+    PluginRegistry registry;
+    const std::string message = error_of([&] { load_plugin(kWrong, registry); });
+    EXPECT_NE(message.find(kWrong + ": plugin interface version " +
+                           std::to_string(kPluginInterfaceVersion + 41)),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("needs version " + std::to_string(kPluginInterfaceVersion)),
+              std::string::npos)
+        << message;
+    EXPECT_TRUE(registry.operators().empty());
+}
+
+TEST(PluginApi, ReportsUnloadableFilesAndDuplicates)
+{
+    PluginRegistry registry;
+    const std::string missing = std::string(STATMC_TEST_MODULE_DIR) + "/none.so";
+    EXPECT_NE(error_of([&] { load_plugin(missing, registry); })
+                  .find(missing + ": cannot load plugin: "),
+              std::string::npos);
+    load_plugin(kGood, registry);
+    EXPECT_NE(error_of([&] { load_plugin(kGood, registry); })
+                  .find("operator 'testscale' is already registered by " + kGood),
+              std::string::npos);
+    EXPECT_EQ(registry.operators().size(), 1u);
+}
+
+TEST(PluginApi, ListsModulesOfADirectory)
+{
+    EXPECT_EQ(plugin_files(std::string(STATMC_TEST_MODULE_DIR) + "/good"),
+              std::vector<std::string>{kGood});
+    EXPECT_TRUE(plugin_files(std::string(STATMC_TEST_MODULE_DIR) + "/absent").empty());
+}
+
+}  // namespace
+}  // namespace statmc
