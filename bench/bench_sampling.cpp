@@ -92,7 +92,7 @@ int main(int argc, char** argv)
     app.add_option("--spp-per-iteration", spp, "samples per pixel of each iteration")->capture_default_str();
     app.add_option("--progressive-spp", progressive,
                    "instead of --iterations x --spp-per-iteration: the progressive schedule 4, 4, 8, ... "
-                   "to this many spp (method.md §6)");
+                   "to this many spp (docs/method.md §6)");
     app.add_option("--runs", runs, "independent runs (seeds seed, seed+1, ...)")->capture_default_str();
     app.add_option("--seed", seed, "first seed")->capture_default_str();
     app.add_option("--threads", threads, "worker threads, 0 = all")->capture_default_str();

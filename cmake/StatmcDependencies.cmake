@@ -1,4 +1,4 @@
-# All dependencies come from Debian 12 packages (see .ci/install-deps).
+# All dependencies come from Debian 12 packages (scripts/install-deps.sh installs them).
 find_package(TBB CONFIG REQUIRED)
 find_package(Boost 1.74 REQUIRED)   # header-only Boost.Math
 

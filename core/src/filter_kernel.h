@@ -77,7 +77,7 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Par
         constexpr int First = decltype(first)::value, Last = decltype(last)::value;
         const std::ptrdiff_t off = std::ptrdiff_t(wy) * L.stride + x0 + dx;
         // Membership: all channels pass (μ̃_i − μ̃_j)² − T_j ≤ T_i, the fast form of
-        // method.md §4, (μ̃_i − μ̃_j)² ≤ γ_i²v_i + γ_j²v_j, kept in difference form:
+        // docs/method.md §4, (μ̃_i − μ̃_j)² ≤ γ_i²v_i + γ_j²v_j, kept in difference form:
         // expanding it into D_i + D_j ≤ 2μ̃_iμ̃_j cancels catastrophically in float once
         // v ≪ μ̃² (high spp). The firefly guard, where needed, starts the mask chain.
         typename V::M m[R];

@@ -215,7 +215,7 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                 const bool testable = est.testable(x, y);
                 const double n = est.count[est.index(0, x, y)];
                 if (testable && n != last_count) {
-                    // The fast form tests each side at df = 2n − 2 (method.md §4).
+                    // The fast form tests each side at df = 2n − 2 (docs/method.md §4).
                     const double gamma = critical.gamma(2.0 * std::floor(n) - 2.0);
                     last_count = n;
                     last_gamma2 = gamma * gamma;

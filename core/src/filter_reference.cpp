@@ -1,4 +1,4 @@
-// method.md §5 written as plainly as possible, in double precision: the yardstick for
+// docs/method.md §5 written as plainly as possible, in double precision: the yardstick for
 // the optimised filter in tests and benchmarks.
 #include <cmath>
 #include <stdexcept>

@@ -16,7 +16,7 @@ void apply_storage_rules(OIIO::ImageSpec& spec)
 {
     spec.set_format(OIIO::TypeDesc::FLOAT);
     spec.channelformats.clear();
-    // Scanline files are what every EXR reader handles (ecosystem.md §3 checklist).
+    // Scanline files are what every EXR reader handles (docs/ecosystem.md §3 checklist).
     spec.tile_width = spec.tile_height = spec.tile_depth = 0;
     if (!is_lossless_compression(spec.get_string_attribute("compression")))
         spec.attribute("compression", "zip");

@@ -56,7 +56,7 @@ inline void add_sampling_options(CLI::App& app, SamplingOptions& o)
 {
     add_mode_option<RouletteMode>(app, "--rr", o.roulette.mode, {{"classic", RouletteMode::Classic}, {"acrr", RouletteMode::Acrr}},
                                   "Russian roulette: classic (pbrt-v3, from the throughput) or acrr (approximate "
-                                  "contribution from denoised per-bounce radiance, method.md §7)");
+                                  "contribution from denoised per-bounce radiance, docs/method.md §7)");
     app.add_option("--rr-bounces", o.roulette.tracked_bounces,
                    "ACRR: tracked bounces beside the pixel (layers bounce0L..bounce<N>L)")
         ->capture_default_str()
@@ -67,7 +67,7 @@ inline void add_sampling_options(CLI::App& app, SamplingOptions& o)
         ->check(CLI::NonNegativeNumber);
     add_mode_option<MisMode>(app, "--mis", o.mis.mode, {{"standard", MisMode::Standard}, {"selective", MisMode::Selective}},
                              "MIS: standard (power heuristic) or selective (skip a technique whose denoised win "
-                             "share is below --mis-threshold, method.md §8)");
+                             "share is below --mis-threshold, docs/method.md §8)");
     app.add_option("--mis-bounces", o.mis.tracked_bounces,
                    "SMIS: tracked vertices (layers bounce<j>LightWins, bounce<j>BsdfWins)")
         ->capture_default_str()

@@ -38,7 +38,7 @@ TEST(CriticalValues, MatchPublishedTables)
 
 TEST(CriticalValues, DefaultAlphaMatchesMethodDescription)
 {
-    // method.md §3: γ_w ≈ 2.81 for large n, 4.32 at df 6 (α = 0.005).
+    // docs/method.md §3: γ_w ≈ 2.81 for large n, 4.32 at df 6 (α = 0.005).
     const CriticalValues cv(0.005);
     EXPECT_NEAR(cv.gamma(6), 4.317, 0.001);
     EXPECT_NEAR(cv.gamma(1e7), 2.807, 0.001);

@@ -69,7 +69,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(DenoiseGain, BoxCoxBeatsThePlainTestOnSkewedNoiseAtEdges)
 {
-    // The reason for the transform (method.md §3): skewed samples make the plain test
+    // The reason for the transform (docs/method.md §3): skewed samples make the plain test
     // join regions it should keep apart.
     for (const testing::DrawFn& draw : {testing::DrawFn(testing::draw_exponential),
                                         testing::DrawFn(testing::draw_lognormal)}) {

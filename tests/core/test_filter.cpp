@@ -1,4 +1,4 @@
-// The optimised filter against the plain reference of method.md §5, and its invariants.
+// The optimised filter against the plain reference of docs/method.md §5, and its invariants.
 #include <algorithm>
 #include <cmath>
 #include <cstring>

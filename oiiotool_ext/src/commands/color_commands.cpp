@@ -111,7 +111,7 @@ Command ociodisplay_command()
         std::string display = inv.args[0], view = inv.args[1];
         if (display.empty())
             display = text(config.getDefaultDisplayName());
-        if (view.empty())  // IBA refuses an empty view (ecosystem.md pitfall 8)
+        if (view.empty())  // IBA refuses an empty view (docs/ecosystem.md pitfall 8)
             view = text(config.getDefaultViewName(display));
         const std::string from = inv.modifiers.values().get_string("from");
         const std::string looks = inv.modifiers.values().get_string("looks");

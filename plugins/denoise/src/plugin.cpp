@@ -1,4 +1,4 @@
-// denoise: the StatMC filter on a statistics image (method.md §5), as a statmc plugin.
+// denoise: the StatMC filter on a statistics image (docs/method.md §5), as a statmc plugin.
 //
 // | parameter    | type   | default | range     | meaning                                     |
 // |--------------|--------|---------|-----------|---------------------------------------------|

@@ -5,7 +5,7 @@
 
 namespace statmc {
 
-/// Box-Cox exponent, fixed as in the method (method.md §2).
+/// Box-Cox exponent, fixed as in the method (docs/method.md §2).
 inline constexpr double kBoxCoxLambda = 0.5;
 
 /// y = (x^λ − 1)/λ with λ = 1/2, i.e. 2√x − 2; negative inputs are clamped to 0 first.
@@ -23,7 +23,7 @@ inline Real luminance(Real r, Real g, Real b)
 }
 
 /// Whether a sample is counted as measured or as 0: NaN, infinite, or clearly negative
-/// luminance marks a broken sample (method.md §2, a choice of the authors' code).
+/// luminance marks a broken sample (docs/method.md §2, a choice of the authors' code).
 /// For one channel the value stands for the luminance.
 inline bool sample_is_usable(const float* sample, int channels)
 {

@@ -1,4 +1,4 @@
-// The parameters of the StatMC filter (method.md §5), with the paper's defaults.
+// The parameters of the StatMC filter (docs/method.md §5), with the paper's defaults.
 #pragma once
 
 #include <string>

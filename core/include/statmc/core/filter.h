@@ -1,4 +1,4 @@
-// The StatMC filter (method.md §5): average each pixel with the neighbours whose
+// The StatMC filter (docs/method.md §5): average each pixel with the neighbours whose
 // estimators a t-test cannot tell apart from it.
 #pragma once
 
@@ -51,7 +51,7 @@ void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOption
             const std::vector<Plane>& out, const FilterDiagnostics& diagnostics = {},
             int nthreads = 0, SimdLevel level = SimdLevel::Auto);
 
-/// A plain, unoptimised double-precision implementation of method.md §5, the yardstick
+/// A plain, unoptimised double-precision implementation of docs/method.md §5, the yardstick
 /// that the fast filter is tested and benchmarked against. Single-threaded.
 void filter_reference(const EstimatorImage& est, const Guides& guides,
                       const DenoiseOptions& options, const std::vector<Plane>& out,

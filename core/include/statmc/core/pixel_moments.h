@@ -1,4 +1,4 @@
-// The per-pixel statistics of method.md §2 for C channels: count, untransformed and
+// The per-pixel statistics of docs/method.md §2 for C channels: count, untransformed and
 // Box-Cox moments, updated one sample at a time and merged exactly.
 #pragma once
 

@@ -1,5 +1,5 @@
 // Finding a layer's channels in an ImageSpec by name. OIIO reorders channels on read
-// (ecosystem.md pitfall 5), so an index is never assumed, always looked up.
+// (docs/ecosystem.md pitfall 5), so an index is never assumed, always looked up.
 #pragma once
 
 #include <string>

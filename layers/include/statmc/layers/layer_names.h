@@ -58,7 +58,7 @@ std::string diagnostics_channel(std::string_view aov, std::string_view quantity)
 /// "diffuse.variance", "bounce1.boxcoxM3" and so on.
 std::string statistic_layer(std::string_view aov, Statistic stat);
 
-/// Per-bounce quantities a renderer tracks for its own sampling decisions (method.md §7,
+/// Per-bounce quantities a renderer tracks for its own sampling decisions (docs/method.md §7,
 /// §8), each stored as a one-channel (Y) AOV of its own beside the beauty.
 enum class BounceQuantity {
     Luminance,  ///< L_j: luminance of the radiance from path vertex j on, throughput 1 (ACRR)

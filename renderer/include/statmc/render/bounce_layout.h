@@ -1,5 +1,5 @@
 // Which per-bounce quantities a render tracks and where each sits in a pixel's vector of
-// values: B luminances L_0..L_{B−1} for ACRR (method.md §7), then a light and a BSDF win
+// values: B luminances L_0..L_{B−1} for ACRR (docs/method.md §7), then a light and a BSDF win
 // count for each of the first M vertices for SMIS (§8). One flat index serves the
 // accumulators, the batched filter, the EXR layers and the integrator's look-ups.
 #pragma once

@@ -1,10 +1,10 @@
-// Per-pixel statistics (method.md §2, core's accumulators) of the per-bounce quantities of
+// Per-pixel statistics (docs/method.md §2, core's accumulators) of the per-bounce quantities of
 // a BounceLayout, and their batched denoising after each iteration (§5, core's filter).
 //
 // Batching: the quantities are packed as channels, four to a StatisticsImage<4> group
 // (core's filter takes 1..4 channels), so each iteration costs ceil(Q/4) filter calls,
 // i.e. one pass over the image per group, instead of Q. The filter's membership test
-// then requires all channels of a group to pass (method.md §3), so the groups are
+// then requires all channels of a group to pass (docs/method.md §3), so the groups are
 // filtered a little more conservatively than one quantity alone would be: the price of
 // batching, which can only make an estimate noisier, never the render biased (the
 // estimates only steer sampling).

@@ -1,6 +1,6 @@
 // Unidirectional path tracing with next-event estimation, both strategies combined by
 // the power heuristic (light sampling at each non-specular vertex, BSDF sampling that
-// happens to hit an emitter) or selectively (SMIS, method.md §8), and Russian roulette,
+// happens to hit an emitter) or selectively (SMIS, docs/method.md §8), and Russian roulette,
 // classic or approximate-contribution (ACRR, §7). The per-pixel estimates that ACRR and
 // SMIS steer by come from earlier iterations (PixelEstimates); without them both behave
 // classically.
@@ -16,7 +16,7 @@
 
 namespace statmc::render {
 
-/// The feature guides of one camera sample (method.md §5): albedo and shading normal at
+/// The feature guides of one camera sample (docs/method.md §5): albedo and shading normal at
 /// the first non-specular vertex (albedo through any specular chain before it), and the
 /// distance to the first hit. All zero when the ray escapes.
 struct GuideSample {
@@ -26,7 +26,7 @@ struct GuideSample {
 };
 
 /// What one camera path did, vertex by vertex, for the per-bounce statistics of ACRR
-/// (method.md §7: L_j = the radiance arriving at vertex j with throughput 1 from there on,
+/// (docs/method.md §7: L_j = the radiance arriving at vertex j with throughput 1 from there on,
 /// i.e. Σ of contributions at vertices ≥ j divided by the throughput at vertex j) and
 /// the technique win counts of SMIS (§8, from the MIS weights). Filled only when a
 /// recorder is passed; the integrator's result does not depend on it.

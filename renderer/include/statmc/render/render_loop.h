@@ -1,4 +1,4 @@
-// The progressive render (method.md §6): iterations of 4, 4, 8, 16, ... samples per pixel
+// The progressive render (docs/method.md §6): iterations of 4, 4, 8, 16, ... samples per pixel
 // (totals 4, 8, 16, 32, ...), each over 16x16 tiles in parallel (TBB). Samples go straight
 // into core's per-pixel accumulators (StatisticsImage<3>): a tile owns its pixels and
 // adds their samples in sample-index order, so the statistics are exact and identical

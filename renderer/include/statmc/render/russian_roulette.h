@@ -1,5 +1,5 @@
 // Russian roulette: classic (pbrt-v3, from the path throughput alone) and
-// approximate-contribution RR (ACRR, method.md §7), which compares the throughput times
+// approximate-contribution RR (ACRR, docs/method.md §7), which compares the throughput times
 // the denoised radiance expected from the next vertex with the pixel's denoised value.
 //
 // Unbiasedness: a path survives with probability p ∈ (0, 1] and its throughput is divided

@@ -1,5 +1,5 @@
 // How the two direct-lighting techniques are weighted: standard MIS (the power heuristic)
-// or selective MIS (SMIS, method.md §8), which skips a technique that has (almost) never
+// or selective MIS (SMIS, docs/method.md §8), which skips a technique that has (almost) never
 // won at this pixel and vertex and gives the other one weight 1.
 //
 // Unbiasedness. The choice is made per pixel and vertex from the estimates of earlier

@@ -79,7 +79,7 @@ struct Rgb {
     float& operator[](int i) { return i == 0 ? r : (i == 1 ? g : b); }
     bool is_black() const { return r == 0 && g == 0 && b == 0; }
     float max_component() const { return std::max(r, std::max(g, b)); }
-    /// Rec.709 luminance, as method.md §2 defines Y.
+    /// Rec.709 luminance, as docs/method.md §2 defines Y.
     float luminance() const { return 0.212671f * r + 0.715160f * g + 0.072169f * b; }
 };
 

@@ -9,7 +9,7 @@
 namespace statmc {
 
 /// Denoises the mean of `opt.aov` (R,G,B of the beauty by default) of `src` with the
-/// StatMC filter (method.md §5).
+/// StatMC filter (docs/method.md §5).
 ///
 /// `dst` becomes a float copy of `src`, every channel and attribute kept, in which the
 /// mean channels inside `roi` are replaced by the filtered values and `statmc:denoised` is

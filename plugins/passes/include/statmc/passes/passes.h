@@ -1,6 +1,6 @@
 // The passes operator in the style of OIIO's ImageBufAlgo: K independent renders of one
 // frame (different seeds) in, a statistics image (docs/exr-layers.md) out. This is how a
-// renderer without statmc integration gets denoised (method.md; core/passes.h).
+// renderer without statmc integration gets denoised (docs/method.md; core/passes.h).
 #pragma once
 
 #include <vector>
