@@ -140,7 +140,14 @@ TEST(Compare, RefusesDifferentWindowsAndMissingChannels)
     CompareMetrics m;
     OIIO::ImageBuf error;
     EXPECT_FALSE(compare(m, error, flat(4, 4, 0.5f), flat(5, 4, 0.5f)));
-    EXPECT_NE(error.geterror().find("differ in data window"), std::string::npos);
+    EXPECT_NE(error.geterror().find("the image and the reference differ in resolution: 4x4 vs 5x4"),
+              std::string::npos)
+        << error.geterror();
+    OIIO::ImageBuf moved = flat(4, 4, 0.5f);
+    moved.set_origin(1, 0);
+    EXPECT_FALSE(compare(m, error, flat(4, 4, 0.5f), moved));
+    EXPECT_NE(error.geterror().find("differ in data window: origin (0, 0) vs (1, 0)"), std::string::npos)
+        << error.geterror();
     OIIO::ImageBuf gray(OIIO::ImageSpec(4, 4, 1, OIIO::TypeFloat));
     OIIO::ImageBuf error2;
     EXPECT_FALSE(compare(m, error2, flat(4, 4, 0.5f), gray));

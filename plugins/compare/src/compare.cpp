@@ -9,6 +9,9 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "statmc/compare/ssim.h"
+#include "statmc/core/luminance.h"
+#include "statmc/layers/frame_match.h"
+#include "statmc/layers/imagebufalgo_forms.h"
 
 namespace statmc {
 
@@ -31,15 +34,6 @@ OIIO::ImageBuf beauty(const OIIO::ImageBuf& buf, const char* role, int nthreads)
     return rgb;
 }
 
-void check_match(const OIIO::ImageSpec& a, const OIIO::ImageSpec& b)
-{
-    if (a.width != b.width || a.height != b.height || a.x != b.x || a.y != b.y)
-        throw std::invalid_argument(OIIO::Strutil::fmt::format(
-            "the image ({}x{} at {},{}) and the reference ({}x{} at {},{}) differ in data "
-            "window",
-            a.width, a.height, a.x, a.y, b.width, b.height, b.x, b.y));
-}
-
 float clamped(float v) { return std::clamp(std::isfinite(v) ? v : 0.f, 0.f, 1.f); }
 
 // sRGB's encoding (IEC 61966-2-1), then clamped: the LDR image SSIM is defined on.
@@ -50,7 +44,7 @@ float display_value(float linear)
     return clamped(v);
 }
 
-// Rec.709 luminance of the LDR pixels of `rgb` (3 channels).
+// The luminance of the LDR pixels of `rgb` (3 channels).
 std::vector<float> ldr_luminance(const std::vector<float>& rgb, bool encode)
 {
     std::vector<float> y(rgb.size() / 3);
@@ -58,7 +52,7 @@ std::vector<float> ldr_luminance(const std::vector<float>& rgb, bool encode)
         float v[3];
         for (int c = 0; c < 3; ++c)
             v[c] = encode ? display_value(rgb[3 * p + c]) : clamped(rgb[3 * p + c]);
-        y[p] = 0.2126f * v[0] + 0.7152f * v[1] + 0.0722f * v[2];
+        y[p] = luminance(v[0], v[1], v[2]);
     }
     return y;
 }
@@ -111,22 +105,19 @@ CompareMetrics metrics_of(const OIIO::ImageBuf& x, const OIIO::ImageBuf& ref,
 bool compare(CompareMetrics& metrics, OIIO::ImageBuf& error, const OIIO::ImageBuf& image,
              const OIIO::ImageBuf& reference, const CompareOptions& options, int nthreads)
 {
-    try {
+    return layers::errors_on(error, "compare", [&] {
         if (!image.initialized() || !reference.initialized())
             throw std::invalid_argument("compare: uninitialized input image");
         if (!(options.relmse_epsilon > 0))
             throw std::invalid_argument("compare: epsilon must be > 0");
-        check_match(image.spec(), reference.spec());
+        layers::require_same_frame(image.spec(), reference.spec(), "the image and the reference");
         const OIIO::ImageBuf x = beauty(image, "the image", nthreads);
         const OIIO::ImageBuf ref = beauty(reference, "the reference", nthreads);
         metrics = metrics_of(x, ref, options, nthreads);
         if (!OIIO::ImageBufAlgo::absdiff(error, x, ref, {}, nthreads))
             throw std::invalid_argument(error.geterror());
         return true;
-    } catch (const std::exception& e) {
-        error.errorfmt("{}", e.what());
-    }
-    return false;
+    });
 }
 
 }  // namespace statmc

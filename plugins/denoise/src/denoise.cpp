@@ -11,6 +11,7 @@
 #include "statmc/core/filter.h"
 #include "statmc/layers/float_pixels.h"
 #include "statmc/layers/guide_layers.h"
+#include "statmc/layers/imagebufalgo_forms.h"
 #include "statmc/layers/layer_error.h"
 #include "statmc/layers/layer_lookup.h"
 #include "statmc/layers/layer_names.h"
@@ -118,16 +119,6 @@ std::array<ConstPlane, 3> guide(const OIIO::ImageBuf& in, GuideUse use, const st
     return indices.empty() ? std::array<ConstPlane, 3>{} : layers::guide_planes(in, indices);
 }
 
-// OIIO's convention: 0 threads means the global "threads" attribute.
-int thread_count(int nthreads)
-{
-    if (nthreads > 0)
-        return nthreads;
-    int global = 0;
-    OIIO::getattribute("threads", global);
-    return global > 0 ? global : 0;
-}
-
 // What the filter gives over the input region, dense: the means channel-major, and the
 // diagnostics planes when asked for.
 struct Filtered {
@@ -151,7 +142,7 @@ Filtered filter_region(const StatisticsView& stats, TestDomain domain, const Gui
         planes.members = dense_plane(f.members.data(), stats.width);
         planes.effective_samples = dense_plane(f.effective_samples.data(), stats.width);
     }
-    filter(est, guides, options, out, planes, thread_count(nthreads));
+    filter(est, guides, options, out, planes, layers::thread_count(nthreads));
     return f;
 }
 
@@ -171,7 +162,7 @@ void write_channels(OIIO::ImageBuf& image, const OIIO::ImageBuf* source,
     const OIIO::ROI& out = regions.output;
     const OIIO::ROI& input = regions.input;
     const std::size_t row_bytes = std::size_t(spec.width) * image.pixel_stride();
-    OIIO::ImageBufAlgo::parallel_image(image.roi(), OIIO::paropt(thread_count(nthreads)), [&](OIIO::ROI rows) {
+    OIIO::ImageBufAlgo::parallel_image(image.roi(), OIIO::paropt(layers::thread_count(nthreads)), [&](OIIO::ROI rows) {
         for (int y = rows.ybegin; y < rows.yend; ++y) {
             float* to = static_cast<float*>(image.pixeladdr(spec.x, y));
             if (source)
@@ -292,24 +283,14 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
 bool denoise(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseImageOptions& opt,
              OIIO::ROI roi, int nthreads)
 {
-    // The ImageBufAlgo contract: errors travel on dst, nothing is thrown to the caller.
-    try {
-        return denoise_impl(dst, src, opt, roi, nthreads);
-    } catch (const std::exception& e) {
-        dst.errorfmt("{}", e.what());
-    } catch (...) {
-        dst.errorfmt("denoise: unknown error");
-    }
-    return false;
+    return layers::errors_on(dst, "denoise", [&] { return denoise_impl(dst, src, opt, roi, nthreads); });
 }
 
 OIIO::ImageBuf denoise(const OIIO::ImageBuf& src, const DenoiseImageOptions& opt, OIIO::ROI roi,
                        int nthreads)
 {
-    OIIO::ImageBuf result;
-    if (!denoise(result, src, opt, roi, nthreads) && !result.has_error())
-        result.errorfmt("denoise failed");
-    return result;
+    return layers::returned_image(
+        "denoise", [&](OIIO::ImageBuf& dst) { return denoise(dst, src, opt, roi, nthreads); });
 }
 
 }  // namespace statmc

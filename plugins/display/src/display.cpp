@@ -9,6 +9,8 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imagebufalgo_util.h>
 
+#include "statmc/layers/imagebufalgo_forms.h"
+
 namespace statmc {
 
 namespace {
@@ -151,21 +153,16 @@ std::string display_config(const std::string& given, const std::string& module)
 bool display(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DisplayOptions& options,
              int nthreads)
 {
-    try {
+    return layers::errors_on(dst, "display", [&] {
         dst = display_image(src, options, nthreads);
         return true;
-    } catch (const std::exception& e) {
-        dst.errorfmt("{}", e.what());
-    }
-    return false;
+    });
 }
 
 OIIO::ImageBuf display(const OIIO::ImageBuf& src, const DisplayOptions& options, int nthreads)
 {
-    OIIO::ImageBuf result;
-    if (!display(result, src, options, nthreads) && !result.has_error())
-        result.errorfmt("display failed");
-    return result;
+    return layers::returned_image("display",
+                                  [&](OIIO::ImageBuf& dst) { return display(dst, src, options, nthreads); });
 }
 
 }  // namespace statmc

@@ -10,6 +10,7 @@
 #include "statmc/layers/float_pixels.h"
 #include "statmc/layers/frame_match.h"
 #include "statmc/layers/guide_layers.h"
+#include "statmc/layers/imagebufalgo_forms.h"
 #include "statmc/layers/layer_error.h"
 #include "statmc/layers/layer_names.h"
 #include "statmc/layers/statistics_layers.h"
@@ -184,23 +185,15 @@ OIIO::ImageBuf merge_parts(const Parts& parts)
 
 bool merge(OIIO::ImageBuf& dst, const Parts& parts, int /*nthreads: merging is memory bound*/)
 {
-    try {
+    return layers::errors_on(dst, "merge", [&] {
         dst = merge_parts(parts);
         return true;
-    } catch (const std::exception& e) {
-        dst.errorfmt("{}", e.what());
-    } catch (...) {
-        dst.errorfmt("merge: unknown error");
-    }
-    return false;
+    });
 }
 
 OIIO::ImageBuf merge(const Parts& parts, int nthreads)
 {
-    OIIO::ImageBuf result;
-    if (!merge(result, parts, nthreads) && !result.has_error())
-        result.errorfmt("merge failed");
-    return result;
+    return layers::returned_image("merge", [&](OIIO::ImageBuf& dst) { return merge(dst, parts, nthreads); });
 }
 
 }  // namespace statmc

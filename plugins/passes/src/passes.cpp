@@ -9,6 +9,7 @@
 #include "statmc/core/passes.h"
 #include "statmc/layers/float_pixels.h"
 #include "statmc/layers/frame_match.h"
+#include "statmc/layers/imagebufalgo_forms.h"
 #include "statmc/layers/layer_lookup.h"
 #include "statmc/layers/layer_names.h"
 #include "statmc/layers/statistics_layers.h"
@@ -185,23 +186,14 @@ bool passes_impl(OIIO::ImageBuf& dst, const Renders& renders, OIIO::ROI roi, int
 bool passes(OIIO::ImageBuf& dst, const std::vector<const OIIO::ImageBuf*>& renders, OIIO::ROI roi,
             int nthreads)
 {
-    try {
-        return passes_impl(dst, renders, roi, nthreads);
-    } catch (const std::exception& e) {
-        dst.errorfmt("{}", e.what());
-    } catch (...) {
-        dst.errorfmt("passes: unknown error");
-    }
-    return false;
+    return layers::errors_on(dst, "passes", [&] { return passes_impl(dst, renders, roi, nthreads); });
 }
 
 OIIO::ImageBuf passes(const std::vector<const OIIO::ImageBuf*>& renders, OIIO::ROI roi,
                       int nthreads)
 {
-    OIIO::ImageBuf result;
-    if (!passes(result, renders, roi, nthreads) && !result.has_error())
-        result.errorfmt("passes failed");
-    return result;
+    return layers::returned_image(
+        "passes", [&](OIIO::ImageBuf& dst) { return passes(dst, renders, roi, nthreads); });
 }
 
 }  // namespace statmc

@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "statmc/core/luminance.h"
+
 namespace statmc {
 
 /// Box-Cox exponent, fixed as in the method (docs/method.md §2).
@@ -13,13 +15,6 @@ template <class Real>
 inline Real box_cox(Real x)
 {
     return Real(2) * std::sqrt(x > Real(0) ? x : Real(0)) - Real(2);
-}
-
-/// Rec. 709 luminance, used where one channel stands for a colour.
-template <class Real>
-inline Real luminance(Real r, Real g, Real b)
-{
-    return Real(0.212671) * r + Real(0.715160) * g + Real(0.072169) * b;
 }
 
 /// Whether a sample is counted as measured or as 0: NaN, infinite, or clearly negative

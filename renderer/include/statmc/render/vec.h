@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "statmc/core/luminance.h"
+
 namespace statmc::render {
 
 inline constexpr float kPi = 3.14159265358979323846f;
@@ -79,8 +81,8 @@ struct Rgb {
     float& operator[](int i) { return i == 0 ? r : (i == 1 ? g : b); }
     bool is_black() const { return r == 0 && g == 0 && b == 0; }
     float max_component() const { return std::max(r, std::max(g, b)); }
-    /// Rec.709 luminance, as docs/method.md §2 defines Y.
-    float luminance() const { return 0.212671f * r + 0.715160f * g + 0.072169f * b; }
+    /// Luminance (core/luminance.h).
+    float luminance() const { return statmc::luminance(r, g, b); }
 };
 
 inline Rgb operator+(Rgb a, Rgb b) { return {a.r + b.r, a.g + b.g, a.b + b.b}; }
