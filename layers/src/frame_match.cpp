@@ -1,5 +1,7 @@
 #include "statmc/layers/frame_match.h"
 
+#include <algorithm>
+
 #include <OpenImageIO/strutil.h>
 
 #include "statmc/layers/layer_error.h"
@@ -14,6 +16,44 @@ void require_same_frame(const OIIO::ImageSpec& a, const OIIO::ImageSpec& b, cons
     if (a.x != b.x || a.y != b.y)
         throw LayerError(OIIO::Strutil::fmt::format("{} differ in data window: origin ({}, {}) vs ({}, {})",
                                                     these, a.x, a.y, b.x, b.y));
+}
+
+std::string input_label(std::string_view noun, std::size_t k, const OIIO::ImageBuf* input)
+{
+    std::string text = std::string(noun) + " " + std::to_string(k);
+    if (input && !input->name().empty())
+        text += " (" + std::string(input->name()) + ")";
+    return text;
+}
+
+namespace {
+
+// The names in `a` that `b` lacks, comma-separated, or "none".
+std::string missing_from(const std::vector<std::string>& a, const std::vector<std::string>& b)
+{
+    std::vector<std::string> out;
+    for (const std::string& n : a)
+        if (std::find(b.begin(), b.end(), n) == b.end())
+            out.push_back(n);
+    return out.empty() ? std::string("none") : OIIO::Strutil::join(out, ", ");
+}
+
+}  // namespace
+
+void require_matching_inputs(const std::vector<const OIIO::ImageBuf*>& inputs, std::string_view noun)
+{
+    for (std::size_t k = 1; k < inputs.size(); ++k) {
+        const OIIO::ImageSpec& a = inputs[k]->spec();
+        const OIIO::ImageSpec& b = inputs[0]->spec();
+        const std::string these_k = input_label(noun, k, inputs[k]);
+        const std::string first = input_label(noun, 0, inputs[0]);
+        require_same_frame(a, b, these_k + " and " + first);
+        const std::string only_a = missing_from(a.channelnames, b.channelnames);
+        const std::string only_b = missing_from(b.channelnames, a.channelnames);
+        if (only_a != "none" || only_b != "none")
+            throw LayerError(these_k + " and " + first + " differ in channels: only in " + these_k +
+                             ": " + only_a + "; only in " + first + ": " + only_b);
+    }
 }
 
 }  // namespace statmc::layers

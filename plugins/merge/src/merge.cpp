@@ -24,17 +24,7 @@ namespace attr = layers::attr;
 
 std::string label(const Parts& parts, std::size_t k)
 {
-    std::string text = "part " + std::to_string(k);
-    if (!parts[k]->name().empty())
-        text += " (" + std::string(parts[k]->name()) + ")";
-    return text;
-}
-
-std::vector<std::string> sorted_channels(const OIIO::ImageSpec& spec)
-{
-    std::vector<std::string> names = spec.channelnames;
-    std::sort(names.begin(), names.end());
-    return names;
+    return layers::input_label("part", k, parts[k]);
 }
 
 void check_part(const Parts& parts, std::size_t k)
@@ -48,20 +38,14 @@ void check_part(const Parts& parts, std::size_t k)
                                     "statistics as rendered");
 }
 
-// Everything that must agree for the parts to be samples of one frame.
-void check_match(const Parts& parts, std::size_t k)
+// The layer contract's version must agree too: the frame and channels are not enough.
+void check_format_version(const Parts& parts, std::size_t k)
 {
-    const OIIO::ImageSpec& a = parts[k]->spec();
-    const OIIO::ImageSpec& b = parts[0]->spec();
-    const std::string these = label(parts, k) + " and " + label(parts, 0);
-    layers::require_same_frame(a, b, these);
-    if (sorted_channels(a) != sorted_channels(b))
-        throw std::invalid_argument(these + " differ in channels");
-    const int va = a.get_int_attribute(attr::kFormatVersion, 0);
-    const int vb = b.get_int_attribute(attr::kFormatVersion, 0);
+    const int va = parts[k]->spec().get_int_attribute(attr::kFormatVersion, 0);
+    const int vb = parts[0]->spec().get_int_attribute(attr::kFormatVersion, 0);
     if (va != vb)
         throw std::invalid_argument(OIIO::Strutil::fmt::format(
-            "{} differ in statmc:formatVersion: {} vs {}", these, va, vb));
+            "{} and {} differ in statmc:formatVersion: {} vs {}", label(parts, k), label(parts, 0), va, vb));
 }
 
 // A view whose absent Box-Cox planes stand in with the untransformed ones, so that core's
@@ -139,10 +123,11 @@ OIIO::ImageBuf merge_parts(const Parts& parts)
     if (parts.size() < 2)
         throw std::invalid_argument("merge needs at least 2 images, got " +
                                     std::to_string(parts.size()));
-    for (std::size_t k = 0; k < parts.size(); ++k) {
+    for (std::size_t k = 0; k < parts.size(); ++k)
         check_part(parts, k);
-        check_match(parts, k);
-    }
+    layers::require_matching_inputs(parts, "part");
+    for (std::size_t k = 1; k < parts.size(); ++k)
+        check_format_version(parts, k);
     std::vector<OIIO::ImageBuf> scratch(parts.size());
     std::vector<const OIIO::ImageBuf*> floats;
     std::vector<StatisticsView> views;

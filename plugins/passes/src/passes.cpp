@@ -23,29 +23,7 @@ using Renders = std::vector<const OIIO::ImageBuf*>;
 
 std::string label(const Renders& renders, std::size_t k)
 {
-    std::string text = "render " + std::to_string(k);
-    if (renders[k] && !renders[k]->name().empty())
-        text += " (" + std::string(renders[k]->name()) + ")";
-    return text;
-}
-
-std::string join(const std::vector<std::string>& names)
-{
-    std::string text;
-    for (const std::string& n : names)
-        text += (text.empty() ? "" : ", ") + n;
-    return text.empty() ? std::string("none") : text;
-}
-
-// Names in `a` that `b` lacks.
-std::vector<std::string> missing_from(const std::vector<std::string>& a,
-                                      const std::vector<std::string>& b)
-{
-    std::vector<std::string> out;
-    for (const std::string& n : a)
-        if (std::find(b.begin(), b.end(), n) == b.end())
-            out.push_back(n);
-    return out;
+    return layers::input_label("render", k, renders[k]);
 }
 
 void check_render(const Renders& renders, std::size_t k)
@@ -60,20 +38,6 @@ void check_render(const Renders& renders, std::size_t k)
         if (layers::is_statistics_channel(channel))
             throw std::invalid_argument(label(renders, k) + " already holds statistics (" +
                                         channel + "); passes takes plain renders");
-}
-
-void check_match(const Renders& renders, std::size_t k)
-{
-    const OIIO::ImageSpec& a = renders[k]->spec();
-    const OIIO::ImageSpec& b = renders[0]->spec();
-    const std::string these = label(renders, k) + " and " + label(renders, 0);
-    layers::require_same_frame(a, b, these);
-    const auto only_a = missing_from(a.channelnames, b.channelnames);
-    const auto only_b = missing_from(b.channelnames, a.channelnames);
-    if (!only_a.empty() || !only_b.empty())
-        throw std::invalid_argument(these + " differ in channels: only in " + label(renders, k) +
-                                    ": " + join(only_a) + "; only in " + label(renders, 0) +
-                                    ": " + join(only_b));
 }
 
 const std::vector<std::string>& beauty_suffixes(const Renders& renders)
@@ -147,8 +111,7 @@ bool passes_impl(OIIO::ImageBuf& dst, const Renders& renders, OIIO::ROI roi, int
                                     std::to_string(renders.size()));
     for (std::size_t k = 0; k < renders.size(); ++k)
         check_render(renders, k);
-    for (std::size_t k = 1; k < renders.size(); ++k)
-        check_match(renders, k);
+    layers::require_matching_inputs(renders, "render");
 
     const OIIO::ImageBuf& first = *renders[0];
     const OIIO::ROI region = roi.defined() ? OIIO::roi_intersection(roi, first.roi()) : first.roi();
@@ -167,7 +130,11 @@ bool passes_impl(OIIO::ImageBuf& dst, const Renders& renders, OIIO::ROI roi, int
     const StatisticsPlanes stats = statistics_from_passes(beauty, region.width(), region.height());
 
     OIIO::ImageBuf result = layers::make_statistics_image(stats);
-    std::vector<std::string> others = missing_from(first.spec().channelnames, suffixes);
+    // Every other channel (AOVs, guides) is averaged over the renders.
+    std::vector<std::string> others;
+    for (const std::string& name : first.spec().channelnames)
+        if (std::find(suffixes.begin(), suffixes.end(), name) == suffixes.end())
+            others.push_back(name);
     if (!others.empty()) {
         OIIO::ImageBuf appended;
         if (!OIIO::ImageBufAlgo::channel_append(appended, result,
