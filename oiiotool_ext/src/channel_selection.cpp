@@ -41,7 +41,7 @@ ChannelSelection parse_channel_selection(const std::string& list, const OIIO::Im
             }
         if (index < 0)
             throw ToolError(what + ": no channel '" + entry + "' (the image has " +
-                            join_text(spec.channelnames) + ")");
+                            OIIO::Strutil::join(spec.channelnames, ", ") + ")");
         sel.order.push_back(index);
         sel.values.push_back(0.f);
         sel.names.push_back(name);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "help_text.h"
 #include "plugin_commands.h"
 
 namespace statmc::tool {
@@ -21,41 +22,16 @@ std::string usage_of(const Command& c)
     return usage;
 }
 
-constexpr std::size_t kHelpWidth = 100;
-
-// `left` padded to `column`, then `text` word-wrapped with its continuation lines
-// indented to the same column.
-void help_line(std::ostringstream& os, const std::string& left, std::size_t column,
-               const std::string& text)
-{
-    std::string line = left;
-    line.resize(std::max(column, left.size() + 1), ' ');
-    const std::string indent(column, ' ');
-    std::istringstream words(text);
-    std::string word;
-    bool first = true;
-    while (words >> word) {
-        if (!first && line.size() + 1 + word.size() > kHelpWidth) {
-            os << line << "\n";
-            line = indent;
-            first = true;
-        }
-        line += (first ? "" : " ") + word;
-        first = false;
-    }
-    os << line << "\n";
-}
-
 void describe(std::ostringstream& os, const Command& c)
 {
-    help_line(os, "  " + usage_of(c), 32, c.summary);
+    os << help_line("  " + usage_of(c), 32, c.summary);
     for (const std::string& alias : c.aliases)
-        help_line(os, "", 32, "(also " + alias + ")");
+        os << help_line("", 32, "(also " + alias + ")");
     // The left column shows the default as oiiotool's help does: ":radius=20".
     for (const ModifierSpec& m : c.modifiers) {
         const std::string shown = m.default_value.empty() ? m.value_syntax() : m.default_value;
         const std::string range = m.range.empty() ? "" : " " + m.range.text();
-        help_line(os, "      :" + m.name + "=" + shown, 32,
+        os << help_line("      :" + m.name + "=" + shown, 32,
                   "(" + m.value_syntax() + range + ") " + m.help);
     }
 }

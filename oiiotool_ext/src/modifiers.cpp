@@ -41,7 +41,7 @@ statmc::ParameterValue parse_text(const std::string& command, const ModifierSpec
         return text;
     case ModifierType::Choice:
         if (!contains(spec.choices, text))
-            throw ToolError(what + ": expected one of " + join_text(spec.choices, ", ") + ", got '" +
+            throw ToolError(what + ": expected one of " + OIIO::Strutil::join(spec.choices, ", ") + ", got '" +
                             text + "'");
         return text;
     case ModifierType::List: {
@@ -51,7 +51,7 @@ statmc::ParameterValue parse_text(const std::string& command, const ModifierSpec
         for (const std::string& item : items)
             if (!contains(spec.choices, item))
                 throw ToolError(what + ": unknown item '" + item + "' (expected a list of " +
-                                join_text(spec.choices, ", ") + ", or " + join_text(spec.keywords, " or ") +
+                                OIIO::Strutil::join(spec.choices, ", ") + ", or " + OIIO::Strutil::join(spec.keywords, " or ") +
                                 ")");
         return items;
     }
@@ -133,7 +133,7 @@ Modifiers Modifiers::parse(const std::string& command,
                 known.push_back(s.name);
             throw ToolError(command + ": unknown modifier '" + name + "' (" +
                             (known.empty() ? std::string("it takes no modifiers")
-                                           : "modifiers: " + join_text(known, ", ")) +
+                                           : "modifiers: " + OIIO::Strutil::join(known, ", ")) +
                             ")");
         }
         if (m.has(name))

@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "statmc/plugin_sdk/plugin_loader.h"
+#include "help_text.h"
 #include "tool_context.h"
 #include "statmc/tool/tool_error.h"
 
@@ -102,20 +103,8 @@ void run_operator(const statmc::OperatorSpec& op, ToolContext& ctx, const Invoca
     ctx.stack.push(std::move(result));
 }
 
-// `text` word-wrapped to 88 columns, each line indented by two spaces.
-std::string wrapped(const std::string& text)
-{
-    std::istringstream words(text);
-    std::string word, line, out;
-    while (words >> word) {
-        if (!line.empty() && line.size() + 1 + word.size() > 86) {
-            out += "  " + line + "\n";
-            line.clear();
-        }
-        line += (line.empty() ? "" : " ") + word;
-    }
-    return out + "  " + line + "\n";
-}
+// `text` word-wrapped, each line indented by two spaces.
+std::string wrapped(const std::string& text) { return help_line("", 2, text); }
 
 }  // namespace
 

@@ -47,7 +47,7 @@ std::size_t find_subimage(const StackImage& image, const std::string& which,
     for (const OIIO::ImageBuf& sub : image.subimages)
         names.push_back(sub.spec().get_string_attribute("oiio:subimagename", "(unnamed)"));
     throw ToolError(command + ": " + image.label + " has no subimage '" + which + "' (it has " +
-                    std::to_string(image.subimages.size()) + ": " + join_text(names) + ")");
+                    std::to_string(image.subimages.size()) + ": " + OIIO::Strutil::join(names, ", ") + ")");
 }
 
 ModifierSpec subimages_modifier()
