@@ -1,13 +1,5 @@
 // compare: error metrics of an image against a reference, as a statmc plugin.
-//
-// | parameter  | type   | default | range | meaning                                      |
-// |------------|--------|---------|-------|----------------------------------------------|
-// | epsilon    | float  | 0.01    | > 0   | ε of relMSE = mean (x − ref)² / (ref² + ε)   |
-// | errorimage | string | (none)  |       | also write |x − ref| to this file            |
-// | view       | string | default |       | OCIO view SSIM sees the images through       |
-// | display    | string | default |       | OCIO display                                 |
-// | config     | string | $OCIO, else statmc's own | | OCIO config                         |
-//
+// The parameter table is `statmc --help compare`, generated from the specs below.
 // Pops the reference (top) and the image (below it); prints one row per metric (RMSE,
 // MAE, relMSE, SSIM, DSSIM) and pushes the per-pixel absolute error image.
 #include <iomanip>

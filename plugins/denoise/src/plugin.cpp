@@ -1,24 +1,11 @@
 // denoise: the StatMC filter on a statistics image (docs/method.md §5), as a statmc plugin.
-//
-// | parameter    | type   | default | range     | meaning                                     |
-// |--------------|--------|---------|-----------|---------------------------------------------|
-// | radius       | int    | 20      | [0, 1000] | filter disk radius in pixels                |
-// | alpha        | float  | 0.005   | (0, 1)    | significance level of the t-test            |
-// | sigma_s      | float  | 10      | > 0       | spatial Gaussian falloff in pixels          |
-// | sigma_albedo | float  | 0.02    | > 0       | albedo guide falloff                        |
-// | sigma_normal | float  | 0.1     | > 0       | normal guide falloff                        |
-// | fireflies    | float  | 256     | 0 or >= 1 | firefly guard variance ratio; 0 = paper's   |
-// | guides       | list   | auto    |           | albedo,normal (required) / auto / none      |
-// | albedo_layer | string | albedo  |           | layer of the albedo guide                   |
-// | normal_layer | string | normal  |           | layer of the normal guide                   |
-// | test         | choice | auto    |           | auto / boxcox / untransformed               |
-// | nonfinite    | choice | error   |           | NaN/Inf: refuse the image, or count as 0    |
-// | aov          | string | (empty) |           | AOV denoised, e.g. diffuse, bounce1L; empty = R,G,B |
-// | diagnostics  | bool   | 0       |           | add diagnostics.members/.effectiveSamples   |
-//
 // One input (the top of the stack); pushes the image with the AOV's mean (R,G,B by
-// default) denoised.
+// default) denoised. The parameter table is `statmc --help denoise`, generated from
+// parameters() below; every default comes from DenoiseImageOptions{}.
 #include <algorithm>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "statmc/denoise/denoise.h"
 #include "statmc/plugin_sdk/plugin_interface.h"
@@ -26,6 +13,43 @@
 namespace {
 
 using statmc::ParameterValues;
+
+const statmc::DenoiseImageOptions kDefaults{};
+
+// Each choice's spelling beside its value, so that parsing, the choice list and the
+// default's name are one table.
+const std::vector<std::pair<std::string, statmc::TestDomainChoice>> kTests = {
+    {"auto", statmc::TestDomainChoice::Auto},
+    {"boxcox", statmc::TestDomainChoice::BoxCox},
+    {"untransformed", statmc::TestDomainChoice::Untransformed},
+};
+const std::vector<std::pair<std::string, statmc::NonfinitePolicy>> kNonfinite = {
+    {"error", statmc::NonfinitePolicy::Error},
+    {"zero", statmc::NonfinitePolicy::Zero},
+};
+
+template <class T>
+std::vector<std::string> spellings(const std::vector<std::pair<std::string, T>>& table)
+{
+    std::vector<std::string> names;
+    for (const auto& entry : table)
+        names.push_back(entry.first);
+    return names;
+}
+
+template <class T>
+const std::string& spelling(const std::vector<std::pair<std::string, T>>& table, T value)
+{
+    return std::find_if(table.begin(), table.end(), [&](const auto& e) { return e.second == value; })->first;
+}
+
+// The host has checked the name against the choices already.
+template <class T>
+T chosen(const std::vector<std::pair<std::string, T>>& table, const std::string& name, T fallback)
+{
+    const auto it = std::find_if(table.begin(), table.end(), [&](const auto& e) { return e.first == name; });
+    return it == table.end() ? fallback : it->second;
+}
 
 // "auto" uses a guide when the image has it; a list requires its guides; "none" none.
 statmc::GuideUse guide_use(const std::vector<std::string>& guides, const char* guide)
@@ -36,18 +60,9 @@ statmc::GuideUse guide_use(const std::vector<std::string>& guides, const char* g
     return listed ? statmc::GuideUse::Required : statmc::GuideUse::Off;
 }
 
-statmc::TestDomainChoice test_choice(const std::string& name)
-{
-    if (name == "boxcox")
-        return statmc::TestDomainChoice::BoxCox;
-    if (name == "untransformed")
-        return statmc::TestDomainChoice::Untransformed;
-    return statmc::TestDomainChoice::Auto;
-}
-
 statmc::DenoiseImageOptions options_from(const ParameterValues& p)
 {
-    statmc::DenoiseImageOptions opt;
+    statmc::DenoiseImageOptions opt = kDefaults;
     opt.filter.radius = p.get_int("radius", opt.filter.radius);
     opt.filter.alpha = p.get_float("alpha", opt.filter.alpha);
     opt.filter.sigma_spatial = float(p.get_float("sigma_s", opt.filter.sigma_spatial));
@@ -59,42 +74,45 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.guides.normal = guide_use(guides, "normal");
     opt.guides.albedo_layer = p.get_string("albedo_layer", opt.guides.albedo_layer);
     opt.guides.normal_layer = p.get_string("normal_layer", opt.guides.normal_layer);
-    opt.test = test_choice(p.get_string("test", "auto"));
-    opt.nonfinite = p.get_string("nonfinite", "error") == "zero" ? statmc::NonfinitePolicy::Zero
-                                                                 : statmc::NonfinitePolicy::Error;
-    opt.aov = p.get_string("aov", "");
-    opt.diagnostics = p.get_bool("diagnostics", false);
+    opt.test = chosen(kTests, p.get_string("test", spelling(kTests, opt.test)), opt.test);
+    opt.nonfinite = chosen(kNonfinite, p.get_string("nonfinite", spelling(kNonfinite, opt.nonfinite)),
+                           opt.nonfinite);
+    opt.aov = p.get_string("aov", opt.aov);
+    opt.diagnostics = p.get_bool("diagnostics", opt.diagnostics);
     return opt;
 }
 
 std::vector<statmc::ParameterSpec> parameters()
 {
     using namespace statmc;
+    const DenoiseOptions& f = kDefaults.filter;
     return {
-        int_parameter("radius", 20, "filter disk radius in pixels").between(0, 1000),
-        float_parameter("alpha", 0.005, "significance level of the t-test").open_between(0, 1),
-        float_parameter("sigma_s", 10, "spatial Gaussian falloff in pixels").above(0),
-        float_parameter("sigma_albedo", 0.02, "albedo guide falloff").above(0),
-        float_parameter("sigma_normal", 0.1, "normal guide falloff").above(0),
-        float_parameter("fireflies", 256,
+        int_parameter("radius", f.radius, "filter disk radius in pixels").between(0, 1000),
+        float_parameter("alpha", f.alpha, "significance level of the t-test").open_between(0, 1),
+        float_parameter("sigma_s", f.sigma_spatial, "spatial Gaussian falloff in pixels").above(0),
+        float_parameter("sigma_albedo", f.sigma_albedo, "albedo guide falloff").above(0),
+        float_parameter("sigma_normal", f.sigma_normal, "normal guide falloff").above(0),
+        float_parameter("fireflies", f.firefly_ratio,
                         "firefly guard (Box-Cox test only): no pixel averages a neighbour "
                         "whose sample variance exceeds this many times its own noise level "
                         "(halos of highlights, fireflies); 0 = the paper's filter").at_least(0),
         list_parameter("guides", {"albedo", "normal"}, {"auto", "none"}, "auto",
                        "guide layers: a list is required to be present, auto uses those "
                        "present, none none"),
-        string_parameter("albedo_layer", "albedo", "layer of the albedo guide (.R,.G,.B)"),
-        string_parameter("normal_layer", "normal", "layer of the normal guide (.X,.Y,.Z)"),
-        choice_parameter("test", {"auto", "boxcox", "untransformed"}, "auto",
+        string_parameter("albedo_layer", kDefaults.guides.albedo_layer,
+                         "layer of the albedo guide (.R,.G,.B)"),
+        string_parameter("normal_layer", kDefaults.guides.normal_layer,
+                         "layer of the normal guide (.X,.Y,.Z)"),
+        choice_parameter("test", spellings(kTests), spelling(kTests, kDefaults.test),
                          "test domain: auto = boxcox when the Box-Cox layers are present, "
                          "else untransformed"),
-        choice_parameter("nonfinite", {"error", "zero"}, "error",
+        choice_parameter("nonfinite", spellings(kNonfinite), spelling(kNonfinite, kDefaults.nonfinite),
                          "NaN/Inf in the statistics: error refuses the image, zero counts "
                          "them as 0"),
-        string_parameter("aov", "",
+        string_parameter("aov", kDefaults.aov,
                          "the AOV whose mean is denoised (docs/exr-layers.md), e.g. diffuse or "
                          "bounce1L; empty: the beauty R,G,B"),
-        bool_parameter("diagnostics", false,
+        bool_parameter("diagnostics", kDefaults.diagnostics,
                        "add [<aov>.]diagnostics.members and .effectiveSamples: per pixel, the "
                        "pixels averaged and the effective sample count (Σw)²/Σ(w²/n)"),
     };

@@ -1,11 +1,5 @@
 // display: scene-linear → display encoding through OpenColorIO, as a statmc plugin.
-//
-// | parameter | type   | default           | meaning                                     |
-// |-----------|--------|-------------------|---------------------------------------------|
-// | display   | string | config's default  | OCIO display ("sRGB" in the shipped config) |
-// | view      | string | display's default | OCIO view ("sRGB", "Filmic", "Raw")         |
-// | config    | string | $OCIO, else ours  | OCIO config file                            |
-//
+// The parameter table is `statmc --help display`, generated from the specs below.
 // One input; pushes the display-encoded R,G,B (A kept).
 #include "statmc/display/display.h"
 #include "statmc/plugin_sdk/plugin_interface.h"

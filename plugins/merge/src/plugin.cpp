@@ -1,10 +1,5 @@
 // merge: statistics images of one frame (render-farm tasks, different seeds) → the one
 // image rendering all their samples at once would give, as a statmc plugin.
-//
-// | parameter | type | default     | range | meaning                   |
-// |-----------|------|-------------|-------|---------------------------|
-// | n         | int  | (the stack) | >= 2  | number of images popped   |
-//
 // Pops n statistics images (or the whole stack); pushes their merged statistics.
 #include "statmc/merge/merge.h"
 #include "statmc/plugin_sdk/plugin_interface.h"
@@ -20,13 +15,7 @@ void register_merge(statmc::PluginRegistry& registry)
     op.help = "Counts add and means, M2 and M3 combine by Chan et al. / Pebay, so the result "
               "equals one render with all the samples. The images must share resolution, "
               "data window, channels and statmc:formatVersion, and must not be denoised.";
-    op.parameters = {statmc::int_parameter("n", std::nullopt,
-                                           "number of images popped; without it, the whole "
-                                           "stack")
-                         .at_least(2)};
-    op.inputs = statmc::kVariadicInputs;
-    op.min_inputs = 2;
-    op.input_noun = "statistics images";
+    statmc::take_variadic_inputs(op, 2, "statistics images");
     op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs, const statmc::ParameterValues&,
                 const statmc::RunContext& ctx) { return statmc::merge(inputs, ctx.nthreads); };
     registry.add(std::move(op));

@@ -57,4 +57,8 @@ struct OperatorSpec {
     std::string module;                  ///< set by the loader: the file it came from
 };
 
+/// Makes `op` pop a run of images: the value of its `n` parameter (added here) when given,
+/// else the whole stack; at least `min_inputs`, called `noun` ("renders") in messages.
+void take_variadic_inputs(OperatorSpec& op, int min_inputs, const std::string& noun);
+
 }  // namespace statmc
