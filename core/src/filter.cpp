@@ -10,9 +10,9 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
-#include <tbb/task_arena.h>
 
 #include "filter_layout.h"
+#include "statmc/core/thread_limit.h"
 
 namespace statmc {
 
@@ -105,17 +105,6 @@ void check_arguments(const EstimatorImage& est, const DenoiseOptions& options,
     for (int c = 0; c < est.channels; ++c)
         if (!out[c])
             throw std::invalid_argument("null output plane");
-}
-
-template <class Body>
-void run_with_threads(int nthreads, Body&& body)
-{
-    if (nthreads <= 0) {
-        body();
-        return;
-    }
-    tbb::task_arena arena(nthreads);
-    arena.execute(body);
 }
 
 }  // namespace

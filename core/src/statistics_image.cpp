@@ -1,5 +1,11 @@
 #include "statmc/core/statistics_image.h"
 
+#include <string>
+
+#include <tbb/parallel_for.h>
+
+#include "statmc/core/thread_limit.h"
+
 namespace statmc {
 
 StatisticsView StatisticsPlanes::view() const
@@ -53,28 +59,69 @@ StatisticsPlanes StatisticsImage<C>::planes() const
     return p;
 }
 
+namespace {
+
+template <int C>
+void require_mergeable(const StatisticsView& view, const char* caller)
+{
+    if (view.channels != C)
+        throw std::invalid_argument(std::string(caller) + ": channel count differs");
+    if (!view.count || !view.has_box_cox())
+        throw std::invalid_argument(std::string(caller) + ": Box-Cox planes are missing");
+}
+
+// The accumulator a stored pixel stands for (M2 = s²(n − 1), M3 = n·m3).
+template <int C>
+PixelMoments<C, double> pixel_of(const StatisticsView& view, int x, int y)
+{
+    PixelMoments<C, double> px;
+    px.n = view.count(x, y);
+    const double to_mean_variance = view.variance_of_mean ? px.n : 1.0;
+    const double m2_scale = px.n > 1 ? px.n - 1 : 0.0;
+    for (int c = 0; c < C; ++c) {
+        px.raw[c].mean = view.mean[c](x, y);
+        px.raw[c].m2 = view.variance[c](x, y) * to_mean_variance * m2_scale;
+        px.box_cox[c].mean = view.bc_mean[c](x, y);
+        px.box_cox[c].m2 = view.bc_variance[c](x, y) * m2_scale;
+        px.box_cox[c].m3 = view.bc_moment3[c](x, y) * px.n;
+    }
+    return px;
+}
+
+}  // namespace
+
 template <int C>
 StatisticsImage<C> StatisticsImage<C>::from_view(const StatisticsView& view)
 {
-    if (view.channels != C)
-        throw std::invalid_argument("StatisticsImage::from_view: channel count differs");
-    if (!view.count || !view.has_box_cox())
-        throw std::invalid_argument("StatisticsImage::from_view: Box-Cox planes are missing");
+    require_mergeable<C>(view, "StatisticsImage::from_view");
     StatisticsImage img(view.width, view.height);
     for (int y = 0; y < view.height; ++y)
-        for (int x = 0; x < view.width; ++x) {
-            Pixel& px = img.at(x, y);
-            px.n = view.count(x, y);
-            const double to_mean_variance = view.variance_of_mean ? px.n : 1.0;
-            for (int c = 0; c < C; ++c) {
-                const double m2_scale = px.n > 1 ? px.n - 1 : 0.0;
-                px.raw[c].mean = view.mean[c](x, y);
-                px.raw[c].m2 = view.variance[c](x, y) * to_mean_variance * m2_scale;
-                px.box_cox[c].mean = view.bc_mean[c](x, y);
-                px.box_cox[c].m2 = view.bc_variance[c](x, y) * m2_scale;
-                px.box_cox[c].m3 = view.bc_moment3[c](x, y) * px.n;
+        for (int x = 0; x < view.width; ++x)
+            img.at(x, y) = pixel_of<C>(view, x, y);
+    return img;
+}
+
+template <int C>
+StatisticsImage<C> StatisticsImage<C>::merged(const std::vector<StatisticsView>& views, int nthreads)
+{
+    if (views.empty())
+        throw std::invalid_argument("StatisticsImage::merged: no views");
+    for (const StatisticsView& v : views) {
+        require_mergeable<C>(v, "StatisticsImage::merged");
+        if (v.width != views[0].width || v.height != views[0].height)
+            throw std::invalid_argument("StatisticsImage::merged: resolutions differ");
+    }
+    StatisticsImage img(views[0].width, views[0].height);
+    run_with_threads(nthreads, [&] {
+        tbb::parallel_for(0, img.height_, [&](int y) {
+            for (int x = 0; x < img.width_; ++x) {
+                Pixel px = pixel_of<C>(views[0], x, y);
+                for (std::size_t k = 1; k < views.size(); ++k)
+                    px.merge(pixel_of<C>(views[k], x, y));
+                img.at(x, y) = px;
             }
-        }
+        });
+    });
     return img;
 }
 

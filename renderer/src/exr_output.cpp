@@ -6,6 +6,7 @@
 #include "statmc/core/plane.h"
 #include "statmc/layers/statistics_layers.h"
 #include "statmc/layers/exr_files.h"
+#include "statmc/layers/layer_names.h"
 
 namespace statmc::render {
 
@@ -35,8 +36,8 @@ OIIO::ImageBuf make_output_image(const Film& film, const OutputInfo& info)
             aovs.push_back({layout.aov(q), BounceStatistics::quantity_view(groups, q)});
     }
     OIIO::ImageBuf image = layers::make_statistics_image(planes.view(), meta, guides, aovs);
-    image.specmod().attribute(kRenderTimeAttribute, info.render_seconds);
-    image.specmod().attribute(kSceneAttribute, info.scene);
+    image.specmod().attribute(layers::attr::kRenderTime, info.render_seconds);
+    image.specmod().attribute(layers::attr::kScene, info.scene);
     return image;
 }
 

@@ -10,8 +10,9 @@
 #include <x86intrin.h>
 #include <xmmintrin.h>
 
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+
+#include "statmc/core/thread_limit.h"
 
 #include "statmc/render/progress.h"
 
@@ -53,15 +54,13 @@ BounceLayout bounce_layout_for(const IntegratorSettings& settings, bool record_a
     return layout;
 }
 
-RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings, Film& film,
-                   const std::atomic<bool>* cancel,
-                   const IterationCallback& after_iteration)
+namespace {
+
+// The render on whatever threads the calling arena has.
+RenderStats render_in_arena(const Scene& scene, const Camera& camera, const RenderSettings& settings, Film& film,
+                            const std::atomic<bool>* cancel, const IterationCallback& after_iteration)
 {
     const auto start = std::chrono::steady_clock::now();
-    std::unique_ptr<tbb::global_control> limit;
-    if (settings.threads > 0)
-        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                      std::size_t(settings.threads));
     const PathIntegrator integrator(scene, settings.integrator);
     constexpr int kTile = 16;
     const int tiles_x = (settings.width + kTile - 1) / kTile, tiles_y = (settings.height + kTile - 1) / kTile;
@@ -163,6 +162,19 @@ RenderStats render(const Scene& scene, const Camera& camera, const RenderSetting
     progress.finish();
     rs.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return rs;
+}
+
+}  // namespace
+
+RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings, Film& film,
+                   const std::atomic<bool>* cancel, const IterationCallback& after_iteration)
+{
+    // An arena, not tbb::global_control: the limit holds for this render only, never for
+    // the rest of the process (a host may render and denoise side by side).
+    RenderStats stats;
+    run_with_threads(settings.threads,
+                     [&] { stats = render_in_arena(scene, camera, settings, film, cancel, after_iteration); });
+    return stats;
 }
 
 }  // namespace statmc::render

@@ -100,6 +100,26 @@ TEST(Merge, FarmTasksMergeToTheAllAtOnceStatistics)
     EXPECT_EQ(merged.spec().find_attribute(layers::attr::kSeed), nullptr);
 }
 
+TEST(Merge, SameBitsForAnyThreadCount)
+{
+    // nthreads follows ImageBufAlgo (0 = OIIO's global setting) and never changes a bit:
+    // each pixel folds the parts in part order whichever thread takes it.
+    const FarmRender farm;
+    const std::vector<OIIO::ImageBuf> tasks = task_images(farm);
+    const OIIO::ImageBuf one = merge(pointers(tasks), 1);
+    ASSERT_FALSE(one.has_error()) << one.geterror();
+    for (int nthreads : {0, 2, 3}) {
+        const OIIO::ImageBuf other = merge(pointers(tasks), nthreads);
+        ASSERT_FALSE(other.has_error()) << other.geterror();
+        const auto px = [](const OIIO::ImageBuf& b) {
+            std::vector<float> v(std::size_t(b.spec().image_pixels()) * b.nchannels());
+            EXPECT_TRUE(b.get_pixels(b.roi(), OIIO::TypeFloat, v.data()));
+            return v;
+        };
+        EXPECT_EQ(px(one), px(other)) << "nthreads " << nthreads;
+    }
+}
+
 TEST(Merge, VarianceAovsMergeWithoutBoxCox)
 {
     const FarmRender farm;

@@ -62,12 +62,9 @@ StatisticsView complete_view(StatisticsView view, const ConstPlane& zero)
 }
 
 template <int C>
-StatisticsPlanes merge_views(const std::vector<StatisticsView>& views)
+StatisticsPlanes merge_views(const std::vector<StatisticsView>& views, int nthreads)
 {
-    StatisticsImage<C> all = StatisticsImage<C>::from_view(views[0]);
-    for (std::size_t k = 1; k < views.size(); ++k)
-        all.merge(StatisticsImage<C>::from_view(views[k]));
-    return all.planes();
+    return StatisticsImage<C>::merged(views, layers::thread_count(nthreads)).planes();
 }
 
 // Sample-weighted mean of a guide over the parts, in dense planes.
@@ -118,7 +115,7 @@ std::optional<int> summed_spp(const Parts& parts)
     return total;
 }
 
-OIIO::ImageBuf merge_parts(const Parts& parts)
+OIIO::ImageBuf merge_parts(const Parts& parts, int nthreads)
 {
     if (parts.size() < 2)
         throw std::invalid_argument("merge needs at least 2 images, got " +
@@ -146,8 +143,8 @@ OIIO::ImageBuf merge_parts(const Parts& parts)
             throw std::invalid_argument(label(parts, k) + ": " + e.what());
         }
     }
-    StatisticsPlanes merged = views[0].channels == 1 ? merge_views<1>(views)
-                                                     : merge_views<3>(views);
+    StatisticsPlanes merged = views[0].channels == 1 ? merge_views<1>(views, nthreads)
+                                                     : merge_views<3>(views, nthreads);
     if (!box_cox)
         merged.bc_mean.clear(), merged.bc_variance.clear(), merged.bc_moment3.clear();
 
@@ -168,10 +165,10 @@ OIIO::ImageBuf merge_parts(const Parts& parts)
 
 }  // namespace
 
-bool merge(OIIO::ImageBuf& dst, const Parts& parts, int /*nthreads: merging is memory bound*/)
+bool merge(OIIO::ImageBuf& dst, const Parts& parts, int nthreads)
 {
     return layers::errors_on(dst, "merge", [&] {
-        dst = merge_parts(parts);
+        dst = merge_parts(parts, nthreads);
         return true;
     });
 }

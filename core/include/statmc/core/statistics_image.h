@@ -55,6 +55,9 @@ public:
     StatisticsPlanes planes() const;
     /// Rebuilds accumulators from stored planes (M2 = s²(n − 1), M3 = n·m3).
     static StatisticsImage from_view(const StatisticsView& view);
+    /// The exact merge of views of one frame (same resolution, C channels, Box-Cox planes),
+    /// each pixel folded in view order: the same result for any `nthreads` (0 = all cores).
+    static StatisticsImage merged(const std::vector<StatisticsView>& views, int nthreads = 0);
 
 private:
     int width_;

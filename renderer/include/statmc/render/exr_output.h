@@ -10,10 +10,6 @@
 
 namespace statmc::render {
 
-/// Header attributes the renderer adds beside the contract's statmc:spp / statmc:seed.
-inline constexpr const char* kRenderTimeAttribute = "statmc:renderTime";  // float seconds
-inline constexpr const char* kSceneAttribute = "statmc:scene";            // string
-
 struct OutputInfo {
     int spp = 0;  ///< the smallest per-pixel sample count
     int seed = 0;
