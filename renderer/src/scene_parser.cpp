@@ -57,7 +57,7 @@ private:
     GraphicsState gs_;
     std::vector<std::pair<GraphicsState, bool>> stack_;  // state, is-transform-only
     std::unordered_map<std::string, int> named_materials_;
-    std::unordered_map<std::string, std::shared_ptr<const ImageTexture>> textures_;
+    NamedTextures textures_;
     std::map<std::string, std::shared_ptr<const TriangleMesh>> ply_cache_;
     bool in_world_ = false;
     bool saw_camera_ = false;
@@ -212,7 +212,7 @@ private:
             const Parameter* type = ps.find("string", "type");
             if (!type || type->strings.size() != 1)
                 fail(line, "MakeNamedMaterial \"" + name + "\" needs \"string type\"");
-            named_materials_[name] = make_material(type->strings[0], ps, line, name);
+            named_materials_[name] = make_material(type->strings[0], ps, name);
         } else if (d == "NamedMaterial") {
             const std::string name = expect_string("a material name");
             const auto it = named_materials_.find(name);
@@ -222,7 +222,7 @@ private:
         } else if (d == "Material") {
             const std::string type = expect_string("a material type");
             auto ps = params(line);
-            gs_.material = make_material(type, ps, line, type);
+            gs_.material = make_material(type, ps, type);
         } else if (d == "Texture") {
             texture(line);
         } else if (d == "AreaLightSource") {
@@ -296,55 +296,12 @@ private:
         }
     }
 
-    int make_material(const std::string& type, ParameterList& ps, int line, const std::string& name)
+    int make_material(const std::string& type, ParameterList& ps, const std::string& name)
     {
-        Material m;
-        m.name = name;
-        if (type == "matte") {
-            m.type = Material::Type::Matte;
-            if (const Parameter* t = ps.find("texture", "Kd")) {
-                const auto it = t->strings.size() == 1 ? textures_.find(t->strings[0]) : textures_.end();
-                if (it == textures_.end())
-                    fail(t->line, "texture \"" + (t->strings.empty() ? "" : t->strings[0]) + "\" was not defined");
-                m.kd_texture = it->second;
-            } else if (auto kd = ps.get_rgb("Kd")) {
-                m.kd = *kd;
-            }
-            if (ps.get_float("sigma").value_or(0.f) != 0.f)
-                warn(line, "matte \"float sigma\" (Oren-Nayar) not supported, rendered as Lambertian");
-        } else if (type == "metal") {
-            m.type = Material::Type::Metal;
-            if (auto e = ps.get_rgb("eta")) m.eta = *e;
-            if (auto k = ps.get_rgb("k")) m.k = *k;
-            const float rough = ps.get_float("roughness").value_or(0.01f);
-            float u = ps.get_float("uroughness").value_or(rough), v = ps.get_float("vroughness").value_or(rough);
-            if (ps.get_bool("remaproughness").value_or(true)) {
-                u = roughness_to_alpha(u);
-                v = roughness_to_alpha(v);
-            }
-            m.alpha_u = u;
-            m.alpha_v = v;
-        } else if (type == "glass") {
-            m.type = Material::Type::Glass;
-            if (auto kr = ps.get_rgb("Kr")) m.kr = *kr;
-            if (auto kt = ps.get_rgb("Kt")) m.kt = *kt;
-            m.ior = ps.get_float("index").value_or(1.5f);
-            const float rough = ps.get_float("roughness").value_or(0.f);
-            if (ps.get_float("uroughness").value_or(rough) != 0.f || ps.get_float("vroughness").value_or(rough) != 0.f)
-                fail(line, "unsupported: rough glass (only smooth dielectrics)");
-            ps.get_bool("remaproughness");
-        } else if (type == "mirror") {
-            m.type = Material::Type::Mirror;
-            m.kr = Rgb{0.9f};
-            if (auto kr = ps.get_rgb("Kr")) m.kr = *kr;
-        } else if (type == "" || type == "none") {
-            fail(line, "unsupported: material \"none\"");
-        } else {
-            fail(line, "unsupported: material \"" + type + "\" (supported: matte, metal, glass, mirror)");
-        }
+        Material m = read_material(type, name, ps, textures_, scene_.warnings);
         ps.find("string", "type");  // MakeNamedMaterial's own parameter: consumed, not unknown
         warn_all(ps.unused_warnings("material \"" + name + "\""));
-        scene_.materials.push_back(m);
+        scene_.materials.push_back(std::move(m));
         return int(scene_.materials.size()) - 1;
     }
 
