@@ -8,6 +8,7 @@
 
 #include "statmc/render/parameter_list.h"
 #include "statmc/render/ply_reader.h"
+#include "statmc/render/shapes.h"
 #include "statmc/render/texture.h"
 #include "statmc/render/tokenizer.h"
 
@@ -311,99 +312,31 @@ private:
         auto ps = params(line);
         if (!in_world_)
             fail(line, "Shape outside WorldBegin/WorldEnd");
-        ShapeDesc s;
+        ShapeDesc s = read_shape(type, ps, gs_.ctm, gs_.reverse_orientation, ply_loader(line), scene_.warnings);
+        warn_all(ps.unused_warnings("Shape \"" + type + "\""));
         s.material = gs_.material;
         s.emission = gs_.emission;
         s.two_sided = gs_.two_sided;
         s.where = where(line);
-        const auto inv = gs_.ctm.inverse();
-        if (!inv)
-            fail(line, "the current transform is singular");
-        const bool flip = gs_.reverse_orientation != gs_.ctm.swaps_handedness();
-        if (type == "sphere") {
-            const float r = ps.get_float("radius").value_or(1.f);
-            if (!(r > 0))
-                fail(line, "sphere radius must be positive");
-            for (const char* partial : {"zmin", "zmax", "phimax"})
-                if (const Parameter* p = ps.find_any(partial))
-                    fail(p->line, std::string("unsupported: partial sphere (\"") + partial + "\")");
-            s.kind = ShapeDesc::Kind::Sphere;
-            s.center = gs_.ctm.point({0, 0, 0});
-            const Vec3 ax = gs_.ctm.vector({1, 0, 0}), ay = gs_.ctm.vector({0, 1, 0}), az = gs_.ctm.vector({0, 0, 1});
-            const float sx = length(ax), sy = length(ay), sz = length(az);
-            if (std::abs(sx - sy) > 1e-4f * sx || std::abs(sx - sz) > 1e-4f * sx)
-                fail(line, "unsupported: non-uniformly scaled sphere");
-            s.radius = r * sx;
-            s.flip_normals = gs_.reverse_orientation;
-        } else if (type == "trianglemesh" || type == "plymesh") {
-            TriangleMesh mesh;
-            if (type == "trianglemesh") {
-                const Parameter* idx = ps.find("integer", "indices");
-                const Parameter* P = ps.find("point", "P");
-                if (!P)
-                    fail(line, "trianglemesh needs \"point P\"");
-                if (P->numbers.size() % 3 != 0)
-                    fail(P->line, "\"point P\" needs a multiple of 3 values");
-                for (std::size_t i = 0; i < P->numbers.size(); i += 3)
-                    mesh.positions.push_back({float(P->numbers[i]), float(P->numbers[i + 1]), float(P->numbers[i + 2])});
-                if (idx) {
-                    if (idx->numbers.size() % 3 != 0 || idx->numbers.empty())
-                        fail(idx->line, "\"integer indices\" needs a positive multiple of 3 values");
-                    for (double v : idx->numbers) {
-                        if (v < 0 || v >= double(mesh.positions.size()))
-                            fail(idx->line, "index " + std::to_string(long(v)) + " out of range (" +
-                                                std::to_string(mesh.positions.size()) + " vertices)");
-                        mesh.indices.push_back(std::uint32_t(v));
-                    }
-                } else if (mesh.positions.size() == 3) {
-                    mesh.indices = {0, 1, 2};
-                } else {
-                    fail(line, "trianglemesh needs \"integer indices\"");
-                }
-                if (const Parameter* N = ps.find("normal", "N")) {
-                    if (N->numbers.size() != P->numbers.size())
-                        fail(N->line, "\"normal N\" must have as many values as \"point P\"");
-                    for (std::size_t i = 0; i < N->numbers.size(); i += 3)
-                        mesh.normals.push_back({float(N->numbers[i]), float(N->numbers[i + 1]), float(N->numbers[i + 2])});
-                }
-                const Parameter* uv = ps.find("float", "uv");
-                if (!uv) uv = ps.find("float", "st");
-                if (!uv) uv = ps.find("point2", "uv");
-                if (uv) {
-                    if (uv->numbers.size() != mesh.positions.size() * 2)
-                        fail(uv->line, "\"" + uv->type + " " + uv->name + "\" needs 2 values per vertex");
-                    for (double v : uv->numbers)
-                        mesh.uvs.push_back(float(v));
-                }
-                warn_all(ps.ignore({"S", "alpha", "shadowalpha"}, "trianglemesh"));
-            } else {
-                const std::string filename = ps.get_string("filename").value_or("");
-                if (filename.empty())
-                    fail(line, "plymesh needs \"string filename\"");
-                const std::string path = resolve(filename);
-                auto cached = ply_cache_.find(path);
-                if (cached == ply_cache_.end()) {
-                    try {
-                        cached = ply_cache_.emplace(path, std::make_shared<const TriangleMesh>(read_ply(path))).first;
-                    } catch (const std::exception& e) {
-                        fail(line, e.what());
-                    }
-                }
-                mesh = *cached->second;
-            }
-            // To world space, once: every later stage works in world coordinates.
-            for (Vec3& p : mesh.positions)
-                p = gs_.ctm.point(p);
-            for (Vec3& n : mesh.normals)
-                n = normalize(Transform::normal(*inv, n));
-            mesh.flip_normals = flip;
-            s.kind = ShapeDesc::Kind::Mesh;
-            s.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
-        } else {
-            fail(line, "unsupported: Shape \"" + type + "\" (supported: trianglemesh, plymesh, sphere)");
-        }
-        warn_all(ps.unused_warnings("Shape \"" + type + "\""));
         scene_.shapes.push_back(std::move(s));
+    }
+
+    /// PLY files resolved against the scene's directory and read once per path; one that
+    /// cannot be read is an error at the Shape directive's `line`.
+    PlyLoader ply_loader(int line)
+    {
+        return [this, line](const std::string& filename) {
+            const std::string path = resolve(filename);
+            auto cached = ply_cache_.find(path);
+            if (cached == ply_cache_.end()) {
+                try {
+                    cached = ply_cache_.emplace(path, std::make_shared<const TriangleMesh>(read_ply(path))).first;
+                } catch (const std::exception& e) {
+                    fail(line, e.what());
+                }
+            }
+            return cached->second;
+        };
     }
 };
 
