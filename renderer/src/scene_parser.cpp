@@ -128,13 +128,7 @@ private:
         const std::string& d = t.text;
         const int line = t.line;
         if (d == "LookAt") {
-            const auto v = numbers(9, "LookAt");
-            const auto la = Transform::look_at({float(v[0]), float(v[1]), float(v[2])},
-                                               {float(v[3]), float(v[4]), float(v[5])},
-                                               {float(v[6]), float(v[7]), float(v[8])});
-            if (!la)
-                fail(line, "LookAt: the up vector is parallel to the viewing direction");
-            apply(*la);
+            look_at(line);
         } else if (d == "Transform") {
             gs_.ctm = Transform::from_pbrt(numbers(16, "Transform").data());
         } else if (d == "ConcatTransform") {
@@ -155,32 +149,11 @@ private:
         } else if (d == "Camera") {
             camera(line);
         } else if (d == "Film") {
-            const std::string type = expect_string("a film type");
-            auto ps = params(line);
-            if (type != "image")
-                warn(line, "Film \"" + type + "\" treated as \"image\"");
-            scene_.camera.width = ps.get_int("xresolution").value_or(640);
-            scene_.camera.height = ps.get_int("yresolution").value_or(480);
-            if (scene_.camera.width <= 0 || scene_.camera.height <= 0)
-                fail(line, "Film resolution must be positive");
-            ps.get_string("filename");  // checked, not used: the output name comes from -o
-            warn_all(ps.unused_warnings("Film"));
+            film(line);
         } else if (d == "Sampler") {
-            expect_string("a sampler type");
-            auto ps = params(line);
-            scene_.spp = ps.get_int("pixelsamples").value_or(16);
-            if (scene_.spp <= 0)
-                fail(line, "pixelsamples must be positive");
-            warn_all(ps.unused_warnings("Sampler"));
+            sampler(line);
         } else if (d == "Integrator") {
-            const std::string type = expect_string("an integrator type");
-            auto ps = params(line);
-            if (type != "path")
-                warn(line, "Integrator \"" + type + "\" rendered with the path tracer");
-            scene_.maxdepth = ps.get_int("maxdepth").value_or(5);
-            if (scene_.maxdepth < 0)
-                fail(line, "maxdepth must not be negative");
-            warn_all(ps.unused_warnings("Integrator"));
+            integrator(line);
         } else if (d == "PixelFilter") {
             // Read, not used: the method needs each sample in exactly one pixel (box filter);
             // its parameters are accepted silently.
@@ -198,22 +171,9 @@ private:
         } else if (d == "AttributeBegin" || d == "TransformBegin") {
             stack_.push_back({gs_, d == "TransformBegin"});
         } else if (d == "AttributeEnd" || d == "TransformEnd") {
-            if (stack_.empty())
-                fail(line, d + " without a matching begin");
-            if (stack_.back().second != (d == "TransformEnd"))
-                fail(line, d + " closes a " + (stack_.back().second ? "TransformBegin" : "AttributeBegin"));
-            if (stack_.back().second)
-                gs_.ctm = stack_.back().first.ctm;
-            else
-                gs_ = stack_.back().first;
-            stack_.pop_back();
+            end_block(d, line);
         } else if (d == "MakeNamedMaterial") {
-            const std::string name = expect_string("a material name");
-            auto ps = params(line);
-            const Parameter* type = ps.find("string", "type");
-            if (!type || type->strings.size() != 1)
-                fail(line, "MakeNamedMaterial \"" + name + "\" needs \"string type\"");
-            named_materials_[name] = make_material(type->strings[0], ps, name);
+            make_named_material(line);
         } else if (d == "NamedMaterial") {
             const std::string name = expect_string("a material name");
             const auto it = named_materials_.find(name);
@@ -227,16 +187,7 @@ private:
         } else if (d == "Texture") {
             texture(line);
         } else if (d == "AreaLightSource") {
-            const std::string type = expect_string("a light type");
-            auto ps = params(line);
-            if (type != "diffuse")
-                fail(line, "unsupported: AreaLightSource \"" + type + "\" (only \"diffuse\")");
-            const auto L = ps.get_rgb("L");
-            const float scale = ps.get_float("scale").value_or(1.f);
-            gs_.emission = (L ? *L : Rgb{1.f}) * scale;
-            gs_.two_sided = ps.get_bool("twosided").value_or(false);
-            ps.get_int("samples");
-            warn_all(ps.unused_warnings("AreaLightSource"));
+            area_light(line);
         } else if (d == "LightSource") {
             const std::string type = expect_string("a light type");
             params(line);
@@ -255,6 +206,81 @@ private:
             while (!at_end() && peek().kind != Token::Kind::Identifier)
                 ++pos_;
         }
+    }
+
+    void look_at(int line)
+    {
+        const auto v = numbers(9, "LookAt");
+        const auto la = Transform::look_at({float(v[0]), float(v[1]), float(v[2])},
+                                           {float(v[3]), float(v[4]), float(v[5])},
+                                           {float(v[6]), float(v[7]), float(v[8])});
+        if (!la)
+            fail(line, "LookAt: the up vector is parallel to the viewing direction");
+        apply(*la);
+    }
+
+    /// AttributeEnd or TransformEnd (`d`): restores the state its begin saved.
+    void end_block(const std::string& d, int line)
+    {
+        if (stack_.empty())
+            fail(line, d + " without a matching begin");
+        if (stack_.back().second != (d == "TransformEnd"))
+            fail(line, d + " closes a " + (stack_.back().second ? "TransformBegin" : "AttributeBegin"));
+        if (stack_.back().second)
+            gs_.ctm = stack_.back().first.ctm;
+        else
+            gs_ = stack_.back().first;
+        stack_.pop_back();
+    }
+
+    void film(int line)
+    {
+        const std::string type = expect_string("a film type");
+        auto ps = params(line);
+        if (type != "image")
+            warn(line, "Film \"" + type + "\" treated as \"image\"");
+        scene_.camera.width = ps.get_int("xresolution").value_or(640);
+        scene_.camera.height = ps.get_int("yresolution").value_or(480);
+        if (scene_.camera.width <= 0 || scene_.camera.height <= 0)
+            fail(line, "Film resolution must be positive");
+        ps.get_string("filename");  // checked, not used: the output name comes from -o
+        warn_all(ps.unused_warnings("Film"));
+    }
+
+    void sampler(int line)
+    {
+        expect_string("a sampler type");
+        auto ps = params(line);
+        scene_.spp = ps.get_int("pixelsamples").value_or(16);
+        if (scene_.spp <= 0)
+            fail(line, "pixelsamples must be positive");
+        warn_all(ps.unused_warnings("Sampler"));
+    }
+
+    void integrator(int line)
+    {
+        const std::string type = expect_string("an integrator type");
+        auto ps = params(line);
+        if (type != "path")
+            warn(line, "Integrator \"" + type + "\" rendered with the path tracer");
+        scene_.maxdepth = ps.get_int("maxdepth").value_or(5);
+        if (scene_.maxdepth < 0)
+            fail(line, "maxdepth must not be negative");
+        warn_all(ps.unused_warnings("Integrator"));
+    }
+
+    void area_light(int line)
+    {
+        const std::string type = expect_string("a light type");
+        auto ps = params(line);
+        if (type != "diffuse")
+            fail(line, "unsupported: AreaLightSource \"" + type + "\" (only \"diffuse\")");
+        const auto L = ps.get_rgb("L");
+        const float scale = ps.get_float("scale").value_or(1.f);
+        gs_.emission = (L ? *L : Rgb{1.f}) * scale;
+        gs_.two_sided = ps.get_bool("twosided").value_or(false);
+        ps.get_int("samples");
+        warn_all(ps.unused_warnings("AreaLightSource"));
     }
 
     void camera(int line)
@@ -297,6 +323,18 @@ private:
         }
     }
 
+    void make_named_material(int line)
+    {
+        const std::string name = expect_string("a material name");
+        auto ps = params(line);
+        const Parameter* type = ps.find("string", "type");
+        if (!type || type->strings.size() != 1)
+            fail(line, "MakeNamedMaterial \"" + name + "\" needs \"string type\"");
+        named_materials_[name] = make_material(type->strings[0], ps, name);
+    }
+
+    /// Reads the material (material.cpp), reports its unknown parameters, and returns its
+    /// index in scene_.materials.
     int make_material(const std::string& type, ParameterList& ps, const std::string& name)
     {
         Material m = read_material(type, name, ps, textures_, scene_.warnings);
