@@ -6,7 +6,9 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "statmc/render/parameter_list.h"
 #include "statmc/render/ply_reader.h"
+#include "statmc/render/shapes.h"
 #include "statmc/render/texture.h"
 #include "statmc/render/tokenizer.h"
 
@@ -15,15 +17,6 @@ namespace statmc::render {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// One "type name" [values] parameter of a directive.
-struct Param {
-    std::string type, name;
-    std::vector<double> numbers;
-    std::vector<std::string> strings;
-    int line = 0;
-    mutable bool used = false;
-};
 
 struct GraphicsState {
     Transform ctm;
@@ -65,7 +58,7 @@ private:
     GraphicsState gs_;
     std::vector<std::pair<GraphicsState, bool>> stack_;  // state, is-transform-only
     std::unordered_map<std::string, int> named_materials_;
-    std::unordered_map<std::string, std::shared_ptr<const ImageTexture>> textures_;
+    NamedTextures textures_;
     std::map<std::string, std::shared_ptr<const TriangleMesh>> ply_cache_;
     bool in_world_ = false;
     bool saw_camera_ = false;
@@ -111,120 +104,11 @@ private:
         return v;
     }
 
-    std::vector<Param> params()
+    ParameterList params(int line) { return ParameterList::parse(tokens_, pos_, file_, line); }
+    void warn_all(std::vector<std::string> warnings)
     {
-        std::vector<Param> out;
-        while (!at_end() && peek().kind == Token::Kind::String) {
-            const Token& decl = tokens_[pos_++];
-            std::istringstream ss(decl.text);
-            Param p;
-            p.line = decl.line;
-            if (!(ss >> p.type >> p.name))
-                fail(decl.line, "malformed parameter declaration \"" + decl.text + "\" (expected \"type name\")");
-            if (p.type == "point3") p.type = "point";
-            if (p.type == "normal3") p.type = "normal";
-            if (p.type == "color") p.type = "rgb";
-            static const char* known[] = {"integer", "float", "point2", "vector2", "point", "vector",
-                                          "normal", "rgb", "bool", "string", "texture", "spectrum",
-                                          "blackbody", "xyz"};
-            bool ok = false;
-            for (const char* k : known)
-                ok = ok || p.type == k;
-            if (!ok)
-                fail(decl.line, "unknown parameter type '" + p.type + "' in \"" + decl.text + "\"");
-            const bool is_text = p.type == "string" || p.type == "texture" || p.type == "bool";
-            auto value = [&] {
-                if (at_end())
-                    fail(decl.line, "parameter \"" + decl.text + "\" has no value");
-                const Token& t = tokens_[pos_++];
-                if (is_text) {
-                    if (t.kind != Token::Kind::String)
-                        fail(t.line, "parameter \"" + decl.text + "\" expects quoted strings");
-                    p.strings.push_back(t.text);
-                } else {
-                    if (t.kind != Token::Kind::Number)
-                        fail(t.line, "parameter \"" + decl.text + "\" expects numbers, got '" + t.text + "'");
-                    p.numbers.push_back(t.number);
-                }
-            };
-            if (!at_end() && peek().kind == Token::Kind::OpenBracket) {
-                ++pos_;
-                while (!at_end() && peek().kind != Token::Kind::CloseBracket)
-                    value();
-                if (at_end())
-                    fail(decl.line, "missing ']' after parameter \"" + decl.text + "\"");
-                ++pos_;
-            } else {
-                value();
-            }
-            out.push_back(std::move(p));
-        }
-        return out;
-    }
-
-    const Param* find(const std::vector<Param>& ps, const std::string& type, const std::string& name) const
-    {
-        for (const Param& p : ps)
-            if (p.name == name && p.type == type) {
-                p.used = true;
-                return &p;
-            }
-        return nullptr;
-    }
-    double get_number(const std::vector<Param>& ps, const std::string& type, const std::string& name, double def)
-    {
-        const Param* p = find(ps, type, name);
-        if (!p)
-            return def;
-        if (p->numbers.size() != 1)
-            fail(p->line, "\"" + type + " " + name + "\" needs one value");
-        return p->numbers[0];
-    }
-    int get_int(const std::vector<Param>& ps, const std::string& name, int def)
-    {
-        return int(get_number(ps, "integer", name, def));
-    }
-    float get_float(const std::vector<Param>& ps, const std::string& name, float def)
-    {
-        return float(get_number(ps, "float", name, def));
-    }
-    bool get_bool(const std::vector<Param>& ps, const std::string& name, bool def)
-    {
-        const Param* p = find(ps, "bool", name);
-        if (!p)
-            return def;
-        if (p->strings.size() != 1 || (p->strings[0] != "true" && p->strings[0] != "false"))
-            fail(p->line, "\"bool " + name + "\" must be \"true\" or \"false\"");
-        return p->strings[0] == "true";
-    }
-    std::string get_string(const std::vector<Param>& ps, const std::string& name, const std::string& def)
-    {
-        const Param* p = find(ps, "string", name);
-        if (!p)
-            return def;
-        if (p->strings.size() != 1)
-            fail(p->line, "\"string " + name + "\" needs one value");
-        return p->strings[0];
-    }
-    std::optional<Rgb> get_rgb(const std::vector<Param>& ps, const std::string& name)
-    {
-        for (const Param& p : ps)
-            if (p.name == name && (p.type == "spectrum" || p.type == "blackbody" || p.type == "xyz")) {
-                p.used = true;
-                fail(p.line, "unsupported: \"" + p.type + " " + name + "\" (only rgb colours are supported)");
-            }
-        const Param* p = find(ps, "rgb", name);
-        if (!p)
-            return std::nullopt;
-        if (p->numbers.size() != 3)
-            fail(p->line, "\"rgb " + name + "\" needs three values");
-        return Rgb{float(p->numbers[0]), float(p->numbers[1]), float(p->numbers[2])};
-    }
-    void warn_unused(const std::vector<Param>& ps, const std::string& directive)
-    {
-        for (const Param& p : ps)
-            if (!p.used)
-                warn(p.line, "unknown parameter \"" + p.type + " " + p.name + "\" of " + directive + " ignored");
+        for (std::string& w : warnings)
+            scene_.warnings.push_back(std::move(w));
     }
     std::string resolve(const std::string& name) const
     {
@@ -244,13 +128,7 @@ private:
         const std::string& d = t.text;
         const int line = t.line;
         if (d == "LookAt") {
-            const auto v = numbers(9, "LookAt");
-            const auto la = Transform::look_at({float(v[0]), float(v[1]), float(v[2])},
-                                               {float(v[3]), float(v[4]), float(v[5])},
-                                               {float(v[6]), float(v[7]), float(v[8])});
-            if (!la)
-                fail(line, "LookAt: the up vector is parallel to the viewing direction");
-            apply(*la);
+            look_at(line);
         } else if (d == "Transform") {
             gs_.ctm = Transform::from_pbrt(numbers(16, "Transform").data());
         } else if (d == "ConcatTransform") {
@@ -271,41 +149,19 @@ private:
         } else if (d == "Camera") {
             camera(line);
         } else if (d == "Film") {
-            const std::string type = expect_string("a film type");
-            auto ps = params();
-            if (type != "image")
-                warn(line, "Film \"" + type + "\" treated as \"image\"");
-            scene_.camera.width = get_int(ps, "xresolution", 640);
-            scene_.camera.height = get_int(ps, "yresolution", 480);
-            if (scene_.camera.width <= 0 || scene_.camera.height <= 0)
-                fail(line, "Film resolution must be positive");
-            get_string(ps, "filename", "");  // the output name comes from -o
-            warn_unused(ps, "Film");
+            film(line);
         } else if (d == "Sampler") {
-            expect_string("a sampler type");
-            auto ps = params();
-            scene_.spp = get_int(ps, "pixelsamples", 16);
-            if (scene_.spp <= 0)
-                fail(line, "pixelsamples must be positive");
-            warn_unused(ps, "Sampler");
+            sampler(line);
         } else if (d == "Integrator") {
-            const std::string type = expect_string("an integrator type");
-            auto ps = params();
-            if (type != "path")
-                warn(line, "Integrator \"" + type + "\" rendered with the path tracer");
-            scene_.maxdepth = get_int(ps, "maxdepth", 5);
-            if (scene_.maxdepth < 0)
-                fail(line, "maxdepth must not be negative");
-            warn_unused(ps, "Integrator");
+            integrator(line);
         } else if (d == "PixelFilter") {
-            // Read, not used: the method needs each sample in exactly one pixel (box filter).
+            // Read, not used: the method needs each sample in exactly one pixel (box filter);
+            // its parameters are accepted silently.
             expect_string("a filter type");
-            auto ps = params();
-            for (const Param& p : ps)
-                p.used = true;
+            params(line);
         } else if (d == "Accelerator" || d == "ColorSpace") {
             expect_string("a type");
-            params();
+            params(line);
             warn(line, d + " ignored");
         } else if (d == "WorldBegin") {
             in_world_ = true;
@@ -315,22 +171,9 @@ private:
         } else if (d == "AttributeBegin" || d == "TransformBegin") {
             stack_.push_back({gs_, d == "TransformBegin"});
         } else if (d == "AttributeEnd" || d == "TransformEnd") {
-            if (stack_.empty())
-                fail(line, d + " without a matching begin");
-            if (stack_.back().second != (d == "TransformEnd"))
-                fail(line, d + " closes a " + (stack_.back().second ? "TransformBegin" : "AttributeBegin"));
-            if (stack_.back().second)
-                gs_.ctm = stack_.back().first.ctm;
-            else
-                gs_ = stack_.back().first;
-            stack_.pop_back();
+            end_block(d, line);
         } else if (d == "MakeNamedMaterial") {
-            const std::string name = expect_string("a material name");
-            auto ps = params();
-            const Param* type = find(ps, "string", "type");
-            if (!type || type->strings.size() != 1)
-                fail(line, "MakeNamedMaterial \"" + name + "\" needs \"string type\"");
-            named_materials_[name] = make_material(type->strings[0], ps, line, name);
+            make_named_material(line);
         } else if (d == "NamedMaterial") {
             const std::string name = expect_string("a material name");
             const auto it = named_materials_.find(name);
@@ -339,24 +182,15 @@ private:
             gs_.material = it->second;
         } else if (d == "Material") {
             const std::string type = expect_string("a material type");
-            auto ps = params();
-            gs_.material = make_material(type, ps, line, type);
+            auto ps = params(line);
+            gs_.material = make_material(type, ps, type);
         } else if (d == "Texture") {
             texture(line);
         } else if (d == "AreaLightSource") {
-            const std::string type = expect_string("a light type");
-            auto ps = params();
-            if (type != "diffuse")
-                fail(line, "unsupported: AreaLightSource \"" + type + "\" (only \"diffuse\")");
-            const auto L = get_rgb(ps, "L");
-            const float scale = get_float(ps, "scale", 1.f);
-            gs_.emission = (L ? *L : Rgb{1.f}) * scale;
-            gs_.two_sided = get_bool(ps, "twosided", false);
-            get_int(ps, "samples", 1);
-            warn_unused(ps, "AreaLightSource");
+            area_light(line);
         } else if (d == "LightSource") {
             const std::string type = expect_string("a light type");
-            params();
+            params(line);
             fail(line, "unsupported: LightSource \"" + type + "\" (only area lights are supported)");
         } else if (d == "Shape") {
             shape(line);
@@ -374,24 +208,94 @@ private:
         }
     }
 
+    void look_at(int line)
+    {
+        const auto v = numbers(9, "LookAt");
+        const auto la = Transform::look_at({float(v[0]), float(v[1]), float(v[2])},
+                                           {float(v[3]), float(v[4]), float(v[5])},
+                                           {float(v[6]), float(v[7]), float(v[8])});
+        if (!la)
+            fail(line, "LookAt: the up vector is parallel to the viewing direction");
+        apply(*la);
+    }
+
+    /// AttributeEnd or TransformEnd (`d`): restores the state its begin saved.
+    void end_block(const std::string& d, int line)
+    {
+        if (stack_.empty())
+            fail(line, d + " without a matching begin");
+        if (stack_.back().second != (d == "TransformEnd"))
+            fail(line, d + " closes a " + (stack_.back().second ? "TransformBegin" : "AttributeBegin"));
+        if (stack_.back().second)
+            gs_.ctm = stack_.back().first.ctm;
+        else
+            gs_ = stack_.back().first;
+        stack_.pop_back();
+    }
+
+    void film(int line)
+    {
+        const std::string type = expect_string("a film type");
+        auto ps = params(line);
+        if (type != "image")
+            warn(line, "Film \"" + type + "\" treated as \"image\"");
+        scene_.camera.width = ps.get_int("xresolution").value_or(640);
+        scene_.camera.height = ps.get_int("yresolution").value_or(480);
+        if (scene_.camera.width <= 0 || scene_.camera.height <= 0)
+            fail(line, "Film resolution must be positive");
+        ps.get_string("filename");  // checked, not used: the output name comes from -o
+        warn_all(ps.unused_warnings("Film"));
+    }
+
+    void sampler(int line)
+    {
+        expect_string("a sampler type");
+        auto ps = params(line);
+        scene_.spp = ps.get_int("pixelsamples").value_or(16);
+        if (scene_.spp <= 0)
+            fail(line, "pixelsamples must be positive");
+        warn_all(ps.unused_warnings("Sampler"));
+    }
+
+    void integrator(int line)
+    {
+        const std::string type = expect_string("an integrator type");
+        auto ps = params(line);
+        if (type != "path")
+            warn(line, "Integrator \"" + type + "\" rendered with the path tracer");
+        scene_.maxdepth = ps.get_int("maxdepth").value_or(5);
+        if (scene_.maxdepth < 0)
+            fail(line, "maxdepth must not be negative");
+        warn_all(ps.unused_warnings("Integrator"));
+    }
+
+    void area_light(int line)
+    {
+        const std::string type = expect_string("a light type");
+        auto ps = params(line);
+        if (type != "diffuse")
+            fail(line, "unsupported: AreaLightSource \"" + type + "\" (only \"diffuse\")");
+        const auto L = ps.get_rgb("L");
+        const float scale = ps.get_float("scale").value_or(1.f);
+        gs_.emission = (L ? *L : Rgb{1.f}) * scale;
+        gs_.two_sided = ps.get_bool("twosided").value_or(false);
+        ps.get_int("samples");
+        warn_all(ps.unused_warnings("AreaLightSource"));
+    }
+
     void camera(int line)
     {
         const std::string type = expect_string("a camera type");
-        auto ps = params();
+        auto ps = params(line);
         if (type != "perspective")
             fail(line, "unsupported: Camera \"" + type + "\" (only \"perspective\")");
         saw_camera_ = true;
         scene_.camera.world_to_camera = gs_.ctm;
-        scene_.camera.fov_degrees = get_float(ps, "fov", 90.f);
+        scene_.camera.fov_degrees = ps.get_float("fov").value_or(90.f);
         if (!(scene_.camera.fov_degrees > 0 && scene_.camera.fov_degrees < 180))
             fail(line, "Camera fov must be in (0, 180) degrees");
-        for (const char* ignored : {"lensradius", "focaldistance", "frameaspectratio", "screenwindow"})
-            for (const Param& p : ps)
-                if (p.name == ignored) {
-                    p.used = true;
-                    warn(p.line, std::string("Camera parameter \"") + ignored + "\" not supported, ignored");
-                }
-        warn_unused(ps, "Camera");
+        warn_all(ps.ignore({"lensradius", "focaldistance", "frameaspectratio", "screenwindow"}, "Camera parameter"));
+        warn_all(ps.unused_warnings("Camera"));
     }
 
     void texture(int line)
@@ -399,21 +303,18 @@ private:
         const std::string name = expect_string("a texture name");
         const std::string cls = expect_string("a texture type (\"spectrum\" or \"float\")");
         const std::string type = expect_string("a texture class");
-        auto ps = params();
+        auto ps = params(line);
         if (type != "imagemap")
             fail(line, "unsupported: Texture \"" + type + "\" (only \"imagemap\")");
         if (cls != "spectrum" && cls != "color" && cls != "rgb")
             fail(line, "unsupported: " + cls + " texture \"" + name + "\" (only spectrum textures)");
-        const std::string filename = get_string(ps, "filename", "");
+        const std::string filename = ps.get_string("filename").value_or("");
         if (filename.empty())
             fail(line, "Texture \"" + name + "\" needs \"string filename\"");
-        const bool gamma = get_bool(ps, "gamma", default_texture_gamma(filename));
-        const float scale = get_float(ps, "scale", 1.f);
-        for (const char* ignored : {"trilinear", "maxanisotropy", "wrap", "filter"})
-            for (const Param& p : ps)
-                if (p.name == ignored)
-                    p.used = true;  // filtering options: lookups are bilinear
-        warn_unused(ps, "Texture");
+        const bool gamma = ps.get_bool("gamma").value_or(default_texture_gamma(filename));
+        const float scale = ps.get_float("scale").value_or(1.f);
+        ps.ignore({"trilinear", "maxanisotropy", "wrap", "filter"});  // filtering options: lookups are bilinear
+        warn_all(ps.unused_warnings("Texture"));
         const std::string path = resolve(filename);
         try {
             textures_[name] = ImageTexture::load(path, gamma, scale);
@@ -422,163 +323,58 @@ private:
         }
     }
 
-    int make_material(const std::string& type, const std::vector<Param>& ps, int line, const std::string& name)
+    void make_named_material(int line)
     {
-        Material m;
-        m.name = name;
-        if (type == "matte") {
-            m.type = Material::Type::Matte;
-            if (const Param* t = find(ps, "texture", "Kd")) {
-                const auto it = t->strings.size() == 1 ? textures_.find(t->strings[0]) : textures_.end();
-                if (it == textures_.end())
-                    fail(t->line, "texture \"" + (t->strings.empty() ? "" : t->strings[0]) + "\" was not defined");
-                m.kd_texture = it->second;
-            } else if (auto kd = get_rgb(ps, "Kd")) {
-                m.kd = *kd;
-            }
-            if (get_float(ps, "sigma", 0.f) != 0.f)
-                warn(line, "matte \"float sigma\" (Oren-Nayar) not supported, rendered as Lambertian");
-        } else if (type == "metal") {
-            m.type = Material::Type::Metal;
-            if (auto e = get_rgb(ps, "eta")) m.eta = *e;
-            if (auto k = get_rgb(ps, "k")) m.k = *k;
-            const float rough = get_float(ps, "roughness", 0.01f);
-            float u = get_float(ps, "uroughness", rough), v = get_float(ps, "vroughness", rough);
-            if (get_bool(ps, "remaproughness", true)) {
-                u = roughness_to_alpha(u);
-                v = roughness_to_alpha(v);
-            }
-            m.alpha_u = u;
-            m.alpha_v = v;
-        } else if (type == "glass") {
-            m.type = Material::Type::Glass;
-            if (auto kr = get_rgb(ps, "Kr")) m.kr = *kr;
-            if (auto kt = get_rgb(ps, "Kt")) m.kt = *kt;
-            m.ior = get_float(ps, "index", 1.5f);
-            const float rough = get_float(ps, "roughness", 0.f);
-            if (get_float(ps, "uroughness", rough) != 0.f || get_float(ps, "vroughness", rough) != 0.f)
-                fail(line, "unsupported: rough glass (only smooth dielectrics)");
-            get_bool(ps, "remaproughness", true);
-        } else if (type == "mirror") {
-            m.type = Material::Type::Mirror;
-            m.kr = Rgb{0.9f};
-            if (auto kr = get_rgb(ps, "Kr")) m.kr = *kr;
-        } else if (type == "" || type == "none") {
-            fail(line, "unsupported: material \"none\"");
-        } else {
-            fail(line, "unsupported: material \"" + type + "\" (supported: matte, metal, glass, mirror)");
-        }
-        find(ps, "string", "type");  // MakeNamedMaterial's own parameter: consumed, not unknown
-        warn_unused(ps, "material \"" + name + "\"");
-        scene_.materials.push_back(m);
+        const std::string name = expect_string("a material name");
+        auto ps = params(line);
+        const Parameter* type = ps.find("string", "type");
+        if (!type || type->strings.size() != 1)
+            fail(line, "MakeNamedMaterial \"" + name + "\" needs \"string type\"");
+        named_materials_[name] = make_material(type->strings[0], ps, name);
+    }
+
+    /// Reads the material (material.cpp), reports its unknown parameters, and returns its
+    /// index in scene_.materials.
+    int make_material(const std::string& type, ParameterList& ps, const std::string& name)
+    {
+        Material m = read_material(type, name, ps, textures_, scene_.warnings);
+        ps.find("string", "type");  // MakeNamedMaterial's own parameter: consumed, not unknown
+        warn_all(ps.unused_warnings("material \"" + name + "\""));
+        scene_.materials.push_back(std::move(m));
         return int(scene_.materials.size()) - 1;
     }
 
     void shape(int line)
     {
         const std::string type = expect_string("a shape type");
-        auto ps = params();
+        auto ps = params(line);
         if (!in_world_)
             fail(line, "Shape outside WorldBegin/WorldEnd");
-        ShapeDesc s;
+        ShapeDesc s = read_shape(type, ps, gs_.ctm, gs_.reverse_orientation, ply_loader(line), scene_.warnings);
+        warn_all(ps.unused_warnings("Shape \"" + type + "\""));
         s.material = gs_.material;
         s.emission = gs_.emission;
         s.two_sided = gs_.two_sided;
         s.where = where(line);
-        const auto inv = gs_.ctm.inverse();
-        if (!inv)
-            fail(line, "the current transform is singular");
-        const bool flip = gs_.reverse_orientation != gs_.ctm.swaps_handedness();
-        if (type == "sphere") {
-            const float r = get_float(ps, "radius", 1.f);
-            if (!(r > 0))
-                fail(line, "sphere radius must be positive");
-            for (const char* partial : {"zmin", "zmax", "phimax"})
-                for (const Param& p : ps)
-                    if (p.name == partial)
-                        fail(p.line, std::string("unsupported: partial sphere (\"") + partial + "\")");
-            s.kind = ShapeDesc::Kind::Sphere;
-            s.center = gs_.ctm.point({0, 0, 0});
-            const Vec3 ax = gs_.ctm.vector({1, 0, 0}), ay = gs_.ctm.vector({0, 1, 0}), az = gs_.ctm.vector({0, 0, 1});
-            const float sx = length(ax), sy = length(ay), sz = length(az);
-            if (std::abs(sx - sy) > 1e-4f * sx || std::abs(sx - sz) > 1e-4f * sx)
-                fail(line, "unsupported: non-uniformly scaled sphere");
-            s.radius = r * sx;
-            s.flip_normals = gs_.reverse_orientation;
-        } else if (type == "trianglemesh" || type == "plymesh") {
-            TriangleMesh mesh;
-            if (type == "trianglemesh") {
-                const Param* idx = find(ps, "integer", "indices");
-                const Param* P = find(ps, "point", "P");
-                if (!P)
-                    fail(line, "trianglemesh needs \"point P\"");
-                if (P->numbers.size() % 3 != 0)
-                    fail(P->line, "\"point P\" needs a multiple of 3 values");
-                for (std::size_t i = 0; i < P->numbers.size(); i += 3)
-                    mesh.positions.push_back({float(P->numbers[i]), float(P->numbers[i + 1]), float(P->numbers[i + 2])});
-                if (idx) {
-                    if (idx->numbers.size() % 3 != 0 || idx->numbers.empty())
-                        fail(idx->line, "\"integer indices\" needs a positive multiple of 3 values");
-                    for (double v : idx->numbers) {
-                        if (v < 0 || v >= double(mesh.positions.size()))
-                            fail(idx->line, "index " + std::to_string(long(v)) + " out of range (" +
-                                                std::to_string(mesh.positions.size()) + " vertices)");
-                        mesh.indices.push_back(std::uint32_t(v));
-                    }
-                } else if (mesh.positions.size() == 3) {
-                    mesh.indices = {0, 1, 2};
-                } else {
-                    fail(line, "trianglemesh needs \"integer indices\"");
-                }
-                if (const Param* N = find(ps, "normal", "N")) {
-                    if (N->numbers.size() != P->numbers.size())
-                        fail(N->line, "\"normal N\" must have as many values as \"point P\"");
-                    for (std::size_t i = 0; i < N->numbers.size(); i += 3)
-                        mesh.normals.push_back({float(N->numbers[i]), float(N->numbers[i + 1]), float(N->numbers[i + 2])});
-                }
-                const Param* uv = find(ps, "float", "uv");
-                if (!uv) uv = find(ps, "float", "st");
-                if (!uv) uv = find(ps, "point2", "uv");
-                if (uv) {
-                    if (uv->numbers.size() != mesh.positions.size() * 2)
-                        fail(uv->line, "\"" + uv->type + " " + uv->name + "\" needs 2 values per vertex");
-                    for (double v : uv->numbers)
-                        mesh.uvs.push_back(float(v));
-                }
-                for (const char* ignored : {"S", "alpha", "shadowalpha"})
-                    for (const Param& p : ps)
-                        if (p.name == ignored) {
-                            p.used = true;
-                            warn(p.line, std::string("trianglemesh \"") + ignored + "\" not supported, ignored");
-                        }
-            } else {
-                const std::string filename = get_string(ps, "filename", "");
-                if (filename.empty())
-                    fail(line, "plymesh needs \"string filename\"");
-                const std::string path = resolve(filename);
-                auto cached = ply_cache_.find(path);
-                if (cached == ply_cache_.end()) {
-                    try {
-                        cached = ply_cache_.emplace(path, std::make_shared<const TriangleMesh>(read_ply(path))).first;
-                    } catch (const std::exception& e) {
-                        fail(line, e.what());
-                    }
-                }
-                mesh = *cached->second;
-            }
-            // To world space, once: every later stage works in world coordinates.
-            for (Vec3& p : mesh.positions)
-                p = gs_.ctm.point(p);
-            for (Vec3& n : mesh.normals)
-                n = normalize(Transform::normal(*inv, n));
-            mesh.flip_normals = flip;
-            s.kind = ShapeDesc::Kind::Mesh;
-            s.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
-        } else {
-            fail(line, "unsupported: Shape \"" + type + "\" (supported: trianglemesh, plymesh, sphere)");
-        }
-        warn_unused(ps, "Shape \"" + type + "\"");
         scene_.shapes.push_back(std::move(s));
+    }
+
+    /// PLY files resolved against the scene's directory and read once per path; one that
+    /// cannot be read is an error at the Shape directive's `line`.
+    PlyLoader ply_loader(int line)
+    {
+        return [this, line](const std::string& filename) {
+            const std::string path = resolve(filename);
+            auto cached = ply_cache_.find(path);
+            if (cached == ply_cache_.end()) {
+                try {
+                    cached = ply_cache_.emplace(path, std::make_shared<const TriangleMesh>(read_ply(path))).first;
+                } catch (const std::exception& e) {
+                    fail(line, e.what());
+                }
+            }
+            return cached->second;
+        };
     }
 };
 

@@ -1,9 +1,11 @@
-// The pbrt-v3 materials the renderer supports, as parameters; material.cpp turns one into
-// the BSDF at a surface point.
+// The pbrt-v3 materials the renderer supports, as parameters; material.cpp reads one from
+// its directive's parameters and turns one into the BSDF at a surface point.
 #pragma once
 
 #include <memory>
 #include <string>
+#include <unordered_map>
+#include <vector>
 
 #include "statmc/render/vec.h"
 
@@ -11,6 +13,7 @@ namespace statmc::render {
 
 class ImageTexture;
 class Bsdf;
+class ParameterList;
 
 struct Material {
     enum class Type { Matte, Metal, Glass, Mirror };
@@ -27,6 +30,18 @@ struct Material {
     Rgb kr{1.f}, kt{1.f};
     float ior = 1.5f;
 };
+
+/// Image textures by the name their Texture directive gave them.
+using NamedTextures = std::unordered_map<std::string, std::shared_ptr<const ImageTexture>>;
+
+/// The material of pbrt-v3 type `type` ("matte", "metal", "glass" or "mirror"), called
+/// `name`, from its Material / MakeNamedMaterial parameters `ps` ("texture Kd" looks up
+/// `textures`). Each type reads its own parameters, with pbrt-v3's defaults; warnings
+/// (a feature read but not rendered) are appended to `warnings`, and parameters it does
+/// not know are left unused for the caller to report. Unsupported types or values are
+/// SceneErrors at file:line.
+Material read_material(const std::string& type, const std::string& name, ParameterList& ps,
+                       const NamedTextures& textures, std::vector<std::string>& warnings);
 
 /// pbrt-v3's TrowbridgeReitzDistribution::RoughnessToAlpha (a polynomial fit in log r),
 /// applied when a metal says "bool remaproughness" true (its default).
