@@ -71,6 +71,23 @@ std::size_t input_count(const statmc::OperatorSpec& op, const Invocation& inv,
     return k;
 }
 
+// Calls into a module. Operators report errors on their image and never throw, but a
+// third-party one may: that becomes an error naming the operator and its module.
+template <class Call>
+auto guarded(const statmc::OperatorSpec& op, const std::string& where, Call&& call)
+{
+    const std::string culprit = "--" + op.name + " (" + (op.module.empty() ? "the host" : op.module) + ")";
+    try {
+        return call();
+    } catch (const std::exception& e) {
+        throw ToolError("--" + op.name + ": " + where + "the operator threw, which it must not: " + e.what() +
+                        " [" + culprit + "]");
+    } catch (...) {
+        throw ToolError("--" + op.name + ": " + where + "the operator threw a non-standard exception [" +
+                        culprit + "]");
+    }
+}
+
 void run_operator(const statmc::OperatorSpec& op, ToolContext& ctx, const Invocation& inv)
 {
     const std::size_t count = input_count(op, inv, ctx);
@@ -84,18 +101,19 @@ void run_operator(const statmc::OperatorSpec& op, ToolContext& ctx, const Invoca
         images.push_back(&s.image());
         run_context.input_labels.push_back(s.label);
     }
+    // One input is named in the message; several are named by the operator itself.
+    const std::string where = popped.size() == 1 ? popped[0].label + ": " : "";
     StackImage result;
     if (op.run_in_place && popped.size() == 1) {
         // The popped image is the stack's own, so the operator may reuse it (statmc's
         // operators read subimage 0 and push a one-part image either way).
         OIIO::ImageBuf image = std::move(popped[0].subimages.front());
-        op.run_in_place(image, inv.modifiers.values(), run_context);
+        guarded(op, where, [&] { return op.run_in_place(image, inv.modifiers.values(), run_context); });
         result = StackImage{std::move(image), ""};
     } else {
-        result = StackImage{op.run(images, inv.modifiers.values(), run_context), ""};
+        result = StackImage{guarded(op, where, [&] { return op.run(images, inv.modifiers.values(), run_context); }),
+                            ""};
     }
-    // One input is named in the message; several are named by the operator itself.
-    const std::string where = popped.size() == 1 ? popped[0].label + ": " : "";
     if (result.image().has_error())
         throw ToolError(inv.name + ": " + where + result.image().geterror());
     result.label = popped.size() == 1 ? popped[0].label + " (" + op.name + ")"
@@ -153,7 +171,8 @@ Command operator_command(const statmc::OperatorSpec& op)
     c.modifiers = op.parameters;
     c.check = [op](const Invocation& inv) {
         if (op.check)
-            if (const std::string why = op.check(inv.modifiers.values()); !why.empty())
+            if (const std::string why = guarded(op, "", [&] { return op.check(inv.modifiers.values()); });
+                !why.empty())
                 throw ToolError(inv.name + ": " + why);
     };
     c.run = [op](ToolContext& ctx, const Invocation& inv) { run_operator(op, ctx, inv); };

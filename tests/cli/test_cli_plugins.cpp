@@ -2,6 +2,7 @@
 // their registrations, a module found on STATMC_PLUGIN_PATH, a module refused.
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 
 #include <gtest/gtest.h>
 
@@ -89,6 +90,43 @@ TEST(CliPlugins, ModuleOfAnotherInterfaceVersionIsRefused)
               std::string::npos)
         << r.err;
     EXPECT_NE(r.err.find("needs version"), std::string::npos) << r.err;
+}
+
+TEST(CliPlugins, ModuleBuiltAgainstAnotherOiioIsRefused)
+{
+    PluginPath path(kModules + "/wrong_identity");
+    const CliResult r = run_cli({"--list-ops"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.signal, 0);  // refused before its registration (which aborts) is called
+    const std::string module = kModules + "/wrong_identity/wrong_identity.so";
+    EXPECT_NE(r.err.find(module + ": built differently from this statmc: OpenImageIO "), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("sizeof(OIIO::ImageBuf) "), std::string::npos) << r.err;
+}
+
+TEST(CliPlugins, AnOperatorThatThrowsIsAnErrorNamingItsModule)
+{
+    TempDir dir;
+    write_exr(cli_render(0), dir.file("in.exr"));
+    PluginPath path(kModules + "/good");
+    const std::string module = kModules + "/good/testscale.so";
+    for (const std::string op : {"--testthrow", "--testthrowinplace"}) {
+        const CliResult r = run_cli({dir.file("in.exr"), op, "-o", dir.file("out.exr")});
+        EXPECT_EQ(r.exit_code, 1) << op;
+        EXPECT_EQ(r.signal, 0) << op;
+        EXPECT_NE(r.err.find("statmc: error: " + op + ": " + dir.file("in.exr") +
+                             ": the operator threw, which it must not: deliberate failure [" + op + " (" +
+                             module + ")]"),
+                  std::string::npos)
+            << r.err;
+        EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+        const CliResult odd = run_cli({dir.file("in.exr"), op + ":not_std=1", "-o", dir.file("out.exr")});
+        EXPECT_EQ(odd.exit_code, 1) << op;
+        EXPECT_NE(odd.err.find("the operator threw a non-standard exception [" + op + " (" + module + ")]"),
+                  std::string::npos)
+            << odd.err;
+        EXPECT_FALSE(std::filesystem::exists(dir.file("out.exr"))) << op;
+    }
 }
 
 TEST(CliPlugins, MergeAddsFarmTasksAndNamesMismatchedFiles)

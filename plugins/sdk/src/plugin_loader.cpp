@@ -13,6 +13,7 @@ namespace statmc {
 namespace {
 
 using VersionFunction = int (*)();
+using IdentityFunction = BuildIdentity (*)();
 using RegisterFunction = void (*)(PluginRegistry&);
 
 std::string last_dl_error()
@@ -42,6 +43,12 @@ PluginRegistry staged_registration(void* handle, const std::string& path)
         throw PluginError(path + ": plugin interface version " + std::to_string(found) +
                           ", but this statmc needs version " +
                           std::to_string(kPluginInterfaceVersion) +
+                          " (rebuild the plugin against this statmc)");
+    const auto identity = reinterpret_cast<IdentityFunction>(
+        entry_point(handle, path, "statmc_plugin_build_identity"));
+    const std::string mismatch = build_identity_mismatch(identity(), this_build_identity());
+    if (!mismatch.empty())
+        throw PluginError(path + ": built differently from this statmc: " + mismatch +
                           " (rebuild the plugin against this statmc)");
     const auto register_plugin = reinterpret_cast<RegisterFunction>(
         entry_point(handle, path, "statmc_register_plugin"));

@@ -1,11 +1,9 @@
 // A plugin built only in the test tree: --testscale multiplies every channel by `factor`
 // (or divides with :reciprocal=1). It shows a third-party module found on
-// $STATMC_PLUGIN_PATH working exactly like a shipped one.
-//
-// | parameter  | type  | default | range       | meaning                   |
-// |------------|-------|---------|-------------|---------------------------|
-// | factor     | float | 2       | [0.01, 100] | the scale                 |
-// | reciprocal | bool  | 0       |             | divide instead            |
+// $STATMC_PLUGIN_PATH working exactly like a shipped one. --testthrow breaks the
+// operator contract on purpose (it throws), for the host's guard.
+#include <stdexcept>
+
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "statmc/plugin_sdk/plugin_interface.h"
@@ -29,6 +27,32 @@ void register_testscale(statmc::PluginRegistry& registry)
         return OIIO::ImageBufAlgo::mul(*inputs[0], scale, {}, ctx.nthreads);
     };
     registry.add(std::move(op));
+
+    // Two operators, so that both of the host's calls are guarded: run, and run_in_place.
+    auto fail = [](const statmc::ParameterValues& p) {
+        if (p.get_bool("not_std"))
+            throw 42;
+        throw std::runtime_error("deliberate failure");
+    };
+    statmc::OperatorSpec bad;
+    bad.name = "testthrow";
+    bad.summary = "Throw instead of returning an image (a test plugin)";
+    bad.parameters = {statmc::bool_parameter("not_std", false, "throw an int, not a std::exception")};
+    bad.run = [fail](const std::vector<const OIIO::ImageBuf*>&, const statmc::ParameterValues& p,
+                     const statmc::RunContext&) -> OIIO::ImageBuf {
+        fail(p);
+        return {};
+    };
+    statmc::OperatorSpec bad_in_place = bad;
+    bad_in_place.name = "testthrowinplace";
+    bad_in_place.summary = "Throw from run_in_place (a test plugin)";
+    bad_in_place.run_in_place = [fail](OIIO::ImageBuf&, const statmc::ParameterValues& p,
+                                       const statmc::RunContext&) {
+        fail(p);
+        return false;
+    };
+    registry.add(std::move(bad));
+    registry.add(std::move(bad_in_place));
 }
 
 }  // namespace

@@ -1,19 +1,22 @@
 // The binary contract between a host and a plugin module: a shared library built with
-// add_library(... MODULE ...) exporting two C symbols,
+// add_library(... MODULE ...) exporting three C symbols,
 //
-//   int  statmc_plugin_interface_version();            // == kPluginInterfaceVersion
+//   int  statmc_plugin_interface_version();                      // == kPluginInterfaceVersion
+//   statmc::BuildIdentity statmc_plugin_build_identity();         // build_identity.h
 //   void statmc_register_plugin(statmc::PluginRegistry&);
 //
 // The C++ types crossing the boundary (PluginRegistry, OperatorSpec, OIIO::ImageBuf)
 // have no stable ABI, so the version is bumped whenever any of them changes, and a host
-// refuses a module built against another version before calling into it.
+// refuses a module built against another version, another OpenImageIO, another string
+// ABI or other type layouts, before calling into it.
 #pragma once
 
+#include "statmc/plugin_sdk/build_identity.h"
 #include "statmc/plugin_sdk/plugin_registry.h"
 
 namespace statmc {
 
-inline constexpr int kPluginInterfaceVersion = 1;
+inline constexpr int kPluginInterfaceVersion = 2;
 
 }  // namespace statmc
 
@@ -25,6 +28,10 @@ inline constexpr int kPluginInterfaceVersion = 1;
     STATMC_PLUGIN_VISIBLE int statmc_plugin_interface_version()                    \
     {                                                                              \
         return statmc::kPluginInterfaceVersion;                                    \
+    }                                                                              \
+    STATMC_PLUGIN_VISIBLE statmc::BuildIdentity statmc_plugin_build_identity()     \
+    {                                                                              \
+        return statmc::this_build_identity();                                      \
     }                                                                              \
     STATMC_PLUGIN_VISIBLE void statmc_register_plugin(statmc::PluginRegistry& reg) \
     {                                                                              \
