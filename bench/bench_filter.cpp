@@ -1,4 +1,5 @@
-// Filter speed at the reference size: 1280×720 RGB, r = 20, α = 0.005, n = 64.
+// Filter speed at the reference size: a 1280×720 RGB frame (a typical HD render), r = 20,
+// α = 0.005, n = 64.
 // Reports the median over repetitions and pixel-taps per second (taps = window pixels
 // tested per output pixel, summed over the image).
 #include <algorithm>

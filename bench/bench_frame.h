@@ -1,4 +1,4 @@
-// The benchmarks' frame: the reference size, 1280×720 RGB at n = 64, with
+// The benchmarks' frame: the reference size, 1280×720 RGB at n = 64, with
 // render-like statistics and guides. Shared by the filter and operator benchmarks.
 #pragma once
 

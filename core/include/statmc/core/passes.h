@@ -1,5 +1,6 @@
 // Statistics from K independent renders of one frame: how any renderer can use statmc
-// without integration (mode 3 of the foundation issue).
+// without integration: each render is one sample of every pixel (docs/exr-layers.md,
+// "Three kinds of input").
 #pragma once
 
 #include <vector>
