@@ -25,7 +25,8 @@ double taps_per_image(int width, int height, int radius)
     for (int dy = -radius; dy <= radius; ++dy)
         for (int dx = -radius; dx <= radius; ++dx)
             if (dx * dx + dy * dy <= radius * radius && (dx || dy))
-                taps += double(std::max(0, width - std::abs(dx))) * std::max(0, height - std::abs(dy));
+                taps +=
+                    double(std::max(0, width - std::abs(dx))) * std::max(0, height - std::abs(dy));
     return taps;
 }
 
@@ -66,7 +67,8 @@ DenoiseOptions radius_zero()
 void run(benchmark::State& state, bool with_guides, SimdLevel level, bool reference,
          const DenoiseOptions& options = {}, bool fireflies = false)
 {
-    EstimatorImage est = estimators_from_statistics(bench::frame(fireflies).view(), TestDomain::BoxCox);
+    EstimatorImage est =
+        estimators_from_statistics(bench::frame(fireflies).view(), TestDomain::BoxCox);
     if (reference)
         est = crop(est, kWidth / 4, kHeight / 4);
     static const bench::GuidePlanes guide_planes;
@@ -82,9 +84,11 @@ void run(benchmark::State& state, bool with_guides, SimdLevel level, bool refere
             filter(est, guides, options, planes, {}, int(state.range(0)), level);
         benchmark::DoNotOptimize(out.data());
     }
-    state.counters["taps/s"] = benchmark::Counter(taps_per_image(est.width, est.height, options.radius) * state.iterations(),
-                                                  benchmark::Counter::kIsRate);
-    std::string label = reference ? "reference (double, 1 thread, 320x180 crop)" : simd_level_name(level);
+    state.counters["taps/s"] = benchmark::Counter(
+        taps_per_image(est.width, est.height, options.radius) * state.iterations(),
+        benchmark::Counter::kIsRate);
+    std::string label =
+        reference ? "reference (double, 1 thread, 320x180 crop)" : simd_level_name(level);
     if (options.firefly_ratio == 0)
         label += ", no firefly guard";
     if (fireflies)
@@ -96,9 +100,18 @@ void run(benchmark::State& state, bool with_guides, SimdLevel level, bool refere
 
 void BM_Filter(benchmark::State& s) { run(s, false, detected_simd_level(), false); }
 void BM_FilterGuides(benchmark::State& s) { run(s, true, detected_simd_level(), false); }
-void BM_FilterNoGuard(benchmark::State& s) { run(s, false, detected_simd_level(), false, no_guard()); }
-void BM_FilterFireflies(benchmark::State& s) { run(s, s.range(1) != 0, detected_simd_level(), false, {}, true); }
-void BM_FilterFixedCost(benchmark::State& s) { run(s, s.range(1) != 0, detected_simd_level(), false, radius_zero()); }
+void BM_FilterNoGuard(benchmark::State& s)
+{
+    run(s, false, detected_simd_level(), false, no_guard());
+}
+void BM_FilterFireflies(benchmark::State& s)
+{
+    run(s, s.range(1) != 0, detected_simd_level(), false, {}, true);
+}
+void BM_FilterFixedCost(benchmark::State& s)
+{
+    run(s, s.range(1) != 0, detected_simd_level(), false, radius_zero());
+}
 void BM_FilterAvx2Kernel(benchmark::State& s)
 {
     const std::vector<SimdLevel> levels = supported_simd_levels();
@@ -113,16 +126,69 @@ void BM_FilterReference(benchmark::State& s) { run(s, false, SimdLevel::Scalar, 
 void BM_FilterReferenceGuides(benchmark::State& s) { run(s, true, SimdLevel::Scalar, true); }
 
 // Arg = threads (0 = all cores). Medians over 5 repetitions (3 for the slow paths).
-BENCHMARK(BM_Filter)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
-BENCHMARK(BM_FilterGuides)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
-BENCHMARK(BM_FilterNoGuard)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
+BENCHMARK(BM_Filter)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Repetitions(5)
+    ->ReportAggregatesOnly();
+BENCHMARK(BM_FilterGuides)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Repetitions(5)
+    ->ReportAggregatesOnly();
+BENCHMARK(BM_FilterNoGuard)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Repetitions(5)
+    ->ReportAggregatesOnly();
 // Args: threads, guides (0/1).
-BENCHMARK(BM_FilterFireflies)->Args({0, 0})->Args({0, 1})->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
-BENCHMARK(BM_FilterFixedCost)->Args({0, 0})->Args({0, 1})->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
-BENCHMARK(BM_FilterAvx2Kernel)->Args({0, 0})->Args({0, 1})->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly();
-BENCHMARK(BM_FilterScalarKernel)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(3)->ReportAggregatesOnly();
-BENCHMARK(BM_FilterReference)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Repetitions(3)->ReportAggregatesOnly();
-BENCHMARK(BM_FilterReferenceGuides)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Repetitions(3)->ReportAggregatesOnly();
+BENCHMARK(BM_FilterFireflies)
+    ->Args({0, 0})
+    ->Args({0, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Repetitions(5)
+    ->ReportAggregatesOnly();
+BENCHMARK(BM_FilterFixedCost)
+    ->Args({0, 0})
+    ->Args({0, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Repetitions(5)
+    ->ReportAggregatesOnly();
+BENCHMARK(BM_FilterAvx2Kernel)
+    ->Args({0, 0})
+    ->Args({0, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Repetitions(5)
+    ->ReportAggregatesOnly();
+BENCHMARK(BM_FilterScalarKernel)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Repetitions(3)
+    ->ReportAggregatesOnly();
+BENCHMARK(BM_FilterReference)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly();
+BENCHMARK(BM_FilterReferenceGuides)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly();
 
 }  // namespace
 

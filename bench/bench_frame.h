@@ -27,7 +27,8 @@ inline StatisticsPlanes make_frame(bool fireflies)
             const bool firefly = fireflies && one_in_500(rng) == 0;
             for (int i = 0; i < kSamples; ++i) {
                 const float gain = firefly && i == 0 ? 1000.f : 1.f;
-                const float s[3] = {gain * expo(rng), gain * 0.8f * expo(rng), gain * 0.6f * expo(rng)};
+                const float s[3] = {gain * expo(rng), gain * 0.8f * expo(rng),
+                                    gain * 0.6f * expo(rng)};
                 img.add(x, y, s);
             }
         }
@@ -53,7 +54,8 @@ struct GuidePlanes {
         for (int y = 0; y < kHeight; ++y)
             for (int x = 0; x < kWidth; ++x)
                 for (int k = 0; k < 6; ++k)
-                    data[k * n + std::size_t(y) * kWidth + x] = 0.1f * k + ((x / 160 + y / 120) % 2) * 0.3f;
+                    data[k * n + std::size_t(y) * kWidth + x] =
+                        0.1f * k + ((x / 160 + y / 120) % 2) * 0.3f;
         for (int k = 0; k < 3; ++k) {
             guides.albedo[k] = dense_plane(data.data() + k * n, kWidth);
             guides.normal[k] = dense_plane(data.data() + (k + 3) * n, kWidth);

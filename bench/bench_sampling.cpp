@@ -12,13 +12,14 @@
 //   efficiency = 1 / (cost · rel_var),
 // and the relMSE of the accumulated image against the reference with the elapsed time,
 // for error-versus-time plots, also without its 0.1% largest pixel-channel errors
-// (relmse_trimmed: a firefly or two would otherwise decide a short run's error). The reference is an EXR rendered by statmc-render itself.
-// Time spent computing these metrics is excluded. scripts/sampling_bench.sh drives it.
+// (relmse_trimmed: a firefly or two would otherwise decide a short run's error). The reference is
+// an EXR rendered by statmc-render itself. Time spent computing these metrics is excluded.
+// scripts/sampling_bench.sh drives it.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <numeric>
 #include <stdexcept>
@@ -29,9 +30,9 @@
 
 #include "statmc/layers/exr_files.h"
 
+#include "sampling_options.h"
 #include "statmc/render/camera.h"
 #include "statmc/render/render_loop.h"
-#include "sampling_options.h"
 #include "statmc/render/scene.h"
 #include "statmc/render/scene_parser.h"
 
@@ -72,32 +73,42 @@ double cpu_seconds()
 
 constexpr double kEpsilon = 0.01;  // Rousselle et al.'s relMSE denominator offset
 
-double rel_error(double value, double truth) { return (value - truth) * (value - truth) / (truth * truth + kEpsilon); }
+double rel_error(double value, double truth)
+{
+    return (value - truth) * (value - truth) / (truth * truth + kEpsilon);
+}
 
 }  // namespace
 
 int main(int argc, char** argv)
 {
-    CLI::App app{"bench_sampling: per-iteration cost, relative variance and efficiency of statmc-render's "
-                 "sampling (seed C.2), appended to a CSV"};
+    CLI::App app{
+        "bench_sampling: per-iteration cost, relative variance and efficiency of statmc-render's "
+        "sampling (seed C.2), appended to a CSV"};
     std::string scene_path, reference_path, csv_path, label;
-    int width = 0, height = 0, iterations = 16, spp = 4, runs = 4, seed = 1, threads = 0, progressive = 0;
+    int width = 0, height = 0, iterations = 16, spp = 4, runs = 4, seed = 1, threads = 0,
+        progressive = 0;
     double budget = 0;
     SamplingOptions sampling;
     app.add_option("scene", scene_path, "pbrt-v3 scene")->required();
-    app.add_option("--reference", reference_path, "high-spp EXR of the same scene and size")->required();
+    app.add_option("--reference", reference_path, "high-spp EXR of the same scene and size")
+        ->required();
     app.add_option("--csv", csv_path, "CSV to append to (header written when new)")->required();
     app.add_option("--label", label, "configuration name in the CSV")->required();
     app.add_option("--iterations", iterations, "iterations per run")->capture_default_str();
-    app.add_option("--spp-per-iteration", spp, "samples per pixel of each iteration")->capture_default_str();
-    app.add_option("--progressive-spp", progressive,
-                   "instead of --iterations x --spp-per-iteration: the progressive schedule 4, 4, 8, ... "
-                   "to this many spp (docs/method.md §6)");
-    app.add_option("--runs", runs, "independent runs (seeds seed, seed+1, ...)")->capture_default_str();
+    app.add_option("--spp-per-iteration", spp, "samples per pixel of each iteration")
+        ->capture_default_str();
+    app.add_option(
+        "--progressive-spp", progressive,
+        "instead of --iterations x --spp-per-iteration: the progressive schedule 4, 4, 8, ... "
+        "to this many spp (docs/method.md §6)");
+    app.add_option("--runs", runs, "independent runs (seeds seed, seed+1, ...)")
+        ->capture_default_str();
     app.add_option("--seed", seed, "first seed")->capture_default_str();
     app.add_option("--threads", threads, "worker threads, 0 = all")->capture_default_str();
-    app.add_option("--time-budget", budget, "stop a run after the iteration that reaches this many CPU "
-                                            "seconds (0 = run all iterations)")
+    app.add_option("--time-budget", budget,
+                   "stop a run after the iteration that reaches this many CPU "
+                   "seconds (0 = run all iterations)")
         ->capture_default_str();
     add_sampling_options(app, sampling);
     CLI11_PARSE(app, argc, argv);
@@ -121,18 +132,21 @@ int main(int argc, char** argv)
         sampling.apply(rs.integrator);
         const std::size_t npix = std::size_t(width) * height;
 
-        const bool fresh = !std::filesystem::exists(csv_path) || std::filesystem::file_size(csv_path) == 0;
+        const bool fresh =
+            !std::filesystem::exists(csv_path) || std::filesystem::file_size(csv_path) == 0;
         std::FILE* csv = std::fopen(csv_path.c_str(), "a");
         if (!csv)
             throw std::runtime_error(csv_path + ": cannot open");
         if (fresh)
-            std::fprintf(csv, "label,run,iteration,spp,total_spp,seconds,cpu_seconds,denoise_seconds,elapsed,cpu_elapsed,cost,rel_var,"
+            std::fprintf(csv, "label,run,iteration,spp,total_spp,seconds,cpu_seconds,denoise_"
+                              "seconds,elapsed,cpu_elapsed,cost,rel_var,"
                               "efficiency,relmse,relmse_trimmed\n");
 
         for (int run = 0; run < runs; ++run) {
             rs.seed = std::uint64_t(seed + run);
             Film film(width, height, bounce_layout_for(rs.integrator));
-            std::vector<double> previous(3 * npix, 0.0);  // accumulated means after the last iteration
+            std::vector<double> previous(3 * npix,
+                                         0.0);  // accumulated means after the last iteration
             std::vector<double> errors;
             double previous_n = 0, elapsed = 0, cpu_elapsed = 0;
             std::atomic<bool> stop{false};
@@ -140,7 +154,8 @@ int main(int argc, char** argv)
             double cpu0 = cpu_seconds();
             auto measure = [&](int it, const Film& f, const IterationStats& is) {
                 const int k_spp = is.spp;  // this iteration's samples per pixel
-                const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                const double seconds =
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
                 const double cpu = cpu_seconds() - cpu0;
                 elapsed += seconds;
                 cpu_elapsed += cpu;
@@ -154,7 +169,8 @@ int main(int argc, char** argv)
                         for (int c = 0; c < 3; ++c) {
                             const double mean = px.raw[c].mean, truth = ref.rgb[c * npix + i];
                             // This iteration's samples alone, from the running means.
-                            const double own = (mean * n_now - previous[c * npix + i] * previous_n) / k_spp;
+                            const double own =
+                                (mean * n_now - previous[c * npix + i] * previous_n) / k_spp;
                             iteration_error += rel_error(own, truth);
                             accumulated_error += rel_error(mean, truth);
                             errors.push_back(rel_error(mean, truth));
@@ -164,23 +180,27 @@ int main(int argc, char** argv)
                 previous_n = n_now;
                 // Trimmed: the largest 0.1% of errors dropped.
                 const std::size_t keep = errors.size() - errors.size() / 1000;
-                std::nth_element(errors.begin(), errors.begin() + std::ptrdiff_t(keep - 1), errors.end());
-                const double trimmed = std::accumulate(errors.begin(), errors.begin() + std::ptrdiff_t(keep), 0.0) /
-                                       double(keep);
+                std::nth_element(errors.begin(), errors.begin() + std::ptrdiff_t(keep - 1),
+                                 errors.end());
+                const double trimmed =
+                    std::accumulate(errors.begin(), errors.begin() + std::ptrdiff_t(keep), 0.0) /
+                    double(keep);
                 const double samples = double(k_spp) * double(npix);
                 const double cost = cpu / samples;
                 const double rel_var = k_spp * iteration_error / double(3 * npix);
-                std::fprintf(csv, "%s,%d,%d,%d,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.6e,%.6e,%.6e,%.6e,%.6e\n", label.c_str(), run,
-                             it, k_spp, int(n_now), seconds, cpu, is.denoise_seconds, elapsed, cpu_elapsed, cost, rel_var, 1.0 / (cost * rel_var),
-                             accumulated_error / double(3 * npix), trimmed);
+                std::fprintf(csv,
+                             "%s,%d,%d,%d,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.6e,%.6e,%.6e,%.6e,%.6e\n",
+                             label.c_str(), run, it, k_spp, int(n_now), seconds, cpu,
+                             is.denoise_seconds, elapsed, cpu_elapsed, cost, rel_var,
+                             1.0 / (cost * rel_var), accumulated_error / double(3 * npix), trimmed);
                 if (budget > 0 && cpu_elapsed >= budget)
                     stop = true;
                 t0 = std::chrono::steady_clock::now();  // metrics excluded
                 cpu0 = cpu_seconds();
             };
             render(scene, camera, rs, film, &stop, measure);
-            std::fprintf(stderr, "%s run %d: %.0f spp in %.2f s (%.2f CPU s)\n", label.c_str(), run, previous_n,
-                         elapsed, cpu_elapsed);
+            std::fprintf(stderr, "%s run %d: %.0f spp in %.2f s (%.2f CPU s)\n", label.c_str(), run,
+                         previous_n, elapsed, cpu_elapsed);
         }
         std::fclose(csv);
         return 0;

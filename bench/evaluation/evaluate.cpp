@@ -16,8 +16,8 @@
 #include <CLI/CLI.hpp>
 
 #include "baselines/baselines.h"
-#include "statmc/core/estimator_image.h"
 #include "statmc/compare/compare.h"
+#include "statmc/core/estimator_image.h"
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/float_pixels.h"
@@ -36,14 +36,16 @@ double median_seconds(int runs, const std::function<void()>& body)
     for (int i = 0; i < runs; ++i) {
         const auto start = std::chrono::steady_clock::now();
         body();
-        t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        t.push_back(
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
     std::sort(t.begin(), t.end());
     return t[t.size() / 2];
 }
 
 /// A float R,G,B image shaped like `like`, filled by `fill(planes)`.
-OIIO::ImageBuf rgb_image(const OIIO::ImageBuf& like, const std::function<void(std::array<Plane, 3>&)>& fill)
+OIIO::ImageBuf rgb_image(const OIIO::ImageBuf& like,
+                         const std::function<void(std::array<Plane, 3>&)>& fill)
 {
     OIIO::ImageSpec spec(like.spec().width, like.spec().height, 3, OIIO::TypeDesc::FLOAT);
     spec.x = like.spec().x;
@@ -113,7 +115,8 @@ std::vector<Method> methods()
     const baselines::NlmOptions nlm;
     const baselines::CrossBilateralOptions bilateral;
     auto statmc_method = [](const char* name, const DenoiseImageOptions& o) {
-        return Method{name, o.filter.radius, [o](const OIIO::ImageBuf& in) { return run_statmc(in, o); }};
+        return Method{name, o.filter.radius,
+                      [o](const OIIO::ImageBuf& in) { return run_statmc(in, o); }};
     };
     return {
         {"noisy", 0, {}},
@@ -121,14 +124,19 @@ std::vector<Method> methods()
         statmc_method("statmc-guides", guided),
         statmc_method("statmc-paper", paper),
         statmc_method("moon-ci", moon),
-        {"nlm", nlm.search_radius, [nlm](const OIIO::ImageBuf& in) {
-             const BaselineInputs b(in);
-             return rgb_image(in, [&](std::array<Plane, 3>& out) { baselines::nlm(b.mean, b.variance, b.est.width, b.est.height, nlm, out); });
-         }},
-        {"cross-bilateral", bilateral.radius, [bilateral](const OIIO::ImageBuf& in) {
+        {"nlm", nlm.search_radius,
+         [nlm](const OIIO::ImageBuf& in) {
              const BaselineInputs b(in);
              return rgb_image(in, [&](std::array<Plane, 3>& out) {
-                 baselines::cross_bilateral(b.mean, b.guides, b.est.width, b.est.height, bilateral, out);
+                 baselines::nlm(b.mean, b.variance, b.est.width, b.est.height, nlm, out);
+             });
+         }},
+        {"cross-bilateral", bilateral.radius,
+         [bilateral](const OIIO::ImageBuf& in) {
+             const BaselineInputs b(in);
+             return rgb_image(in, [&](std::array<Plane, 3>& out) {
+                 baselines::cross_bilateral(b.mean, b.guides, b.est.width, b.est.height, bilateral,
+                                            out);
              });
          }},
     };
@@ -151,7 +159,8 @@ int main(int argc, char** argv)
     app.add_option("--reference", reference_path, "reference EXR (R,G,B)")->required();
     app.add_option("--scene", scene, "scene name for the CSV")->required();
     app.add_option("--csv", csv_path, "CSV to append to (a header is written if new)")->required();
-    app.add_option("--runs", runs, "timed runs per method (the median is kept)")->check(CLI::PositiveNumber);
+    app.add_option("--runs", runs, "timed runs per method (the median is kept)")
+        ->check(CLI::PositiveNumber);
     app.add_option("--radius-sweep", radii, "instead: time statmc at these radii")->delimiter(',');
     app.add_option("--display-config", display_config, "OCIO config for DSSIM (Filmic view)");
     app.add_option("inputs", inputs, "noisy statistics EXRs")->required();
@@ -164,19 +173,21 @@ int main(int argc, char** argv)
         const bool fresh = !std::ifstream(csv_path).good();
         std::ofstream csv(csv_path, std::ios::app);
         if (fresh)
-            csv << "scene,width,height,spp,seed,method,radius,render_seconds,denoise_seconds,rmse,mae,relmse,dssim\n";
+            csv << "scene,width,height,spp,seed,method,radius,render_seconds,denoise_seconds,rmse,"
+                   "mae,relmse,dssim\n";
         for (const std::string& path : inputs) {
             const OIIO::ImageBuf in = layers::read_image_file(path);
             const float render_seconds = in.spec().get_float_attribute("statmc:renderTime", -1.f);
-            auto row = [&](const std::string& method, int radius, double seconds, const OIIO::ImageBuf& result) {
+            auto row = [&](const std::string& method, int radius, double seconds,
+                           const OIIO::ImageBuf& result) {
                 CompareMetrics m;
                 OIIO::ImageBuf error;
                 if (!compare(m, error, result, reference, compare_options))
                     throw std::runtime_error(path + ": " + error.geterror());
                 csv << scene << ',' << in.spec().width << ',' << in.spec().height << ','
-                    << attribute(in, "statmc:spp") << ',' << attribute(in, "statmc:seed") << ',' << method
-                    << ',' << radius << ',' << render_seconds << ',' << seconds << ',' << m.rmse << ','
-                    << m.mae << ',' << m.relmse << ',' << m.dssim << '\n';
+                    << attribute(in, "statmc:spp") << ',' << attribute(in, "statmc:seed") << ','
+                    << method << ',' << radius << ',' << render_seconds << ',' << seconds << ','
+                    << m.rmse << ',' << m.mae << ',' << m.relmse << ',' << m.dssim << '\n';
                 std::printf("%s %s r=%d: %.3f s, RMSE %.4g relMSE %.4g DSSIM %.4g\n", path.c_str(),
                             method.c_str(), radius, seconds, m.rmse, m.relmse, m.dssim);
             };

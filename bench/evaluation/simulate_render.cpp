@@ -37,16 +37,21 @@ OIIO::ImageBuf resized_reference(const std::string& path, int width, int height)
 
 int main(int argc, char** argv)
 {
-    CLI::App app{"Simulates the per-pixel statistics of a Monte Carlo render of a reference image."};
+    CLI::App app{
+        "Simulates the per-pixel statistics of a Monte Carlo render of a reference image."};
     std::string input, output, resolution;
     int spp = 16;
     float shape = 0.5f;
     unsigned seed = 1;
-    app.add_option("reference", input, "reference image (its pixels are the expected values)")->required();
+    app.add_option("reference", input, "reference image (its pixels are the expected values)")
+        ->required();
     app.add_option("-o,--output", output, "statistics EXR to write")->required();
-    app.add_option("--spp", spp, "samples per pixel")->capture_default_str()->check(CLI::Range(1, 1 << 20));
+    app.add_option("--spp", spp, "samples per pixel")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1 << 20));
     app.add_option("--shape", shape, "gamma shape k (1 = exponential; smaller = more skewed)")
-        ->capture_default_str()->check(CLI::PositiveNumber);
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
     app.add_option("--seed", seed, "random seed")->capture_default_str();
     app.add_option("--resolution", resolution, "WxH to resize the reference to first");
     CLI11_PARSE(app, argc, argv);
@@ -65,8 +70,10 @@ int main(int argc, char** argv)
                 ref.getpixel(roi.xbegin + x, roi.ybegin + y, truth, 3);
                 for (int i = 0; i < spp; ++i) {
                     for (int c = 0; c < 3; ++c)
-                        sample[c] = truth[c] > 0
-                            ? std::gamma_distribution<float>(shape, truth[c] / shape)(rng) : 0.f;
+                        sample[c] =
+                            truth[c] > 0
+                                ? std::gamma_distribution<float>(shape, truth[c] / shape)(rng)
+                                : 0.f;
                     stats.add(x, y, sample);
                 }
             }

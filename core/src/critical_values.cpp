@@ -18,8 +18,7 @@ double CriticalValues::exact(double alpha, double df)
     // complement() keeps full precision for the small upper tails that α/2 asks for.
     if (std::isinf(df))
         return boost::math::quantile(boost::math::complement(boost::math::normal(), alpha / 2));
-    return boost::math::quantile(
-        boost::math::complement(boost::math::students_t(df), alpha / 2));
+    return boost::math::quantile(boost::math::complement(boost::math::students_t(df), alpha / 2));
 }
 
 CriticalValues::CriticalValues(double alpha, double max_df) : alpha_(alpha), max_df_(max_df)

@@ -35,7 +35,8 @@ void mark_untestable(EstimatorImage& est, int x, int y)
 }
 
 // Pixel (x, y) of `est` from the statistics, in the chosen test domain.
-void fill_estimator(EstimatorImage& est, const StatisticsView& stats, TestDomain domain, int x, int y)
+void fill_estimator(EstimatorImage& est, const StatisticsView& stats, TestDomain domain, int x,
+                    int y)
 {
     const float n = stats.count(x, y);
     est.count[est.index(0, x, y)] = n;
@@ -99,11 +100,12 @@ EstimatorImage estimators_from_statistics(const StatisticsView& stats, TestDomai
     EstimatorImage est(stats.width, stats.height, stats.channels);
     est.domain = domain;
     // Rows are independent; threads only split the work.
-    tbb::parallel_for(tbb::blocked_range<int>(0, stats.height, 16), [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y < rows.end(); ++y)
-            for (int x = 0; x < stats.width; ++x)
-                fill_estimator(est, stats, domain, x, y);
-    });
+    tbb::parallel_for(tbb::blocked_range<int>(0, stats.height, 16),
+                      [&](const tbb::blocked_range<int>& rows) {
+                          for (int y = rows.begin(); y < rows.end(); ++y)
+                              for (int x = 0; x < stats.width; ++x)
+                                  fill_estimator(est, stats, domain, x, y);
+                      });
     return est;
 }
 

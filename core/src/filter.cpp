@@ -37,7 +37,8 @@ SimdLevel requested_cap()
     for (SimdLevel level : {SimdLevel::Scalar, SimdLevel::Avx2, SimdLevel::Avx512})
         if (std::strcmp(env, simd_level_name(level)) == 0)
             return level;
-    std::fprintf(stderr, "statmc: ignoring STATMC_SIMD=%s (expected scalar, avx2 or avx512)\n", env);
+    std::fprintf(stderr, "statmc: ignoring STATMC_SIMD=%s (expected scalar, avx2 or avx512)\n",
+                 env);
     return SimdLevel::Avx512;
 }
 
@@ -61,10 +62,14 @@ std::vector<SimdLevel> supported_simd_levels()
 const char* simd_level_name(SimdLevel level)
 {
     switch (level) {
-    case SimdLevel::Auto: return "auto";
-    case SimdLevel::Scalar: return "scalar";
-    case SimdLevel::Avx2: return "avx2";
-    case SimdLevel::Avx512: return "avx512";
+    case SimdLevel::Auto:
+        return "auto";
+    case SimdLevel::Scalar:
+        return "scalar";
+    case SimdLevel::Avx2:
+        return "avx2";
+    case SimdLevel::Avx512:
+        return "avx512";
     }
     return "?";
 }
@@ -73,9 +78,12 @@ namespace detail {
 int kernel_width(SimdLevel level)
 {
     switch (level) {
-    case SimdLevel::Avx512: return 16;
-    case SimdLevel::Avx2: return 8;
-    default: return 1;
+    case SimdLevel::Avx512:
+        return 16;
+    case SimdLevel::Avx2:
+        return 8;
+    default:
+        return 1;
     }
 }
 }  // namespace detail
@@ -85,9 +93,12 @@ namespace {
 detail::FilterRowsFn kernel(SimdLevel level)
 {
     switch (level) {
-    case SimdLevel::Avx512: return detail::filter_rows_avx512();
-    case SimdLevel::Avx2: return detail::filter_rows_avx2();
-    default: return detail::filter_rows_scalar();
+    case SimdLevel::Avx512:
+        return detail::filter_rows_avx512();
+    case SimdLevel::Avx2:
+        return detail::filter_rows_avx2();
+    default:
+        return detail::filter_rows_scalar();
     }
 }
 
@@ -117,7 +128,8 @@ void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOption
     if (level == SimdLevel::Auto)
         level = detected_simd_level();
     if (level > hardware_simd_level())
-        throw std::invalid_argument(std::string("this CPU cannot run the ") + simd_level_name(level) + " kernel");
+        throw std::invalid_argument(std::string("this CPU cannot run the ") +
+                                    simd_level_name(level) + " kernel");
     const detail::FilterRowsFn rows = kernel(level);
     const int lanes = detail::kernel_width(level);
 
@@ -130,8 +142,8 @@ void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOption
         tbb::parallel_for(
             tbb::blocked_range2d<int>(0, est.height, 4, 0, layout.chunks, chunk_grain),
             [&](const tbb::blocked_range2d<int>& r) {
-                rows(layout, out, diagnostics, r.rows().begin(), r.rows().end(),
-                     r.cols().begin(), r.cols().end());
+                rows(layout, out, diagnostics, r.rows().begin(), r.rows().end(), r.cols().begin(),
+                     r.cols().end());
             },
             tbb::simple_partitioner());
     });

@@ -49,7 +49,8 @@ using Row = std::integral_constant<int, K>;
 /// start at (x0, y), (x0, y + 1), …: R = 2 centre rows share every neighbour load, which
 /// halves the loads per tap, and with guides lets two rows' weight chains overlap.
 template <class V, int NC, int NG, int R, bool kDiagnostics, bool kGuard>
-void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Partial<V, NC>* partial)
+void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
+              Partial<V, NC>* partial)
 {
     using F = typename V::F;
     CentreState<V, NC, NG> ctr[R];
@@ -138,19 +139,21 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Par
             if constexpr (Last - First > 1)
                 V::in_register(value);
             for (int k = First; k < Last; ++k)
-                ctr[k].gathered.acc[c] =
-                    V::masked_fmadd(m[k], w[k], V::sub(value, ctr[k].value[c]), ctr[k].gathered.acc[c]);
+                ctr[k].gathered.acc[c] = V::masked_fmadd(m[k], w[k], V::sub(value, ctr[k].value[c]),
+                                                         ctr[k].gathered.acc[c]);
         }
         for (int k = First; k < Last; ++k) {
             Partial<V, NC>& g = ctr[k].gathered;
             g.weight_sum = V::masked_add(m[k], g.weight_sum, w[k]);
             if constexpr (kDiagnostics) {
                 g.member_count = V::masked_add(m[k], g.member_count, V::set1(1.f));
-                g.inverse_sum = V::masked_fmadd(m[k], V::mul(w[k], w[k]), V::load(L.inverse_count + off), g.inverse_sum);
+                g.inverse_sum = V::masked_fmadd(m[k], V::mul(w[k], w[k]),
+                                                V::load(L.inverse_count + off), g.inverse_sum);
             }
         }
     };
-    auto tap = [&](auto row, int dx, int wy) STATMC_INLINE { taps(row, Row<decltype(row)::value + 1>{}, dx, wy); };
+    auto tap = [&](auto row, int dx, int wy)
+                   STATMC_INLINE { taps(row, Row<decltype(row)::value + 1>{}, dx, wy); };
     auto half_width = [&](int k, int wy) {  // −1 where row wy is outside centre k's window
         const int dy = wy - (y + k);
         return std::abs(dy) <= L.pad_y ? L.half_width[dy + L.pad_y] : -1;
@@ -209,13 +212,14 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last, Par
 }
 
 template <class V, int NC, bool kDiagnostics>
-void write_chunk(const FilterLayout& L, const std::vector<Plane>& out, const FilterDiagnostics& diag,
-                 int y, int x0, const Partial<V, NC>& partial)
+void write_chunk(const FilterLayout& L, const std::vector<Plane>& out,
+                 const FilterDiagnostics& diag, int y, int x0, const Partial<V, NC>& partial)
 {
     const std::ptrdiff_t centre = std::ptrdiff_t(y) * L.stride + x0;
     float lanes[NC][V::kWidth], wsum[V::kWidth], count[V::kWidth], inverse[V::kWidth];
     for (int c = 0; c < NC; ++c)
-        V::store(lanes[c], V::add(V::load(L.value[c] + centre), V::div(partial.acc[c], partial.weight_sum)));
+        V::store(lanes[c],
+                 V::add(V::load(L.value[c] + centre), V::div(partial.acc[c], partial.weight_sum)));
     if constexpr (kDiagnostics) {
         V::store(wsum, partial.weight_sum);
         V::store(count, partial.member_count);
@@ -267,8 +271,9 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
                 p.weight_sum = V::set1(1.f);  // the centre
                 p.member_count = V::set1(1.f);
                 p.inverse_sum = kDiagnostics
-                    ? V::load(L.inverse_count + std::ptrdiff_t(y + r) * L.stride + k * V::kWidth)
-                    : V::zero();
+                                    ? V::load(L.inverse_count + std::ptrdiff_t(y + r) * L.stride +
+                                              k * V::kWidth)
+                                    : V::zero();
             }
         auto add = [&](auto centre_rows, int k, int wy0, int wy1) {
             constexpr int kRows = decltype(centre_rows)::value;
@@ -296,7 +301,8 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
         }
         for (int k = chunk0; k < chunk1; ++k)
             for (int r = 0; r < rows; ++r)
-                write_chunk<V, NC, kDiagnostics>(L, out, diag, y + r, k * V::kWidth, partials[k - chunk0][r]);
+                write_chunk<V, NC, kDiagnostics>(L, out, diag, y + r, k * V::kWidth,
+                                                 partials[k - chunk0][r]);
     }
 }
 
@@ -315,9 +321,12 @@ void filter_rows_guides(const FilterLayout& L, const std::vector<Plane>& out,
                         const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
     switch (L.guide_count) {
-    case 0: return filter_rows_diag<V, NC, 0>(L, out, diag, y0, y1, chunk0, chunk1);
-    case 3: return filter_rows_diag<V, NC, 3>(L, out, diag, y0, y1, chunk0, chunk1);
-    default: return filter_rows_diag<V, NC, 6>(L, out, diag, y0, y1, chunk0, chunk1);
+    case 0:
+        return filter_rows_diag<V, NC, 0>(L, out, diag, y0, y1, chunk0, chunk1);
+    case 3:
+        return filter_rows_diag<V, NC, 3>(L, out, diag, y0, y1, chunk0, chunk1);
+    default:
+        return filter_rows_diag<V, NC, 6>(L, out, diag, y0, y1, chunk0, chunk1);
     }
 }
 
@@ -327,10 +336,14 @@ void filter_rows(const FilterLayout& L, const std::vector<Plane>& out,
                  const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
     switch (L.channels) {
-    case 1: return filter_rows_guides<V, 1>(L, out, diag, y0, y1, chunk0, chunk1);
-    case 2: return filter_rows_guides<V, 2>(L, out, diag, y0, y1, chunk0, chunk1);
-    case 3: return filter_rows_guides<V, 3>(L, out, diag, y0, y1, chunk0, chunk1);
-    default: return filter_rows_guides<V, 4>(L, out, diag, y0, y1, chunk0, chunk1);
+    case 1:
+        return filter_rows_guides<V, 1>(L, out, diag, y0, y1, chunk0, chunk1);
+    case 2:
+        return filter_rows_guides<V, 2>(L, out, diag, y0, y1, chunk0, chunk1);
+    case 3:
+        return filter_rows_guides<V, 3>(L, out, diag, y0, y1, chunk0, chunk1);
+    default:
+        return filter_rows_guides<V, 4>(L, out, diag, y0, y1, chunk0, chunk1);
     }
 }
 

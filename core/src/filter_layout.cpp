@@ -10,8 +10,8 @@
 #include <sys/mman.h>
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "statmc/core/critical_values.h"
 #include "statmc/core/firefly_guard.h"
@@ -32,7 +32,8 @@ void build_window(FilterLayout& L, const DenoiseOptions& options)
 {
     const int r = options.radius;
     const double r2 = double(r) * r;
-    const double inv_two_sigma2 = 1.0 / (2.0 * double(options.sigma_spatial) * options.sigma_spatial);
+    const double inv_two_sigma2 =
+        1.0 / (2.0 * double(options.sigma_spatial) * options.sigma_spatial);
     const int cols = 2 * L.pad_x + 1;
     L.half_width.resize(2 * L.pad_y + 1);
     L.spatial_weight.assign(std::size_t(cols) * (2 * L.pad_y + 1), 0.f);
@@ -82,24 +83,28 @@ void mark_guarded_chunks(FilterLayout& L, const NoiseLevels& noise)
         float* row_max = block_max.data() + std::size_t(by) * bw;
         for (int y = by * kBlock; y < std::min(L.height, (by + 1) * kBlock); ++y)
             for (int x = 0; x < L.width; ++x)
-                row_max[x / kBlock] = std::max(row_max[x / kBlock], noise.level[std::size_t(y) * L.width + x]);
+                row_max[x / kBlock] =
+                    std::max(row_max[x / kBlock], noise.level[std::size_t(y) * L.width + x]);
     });
-    tbb::parallel_for(tbb::blocked_range<int>(0, L.height, 16), [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y < rows.end(); ++y)
-            for (int k = 0; k < L.chunks; ++k) {
-                const int x0 = k * L.lanes, x1 = std::min(L.width, x0 + L.lanes) - 1;
-                float least = kAny;
-                for (int x = x0; x <= x1; ++x)
-                    least = std::min(least, noise.limit[std::size_t(y) * L.width + x]);
-                if (least == kAny)
-                    continue;
-                float most = 0;
-                for (int by = std::max(0, (y - L.pad_y) / kBlock); by <= std::min(bh - 1, (y + L.pad_y) / kBlock); ++by)
-                    for (int bx = std::max(0, (x0 - L.pad_x) / kBlock); bx <= std::min(bw - 1, (x1 + L.pad_x) / kBlock); ++bx)
-                        most = std::max(most, block_max[std::size_t(by) * bw + bx]);
-                L.guarded[std::size_t(y) * L.chunks + k] = most > least;
-            }
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, L.height, 16), [&](const tbb::blocked_range<int>& rows) {
+            for (int y = rows.begin(); y < rows.end(); ++y)
+                for (int k = 0; k < L.chunks; ++k) {
+                    const int x0 = k * L.lanes, x1 = std::min(L.width, x0 + L.lanes) - 1;
+                    float least = kAny;
+                    for (int x = x0; x <= x1; ++x)
+                        least = std::min(least, noise.limit[std::size_t(y) * L.width + x]);
+                    if (least == kAny)
+                        continue;
+                    float most = 0;
+                    for (int by = std::max(0, (y - L.pad_y) / kBlock);
+                         by <= std::min(bh - 1, (y + L.pad_y) / kBlock); ++by)
+                        for (int bx = std::max(0, (x0 - L.pad_x) / kBlock);
+                             bx <= std::min(bw - 1, (x1 + L.pad_x) / kBlock); ++bx)
+                            most = std::max(most, block_max[std::size_t(by) * bw + bx]);
+                    L.guarded[std::size_t(y) * L.chunks + k] = most > least;
+                }
+        });
 }
 
 }  // namespace
@@ -139,10 +144,12 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
 
     // The guard's planes exist only where some chunk needs them.
     const NoiseLevels noise = firefly_guard_applies(est, options.firefly_ratio)
-        ? noise_levels(est, options.firefly_ratio) : NoiseLevels{};
+                                  ? noise_levels(est, options.firefly_ratio)
+                                  : NoiseLevels{};
     mark_guarded_chunks(L, noise);
     const bool guard = std::find(L.guarded.begin(), L.guarded.end(), 1) != L.guarded.end();
-    const int planes = 3 * L.channels + L.guide_count + (guard ? 2 : 0) + (with_inverse_count ? 1 : 0);
+    const int planes =
+        3 * L.channels + L.guide_count + (guard ? 2 : 0) + (with_inverse_count ? 1 : 0);
     // Not zeroed: every float, padding included, is written once below, by the thread
     // that will mostly read it (zeroing 50 MB first cost as much as filling it).
     L.storage.reset(page_memory(L.plane_size * planes));
@@ -168,8 +175,9 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
     float* noise_limit = guard ? plane_origin(3 * L.channels + L.guide_count + 1) : nullptr;
     L.noise = noise_level;
     L.noise_limit = noise_limit;
-    float* inverse_count =
-        with_inverse_count ? plane_origin(3 * L.channels + L.guide_count + (guard ? 2 : 0)) : nullptr;
+    float* inverse_count = with_inverse_count
+                               ? plane_origin(3 * L.channels + L.guide_count + (guard ? 2 : 0))
+                               : nullptr;
     L.inverse_count = inverse_count;
 
     const float max_count = tbb::parallel_reduce(
@@ -224,12 +232,14 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                     const std::size_t i = est.index(c, x, y);
                     value[c][p] = est.value[i];
                     mean[c][p] = testable ? est.test_mean[i] : 0.f;
-                    threshold[c][p] = testable
-                        ? float(std::min(last_gamma2 * est.test_variance[i], double(FLT_MAX)))
-                        : kNever;
+                    threshold[c][p] =
+                        testable
+                            ? float(std::min(last_gamma2 * est.test_variance[i], double(FLT_MAX)))
+                            : kNever;
                 }
                 for (int g = 0; g < L.guide_count; ++g)
-                    guide[g][p] = std::clamp(finite_or_zero(guide_planes[g].first(x, y)) * guide_planes[g].second,
+                    guide[g][p] = std::clamp(finite_or_zero(guide_planes[g].first(x, y)) *
+                                                 guide_planes[g].second,
                                              -kGuideBound, kGuideBound);
                 if (guard) {
                     noise_level[p] = noise.level[std::size_t(y) * est.width + x];

@@ -15,15 +15,17 @@ namespace statmc::detail {
 /// threshold −∞ (never members), test mean 0 and value 0.
 struct FilterLayout {
     int width = 0, height = 0, channels = 0;
-    int pad_x = 0, pad_y = 0;     // the window never reaches further than the image
-    std::ptrdiff_t stride = 0;    // floats per padded row
-    std::size_t plane_size = 0;   // floats per padded plane
-    struct Release { void operator()(float* p) const; };
+    int pad_x = 0, pad_y = 0;    // the window never reaches further than the image
+    std::ptrdiff_t stride = 0;   // floats per padded row
+    std::size_t plane_size = 0;  // floats per padded plane
+    struct Release {
+        void operator()(float* p) const;
+    };
     std::unique_ptr<float[], Release> storage;  // all padded planes, back to back (page_memory)
 
     // Pointers to pixel (0, 0) inside the padding.
-    const float* mean[4] = {};       // μ̃, the tested quantity
-    const float* threshold[4] = {};  // T = γ²(df = 2n − 2)·v, or −∞ when untestable
+    const float* mean[4] = {};           // μ̃, the tested quantity
+    const float* threshold[4] = {};      // T = γ²(df = 2n − 2)·v, or −∞ when untestable
     const float* noise = nullptr;        // the level a neighbour presents (firefly_guard.h)
     const float* noise_limit = nullptr;  // the largest level a centre accepts
     // Per output row and chunk of `lanes` pixels: 1 where some window pixel's level may
@@ -31,14 +33,18 @@ struct FilterLayout {
     // nearly everywhere — it runs without the extra compare.
     int lanes = 1, chunks = 0;
     std::vector<std::uint8_t> guarded;
-    bool needs_guard(int y, int chunk) const { return guarded[std::size_t(y) * chunks + chunk] != 0; }
-    const float* value[4] = {};      // F, what is averaged
+    bool needs_guard(int y, int chunk) const
+    {
+        return guarded[std::size_t(y) * chunks + chunk] != 0;
+    }
+    const float* value[4] = {};            // F, what is averaged
     const float* inverse_count = nullptr;  // 1/n (0 in the padding), for diagnostics only
-    int guide_count = 0;             // 0, 3 (albedo or normal) or 6 (both)
-    const float* guide[6] = {};      // scaled by √(log2 e)/(√2·σ): −Σ (Δg)² is the log2-weight
+    int guide_count = 0;                   // 0, 3 (albedo or normal) or 6 (both)
+    const float* guide[6] = {};  // scaled by √(log2 e)/(√2·σ): −Σ (Δg)² is the log2-weight
 
     // The disk: for row offset dy ∈ [−pad_y, pad_y], |dx| ≤ half_width[dy + pad_y];
-    // spatial weight and its base-2 logarithm at (dx, dy) are at [(dy + pad_y)*(2*pad_x+1) + dx + pad_x].
+    // spatial weight and its base-2 logarithm at (dx, dy) are at [(dy + pad_y)*(2*pad_x+1) + dx +
+    // pad_x].
     std::vector<int> half_width;
     std::vector<float> spatial_weight;
     std::vector<float> spatial_log2_weight;
@@ -59,8 +65,8 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
 
 /// Filters output rows [y0, y1), chunks of kernel-width columns [chunk0, chunk1).
 using FilterRowsFn = void (*)(const FilterLayout& layout, const std::vector<Plane>& out,
-                              const FilterDiagnostics& diagnostics, int y0, int y1,
-                              int chunk0, int chunk1);
+                              const FilterDiagnostics& diagnostics, int y0, int y1, int chunk0,
+                              int chunk1);
 FilterRowsFn filter_rows_scalar();
 FilterRowsFn filter_rows_avx2();
 FilterRowsFn filter_rows_avx512();

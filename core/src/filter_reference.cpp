@@ -44,7 +44,8 @@ void filter_reference(const EstimatorImage& est, const Guides& guides,
         for (int xi = 0; xi < est.width; ++xi) {
             double sum[4] = {}, weight_sum = 1, members = 1;
             const double ni = std::isfinite(est.count[est.index(0, xi, yi)])
-                                  ? est.count[est.index(0, xi, yi)] : 0.0;
+                                  ? est.count[est.index(0, xi, yi)]
+                                  : 0.0;
             double inverse_sum = ni > 0 ? 1.0 / ni : 0.0;  // Σ W_ij² / n_j
             for (int c = 0; c < est.channels; ++c)
                 sum[c] = est.value[est.index(c, xi, yi)];
@@ -53,8 +54,8 @@ void filter_reference(const EstimatorImage& est, const Guides& guides,
             for (int yj = yi - r; yj <= yi + r && centre_testable; ++yj)
                 for (int xj = xi - r; xj <= xi + r; ++xj) {
                     const double p2 = double(xj - xi) * (xj - xi) + double(yj - yi) * (yj - yi);
-                    if (xj < 0 || yj < 0 || xj >= est.width || yj >= est.height || p2 > double(r) * r ||
-                        (xj == xi && yj == yi) || !est.testable(xj, yj))
+                    if (xj < 0 || yj < 0 || xj >= est.width || yj >= est.height ||
+                        p2 > double(r) * r || (xj == xi && yj == yi) || !est.testable(xj, yj))
                         continue;
                     // The firefly guard (firefly_guard.h).
                     if (!(noise.level[pixel(xj, yj)] <= noise.limit[pixel(xi, yi)]))
@@ -70,7 +71,8 @@ void filter_reference(const EstimatorImage& est, const Guides& guides,
                     }
                     if (!member)
                         continue;
-                    double log_w = -p2 / (2.0 * double(options.sigma_spatial) * options.sigma_spatial);
+                    double log_w =
+                        -p2 / (2.0 * double(options.sigma_spatial) * options.sigma_spatial);
                     if (guides.has_albedo())
                         log_w -= squared_distance(guides.albedo, xi, yi, xj, yj) /
                                  (2.0 * double(options.sigma_albedo) * options.sigma_albedo);

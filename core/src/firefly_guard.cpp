@@ -16,10 +16,11 @@ constexpr float kAny = std::numeric_limits<float>::infinity();
 template <class Body>
 void for_each_row(int height, Body&& body)
 {
-    tbb::parallel_for(tbb::blocked_range<int>(0, height, 16), [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y < rows.end(); ++y)
-            body(y);
-    });
+    tbb::parallel_for(tbb::blocked_range<int>(0, height, 16),
+                      [&](const tbb::blocked_range<int>& rows) {
+                          for (int y = rows.begin(); y < rows.end(); ++y)
+                              body(y);
+                      });
 }
 
 /// The upper median (fifth smallest) of eight values by Batcher's odd-even merge sort:
@@ -31,12 +32,25 @@ inline float upper_median_of_eight(float* v)
         v[a] = lo;
         v[b] = hi;
     };
-    order(0, 1); order(2, 3); order(4, 5); order(6, 7);
-    order(0, 2); order(1, 3); order(4, 6); order(5, 7);
-    order(1, 2); order(5, 6);
-    order(0, 4); order(1, 5); order(2, 6); order(3, 7);
-    order(2, 4); order(3, 5);
-    order(1, 2); order(3, 4); order(5, 6);
+    order(0, 1);
+    order(2, 3);
+    order(4, 5);
+    order(6, 7);
+    order(0, 2);
+    order(1, 3);
+    order(4, 6);
+    order(5, 7);
+    order(1, 2);
+    order(5, 6);
+    order(0, 4);
+    order(1, 5);
+    order(2, 6);
+    order(3, 7);
+    order(2, 4);
+    order(3, 5);
+    order(1, 2);
+    order(3, 4);
+    order(5, 6);
     return v[4];
 }
 
@@ -98,8 +112,9 @@ NoiseLevels noise_levels(const EstimatorImage& est, float ratio)
         std::vector<float> median(w, -1.f);  // −1: not computed
         if (y > 0 && y + 1 < h && row_testable[y - 1] && row_testable[y] && row_testable[y + 1])
             for (int x = 1; x + 1 < w; ++x) {
-                float around[8] = {level(x - 1, y - 1), level(x, y - 1), level(x + 1, y - 1), level(x - 1, y),
-                                   level(x + 1, y),     level(x - 1, y + 1), level(x, y + 1), level(x + 1, y + 1)};
+                float around[8] = {level(x - 1, y - 1), level(x, y - 1),    level(x + 1, y - 1),
+                                   level(x - 1, y),     level(x + 1, y),    level(x - 1, y + 1),
+                                   level(x, y + 1),     level(x + 1, y + 1)};
                 median[x] = upper_median_of_eight(around);
             }
         for (int x = 0; x < w; ++x) {

@@ -32,14 +32,17 @@ struct Avx2 {
     static void store(float* p, F v) { _mm256_storeu_ps(p, v); }
     static void in_register(F& v) { asm("" : "+x"(v)); }
 
-    static F round(F x) { return _mm256_round_ps(x, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC); }
+    static F round(F x)
+    {
+        return _mm256_round_ps(x, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+    }
     /// p·2^n for p ∈ [½, 2] by exponent arithmetic; 0 where 2^n would be denormal or
     /// less (a clamp would leave weights of ~1e-38, whose denormal FMAs are slow).
     static F scale_by_power_of_two(F p, F n)
     {
         const M vanishes = _mm256_cmp_ps(n, set1(-125.f), _CMP_LT_OQ);
-        const __m256i e = _mm256_slli_epi32(
-            _mm256_add_epi32(_mm256_cvtps_epi32(n), _mm256_set1_epi32(127)), 23);
+        const __m256i e =
+            _mm256_slli_epi32(_mm256_add_epi32(_mm256_cvtps_epi32(n), _mm256_set1_epi32(127)), 23);
         return _mm256_andnot_ps(vanishes, mul(p, _mm256_castsi256_ps(e)));
     }
 };

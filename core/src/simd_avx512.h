@@ -39,7 +39,10 @@ struct Avx512 {
     /// each of its users as a memory operand, loading it once per user.
     static void in_register(F& v) { asm("" : "+v"(v)); }
 
-    static F round(F x) { return _mm512_roundscale_ps(x, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC); }
+    static F round(F x)
+    {
+        return _mm512_roundscale_ps(x, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+    }
     /// p·2^n by vscalefps for p ∈ [½, 2]; 0 where 2^n would be denormal or less, as in
     /// AVX2 (denormal weights would slow the FMAs that add them, and round differently).
     static F scale_by_power_of_two(F p, F n)

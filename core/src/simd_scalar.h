@@ -1,5 +1,5 @@
-// One-lane "vector" with the interface of simd_avx2.h and simd_avx512.h, so the filter kernel compiles as
-// a portable fallback from the same source.
+// One-lane "vector" with the interface of simd_avx2.h and simd_avx512.h, so the filter kernel
+// compiles as a portable fallback from the same source.
 #pragma once
 
 #include <cmath>

@@ -102,7 +102,8 @@ StatisticsImage<C> StatisticsImage<C>::from_view(const StatisticsView& view)
 }
 
 template <int C>
-StatisticsImage<C> StatisticsImage<C>::merged(const std::vector<StatisticsView>& views, int nthreads)
+StatisticsImage<C> StatisticsImage<C>::merged(const std::vector<StatisticsView>& views,
+                                              int nthreads)
 {
     if (views.empty())
         throw std::invalid_argument("StatisticsImage::merged: no views");

@@ -170,8 +170,8 @@ void write_image_file(const std::vector<OIIO::ImageBuf>& subimages, const std::s
     if (!out->open(temporary.path().string(), int(specs.size()), specs.data()))
         cannot_write(path, out->geterror());
     for (std::size_t s = 0; s < subimages.size(); ++s) {
-        if (s > 0 && !out->open(temporary.path().string(), specs[s],
-                                OIIO::ImageOutput::AppendSubimage))
+        if (s > 0 &&
+            !out->open(temporary.path().string(), specs[s], OIIO::ImageOutput::AppendSubimage))
             cannot_write(path, out->geterror());
         if (!subimages[s].write(out.get()))
             cannot_write(path, subimages[s].geterror());

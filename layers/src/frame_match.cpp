@@ -8,14 +8,15 @@
 
 namespace statmc::layers {
 
-void require_same_frame(const OIIO::ImageSpec& a, const OIIO::ImageSpec& b, const std::string& these)
+void require_same_frame(const OIIO::ImageSpec& a, const OIIO::ImageSpec& b,
+                        const std::string& these)
 {
     if (a.width != b.width || a.height != b.height)
-        throw LayerError(OIIO::Strutil::fmt::format("{} differ in resolution: {}x{} vs {}x{}", these,
-                                                    a.width, a.height, b.width, b.height));
+        throw LayerError(OIIO::Strutil::fmt::format("{} differ in resolution: {}x{} vs {}x{}",
+                                                    these, a.width, a.height, b.width, b.height));
     if (a.x != b.x || a.y != b.y)
-        throw LayerError(OIIO::Strutil::fmt::format("{} differ in data window: origin ({}, {}) vs ({}, {})",
-                                                    these, a.x, a.y, b.x, b.y));
+        throw LayerError(OIIO::Strutil::fmt::format(
+            "{} differ in data window: origin ({}, {}) vs ({}, {})", these, a.x, a.y, b.x, b.y));
 }
 
 std::string input_label(std::string_view noun, std::size_t k, const OIIO::ImageBuf* input)
@@ -40,7 +41,8 @@ std::string missing_from(const std::vector<std::string>& a, const std::vector<st
 
 }  // namespace
 
-void require_matching_inputs(const std::vector<const OIIO::ImageBuf*>& inputs, std::string_view noun)
+void require_matching_inputs(const std::vector<const OIIO::ImageBuf*>& inputs,
+                             std::string_view noun)
 {
     for (std::size_t k = 1; k < inputs.size(); ++k) {
         const OIIO::ImageSpec& a = inputs[k]->spec();

@@ -47,8 +47,8 @@ std::vector<int> require_guide_layer(const OIIO::ImageSpec& spec, std::string_vi
 {
     std::vector<int> indices = find_guide_layer(spec, layer, prefer_colour);
     if (indices.empty())
-        throw LayerError(missing_layer_message(spec, layer, *suffix_order(prefer_colour).first,
-                                               "guide layer"));
+        throw LayerError(
+            missing_layer_message(spec, layer, *suffix_order(prefer_colour).first, "guide layer"));
     return indices;
 }
 

@@ -18,8 +18,7 @@ std::string layer_of(const std::string& channel)
 
 bool equal_ignoring_case(std::string_view a, std::string_view b)
 {
-    return a.size() == b.size() &&
-           std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
                return std::tolower(static_cast<unsigned char>(x)) ==
                       std::tolower(static_cast<unsigned char>(y));
            });
@@ -76,8 +75,8 @@ std::vector<std::string> layers_in(const OIIO::ImageSpec& spec)
 }
 
 std::string missing_layer_message(const OIIO::ImageSpec& spec, std::string_view layer,
-                                  const std::vector<std::string>& suffixes,
-                                  std::string_view kind, std::string_view why)
+                                  const std::vector<std::string>& suffixes, std::string_view kind,
+                                  std::string_view why)
 {
     std::string message = "missing " + std::string(kind) + " " + describe_layer(layer, suffixes);
     if (!why.empty())

@@ -6,20 +6,25 @@ namespace statmc::layers {
 
 const std::vector<Statistic>& all_statistics()
 {
-    static const std::vector<Statistic> all = {
-        Statistic::Mean, Statistic::Variance, Statistic::BoxCoxMean,
-        Statistic::BoxCoxVariance, Statistic::BoxCoxMoment3};
+    static const std::vector<Statistic> all = {Statistic::Mean, Statistic::Variance,
+                                               Statistic::BoxCoxMean, Statistic::BoxCoxVariance,
+                                               Statistic::BoxCoxMoment3};
     return all;
 }
 
 const char* statistic_name(Statistic stat)
 {
     switch (stat) {
-    case Statistic::Mean: return "mean";
-    case Statistic::Variance: return "variance";
-    case Statistic::BoxCoxMean: return "boxcoxMean";
-    case Statistic::BoxCoxVariance: return "boxcoxVariance";
-    case Statistic::BoxCoxMoment3: return "boxcoxM3";
+    case Statistic::Mean:
+        return "mean";
+    case Statistic::Variance:
+        return "variance";
+    case Statistic::BoxCoxMean:
+        return "boxcoxMean";
+    case Statistic::BoxCoxVariance:
+        return "boxcoxVariance";
+    case Statistic::BoxCoxMoment3:
+        return "boxcoxM3";
     }
     return "?";
 }

@@ -47,13 +47,13 @@ bool read_variance_of_mean(const OIIO::ImageSpec& spec)
         return false;
     if (kind == kVarianceOfMean)
         return true;
-    throw LayerError(std::string(attr::kVariance) + " must be \"" + kVarianceOfSample +
-                     "\" or \"" + kVarianceOfMean + "\", got \"" + kind + "\"");
+    throw LayerError(std::string(attr::kVariance) + " must be \"" + kVarianceOfSample + "\" or \"" +
+                     kVarianceOfMean + "\", got \"" + kind + "\"");
 }
 
 // The mean layer decides whether the AOV is colour (R,G,B) or scalar (Y).
-std::pair<std::vector<std::string>, std::vector<int>>
-find_mean(const OIIO::ImageSpec& spec, std::string_view aov)
+std::pair<std::vector<std::string>, std::vector<int>> find_mean(const OIIO::ImageSpec& spec,
+                                                                std::string_view aov)
 {
     std::vector<int> colour = channel_indices(spec, aov, colour_suffixes());
     if (all_present(colour))
@@ -76,9 +76,9 @@ void find_box_cox(const OIIO::ImageSpec& spec, StatisticsChannels& ch)
     // Half a Box-Cox set would silently fall back to the untransformed test.
     for (Statistic stat : box_cox_statistics())
         if (!ch.has(stat))
-            throw LayerError("incomplete Box-Cox statistics: " +
-                             missing_layer_message(spec, statistic_layer(ch.aov, stat),
-                                                   ch.suffixes));
+            throw LayerError(
+                "incomplete Box-Cox statistics: " +
+                missing_layer_message(spec, statistic_layer(ch.aov, stat), ch.suffixes));
 }
 
 ConstPlane plane_or_null(const OIIO::ImageBuf& buf, const std::vector<int>& indices, int c)
@@ -134,7 +134,8 @@ void check_aov(const StatisticsView& beauty, const std::string& beauty_aov,
     for (int y = 0; y < s.height; ++y)
         for (int x = 0; x < s.width; ++x)
             if (s.count(x, y) != beauty.count(x, y))
-                throw LayerError("AOV " + extra.aov + ": sample count differs from the beauty's at pixel (" +
+                throw LayerError("AOV " + extra.aov +
+                                 ": sample count differs from the beauty's at pixel (" +
                                  std::to_string(x) + ", " + std::to_string(y) + ")");
 }
 
@@ -189,11 +190,16 @@ bool StatisticsChannels::has_box_cox() const
 const std::vector<int>& StatisticsChannels::indices(Statistic stat) const
 {
     switch (stat) {
-    case Statistic::Mean: return mean;
-    case Statistic::Variance: return variance;
-    case Statistic::BoxCoxMean: return bc_mean;
-    case Statistic::BoxCoxVariance: return bc_variance;
-    case Statistic::BoxCoxMoment3: return bc_moment3;
+    case Statistic::Mean:
+        return mean;
+    case Statistic::Variance:
+        return variance;
+    case Statistic::BoxCoxMean:
+        return bc_mean;
+    case Statistic::BoxCoxVariance:
+        return bc_variance;
+    case Statistic::BoxCoxMoment3:
+        return bc_moment3;
     }
     return mean;
 }
@@ -256,15 +262,13 @@ StatisticsView read_statistics(const OIIO::ImageBuf& buf, std::string_view aov)
 }
 
 OIIO::ImageBuf make_statistics_image(const StatisticsView& stats,
-                                     const StatisticsMetadata& metadata,
-                                     const GuidePlanes& guides)
+                                     const StatisticsMetadata& metadata, const GuidePlanes& guides)
 {
     return make_statistics_image(stats, metadata, guides, {});
 }
 
 OIIO::ImageBuf make_statistics_image(const StatisticsView& stats,
-                                     const StatisticsMetadata& metadata,
-                                     const GuidePlanes& guides,
+                                     const StatisticsMetadata& metadata, const GuidePlanes& guides,
                                      const std::vector<AovStatistics>& aovs)
 {
     if (stats.width <= 0 || stats.height <= 0 || !stats.count || !stats.mean[0])
@@ -286,8 +290,7 @@ OIIO::ImageBuf make_statistics_image(const StatisticsView& stats,
 }
 
 OIIO::ImageBuf make_statistics_image(const StatisticsPlanes& stats,
-                                     const StatisticsMetadata& metadata,
-                                     const GuidePlanes& guides)
+                                     const StatisticsMetadata& metadata, const GuidePlanes& guides)
 {
     return make_statistics_image(stats.view(), metadata, guides);
 }

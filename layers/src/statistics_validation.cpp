@@ -31,11 +31,15 @@ std::string format_value(float v) { return OIIO::Strutil::fmt::format("{}", v); 
 std::string describe(Check check, float v)
 {
     switch (check) {
-    case Check::NonFinite: return std::isnan(v) ? std::string("NaN") : v > 0 ? "Inf" : "-Inf";
-    case Check::Negative: return "negative value " + format_value(v);
+    case Check::NonFinite:
+        return std::isnan(v) ? std::string("NaN") : v > 0 ? "Inf" : "-Inf";
+    case Check::Negative:
+        return "negative value " + format_value(v);
     // 2√x − 2 ≥ −2 for every sample, so a smaller mean cannot come from the transform.
-    case Check::BelowBoxCoxMinimum: return "value " + format_value(v) + " below -2, the Box-Cox minimum";
-    case Check::CountBelowOne: return "n = " + format_value(v);
+    case Check::BelowBoxCoxMinimum:
+        return "value " + format_value(v) + " below -2, the Box-Cox minimum";
+    case Check::CountBelowOne:
+        return "n = " + format_value(v);
     }
     return {};
 }
@@ -43,10 +47,14 @@ std::string describe(Check check, float v)
 bool is_bad(Check check, float v)
 {
     switch (check) {
-    case Check::NonFinite: return !std::isfinite(v);
-    case Check::Negative: return v < 0;
-    case Check::BelowBoxCoxMinimum: return v < -2.f;
-    case Check::CountBelowOne: return v < 1.f;
+    case Check::NonFinite:
+        return !std::isfinite(v);
+    case Check::Negative:
+        return v < 0;
+    case Check::BelowBoxCoxMinimum:
+        return v < -2.f;
+    case Check::CountBelowOne:
+        return v < 1.f;
     }
     return false;
 }
@@ -61,10 +69,14 @@ struct Range {
 Range accepted(Check check)
 {
     switch (check) {
-    case Check::NonFinite: return {-FLT_MAX, FLT_MAX};
-    case Check::Negative: return {0.f, Range{}.hi};
-    case Check::BelowBoxCoxMinimum: return {-2.f, Range{}.hi};
-    case Check::CountBelowOne: return {1.f, Range{}.hi};
+    case Check::NonFinite:
+        return {-FLT_MAX, FLT_MAX};
+    case Check::Negative:
+        return {0.f, Range{}.hi};
+    case Check::BelowBoxCoxMinimum:
+        return {-2.f, Range{}.hi};
+    case Check::CountBelowOne:
+        return {1.f, Range{}.hi};
     }
     return {};
 }
@@ -91,7 +103,8 @@ std::vector<Bound> bounds_of(const std::vector<Task>& tasks)
 {
     std::vector<Bound> bounds;
     for (const Task& t : tasks) {
-        auto same = std::find_if(bounds.begin(), bounds.end(), [&](const Bound& b) { return b.plane.data == t.plane.data; });
+        auto same = std::find_if(bounds.begin(), bounds.end(),
+                                 [&](const Bound& b) { return b.plane.data == t.plane.data; });
         if (same == bounds.end())
             same = bounds.insert(bounds.end(), Bound{t.plane, {}});
         const Range r = accepted(t.check);
@@ -123,17 +136,18 @@ void run(const std::vector<Task>& tasks, const Region& r, std::vector<Statistics
         return inside;
     };
     std::vector<Found> found(std::size_t(rows) * n);
-    tbb::parallel_for(tbb::blocked_range<int>(r.y0, r.y1, 16), [&](const tbb::blocked_range<int>& range) {
-        for (int y = range.begin(); y < range.end(); ++y) {
-            if (row_passes(y))
-                continue;
-            Found* row = &found[std::size_t(y - r.y0) * n];
-            for (int x = r.x0; x < r.x1; ++x)
-                for (int t = 0; t < n; ++t)
-                    if (is_bad(tasks[t].check, tasks[t].plane(x, y)) && row[t].count++ == 0)
-                        row[t].first_x = x;
-        }
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<int>(r.y0, r.y1, 16), [&](const tbb::blocked_range<int>& range) {
+            for (int y = range.begin(); y < range.end(); ++y) {
+                if (row_passes(y))
+                    continue;
+                Found* row = &found[std::size_t(y - r.y0) * n];
+                for (int x = r.x0; x < r.x1; ++x)
+                    for (int t = 0; t < n; ++t)
+                        if (is_bad(tasks[t].check, tasks[t].plane(x, y)) && row[t].count++ == 0)
+                            row[t].first_x = x;
+            }
+        });
     for (int t = 0; t < n; ++t) {
         StatisticsProblem p;
         p.channel = tasks[t].channel;
@@ -155,9 +169,12 @@ std::vector<Check> checks_for(Statistic stat)
 {
     switch (stat) {
     case Statistic::Variance:
-    case Statistic::BoxCoxVariance: return {Check::Negative};
-    case Statistic::BoxCoxMean: return {Check::BelowBoxCoxMinimum};
-    default: return {};
+    case Statistic::BoxCoxVariance:
+        return {Check::Negative};
+    case Statistic::BoxCoxMean:
+        return {Check::BelowBoxCoxMinimum};
+    default:
+        return {};
     }
 }
 
@@ -167,8 +184,7 @@ Region region_of(const OIIO::ImageBuf& buf, OIIO::ROI roi)
     const OIIO::ROI r = roi.defined() ? OIIO::roi_intersection(roi, buf.roi()) : buf.roi();
     if (r.width() <= 0 || r.height() <= 0)
         return {0, 0, 0, 0, spec.x, spec.y};
-    return {r.xbegin - spec.x, r.ybegin - spec.y, r.xend - spec.x, r.yend - spec.y,
-            spec.x, spec.y};
+    return {r.xbegin - spec.x, r.ybegin - spec.y, r.xend - spec.x, r.yend - spec.y, spec.x, spec.y};
 }
 
 }  // namespace

@@ -8,8 +8,7 @@ bool is_lossless_compression(std::string_view compression)
 {
     // OIIO spells a level after a colon ("zip:4"); only the codec matters here.
     const std::string_view codec = compression.substr(0, compression.find(':'));
-    return codec == "none" || codec == "rle" || codec == "zip" || codec == "zips" ||
-           codec == "piz";
+    return codec == "none" || codec == "rle" || codec == "zip" || codec == "zips" || codec == "piz";
 }
 
 void apply_storage_rules(OIIO::ImageSpec& spec)

@@ -5,8 +5,8 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "statmc/tool/number_parsing.h"
-#include "text_split.h"
 #include "statmc/tool/tool_error.h"
+#include "text_split.h"
 
 namespace statmc::tool {
 

@@ -1,9 +1,9 @@
 #include "statmc/tool/command_line.h"
 
-#include "statmc/tool/command_table.h"
 #include "oiiotool_commands.h"
-#include "text_split.h"
+#include "statmc/tool/command_table.h"
 #include "statmc/tool/tool_error.h"
+#include "text_split.h"
 
 namespace statmc::tool {
 

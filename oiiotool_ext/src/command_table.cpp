@@ -32,7 +32,7 @@ void describe(std::ostringstream& os, const Command& c)
         const std::string shown = m.default_value.empty() ? m.value_syntax() : m.default_value;
         const std::string range = m.range.empty() ? "" : " " + m.range.text();
         os << help_line("      :" + m.name + "=" + shown, 32,
-                  "(" + m.value_syntax() + range + ") " + m.help);
+                        "(" + m.value_syntax() + range + ") " + m.help);
     }
 }
 
@@ -42,16 +42,16 @@ const std::vector<Command>& command_table()
 {
     // In the order --help shows them.
     static const std::vector<Command> table = {
-        input_command(),        output_command(),      data_format_command(),
-        compression_command(),  all_subimages_command(), ch_command(),
-        chnames_command(),      chappend_command(),    subimage_command(),
-        siappend_command(),     add_command(),         sub_command(),
-        mul_command(),          addc_command(),        mulc_command(),
-        colorconfig_command(),  colorconvert_command(), ociodisplay_command(),
-        crop_command(),         resize_command(),      info_command(),
-        verbose_command(),      stats_command(),       diff_command(),
-        echo_command(),         threads_command(),     list_ops_command(),
-        help_command(),         version_command(),
+        input_command(),       output_command(),        data_format_command(),
+        compression_command(), all_subimages_command(), ch_command(),
+        chnames_command(),     chappend_command(),      subimage_command(),
+        siappend_command(),    add_command(),           sub_command(),
+        mul_command(),         addc_command(),          mulc_command(),
+        colorconfig_command(), colorconvert_command(),  ociodisplay_command(),
+        crop_command(),        resize_command(),        info_command(),
+        verbose_command(),     stats_command(),         diff_command(),
+        echo_command(),        threads_command(),       list_ops_command(),
+        help_command(),        version_command(),
     };
     return table;
 }

@@ -15,10 +15,7 @@ namespace {
 constexpr float kDiffThreshold = 1e-6f;
 
 // The format the file stores (the stack holds float pixels; reports show the file's).
-const OIIO::ImageSpec& file_spec(const OIIO::ImageBuf& image)
-{
-    return image.nativespec();
-}
+const OIIO::ImageSpec& file_spec(const OIIO::ImageBuf& image) { return image.nativespec(); }
 
 // A file with per-channel types shows them all: "half/float/float".
 std::string type_text(const OIIO::ImageSpec& spec)
@@ -151,7 +148,8 @@ void print_stats(std::ostream& out, const OIIO::ImageBuf& image, int nthreads)
         out << "    Constant: No\n";
     }
     out << "    Monochrome: "
-        << (OIIO::ImageBufAlgo::isMonochrome(image, 0.0f, OIIO::ROI(), nthreads) ? "Yes" : "No") << "\n";
+        << (OIIO::ImageBufAlgo::isMonochrome(image, 0.0f, OIIO::ROI(), nthreads) ? "Yes" : "No")
+        << "\n";
 }
 
 }  // namespace
@@ -160,9 +158,8 @@ void print_info(std::ostream& out, const StackImage& image, bool verbose, bool a
 {
     const bool several = image.subimages.size() > 1;
     out << OIIO::Strutil::sprintf("%-20s : ", image.label) << summary(image.image())
-        << (several && !verbose
-                ? OIIO::Strutil::sprintf(" (%zu subimages)", image.subimages.size())
-                : "")
+        << (several && !verbose ? OIIO::Strutil::sprintf(" (%zu subimages)", image.subimages.size())
+                                : "")
         << "\n";
     if (!verbose)
         return;
@@ -178,8 +175,7 @@ void print_info(std::ostream& out, const StackImage& image, bool verbose, bool a
     }
 }
 
-void print_all_stats(std::ostream& out, const StackImage& image, bool all_subimages,
-                     int nthreads)
+void print_all_stats(std::ostream& out, const StackImage& image, bool all_subimages, int nthreads)
 {
     if (!all_subimages || image.subimages.size() == 1) {
         print_stats(out, image.image(), nthreads);
@@ -212,8 +208,8 @@ bool print_diff(std::ostream& out, const StackImage& a, const StackImage& b, int
         out << "\n";
         for (const OIIO::imagesize_t count : {cr.nwarn, cr.nfail})
             if (count)
-                out << "  " << count << (count == 1 ? " pixel (" : " pixels (")
-                    << percent(count, A) << "%) over " << kDiffThreshold << "\n";
+                out << "  " << count << (count == 1 ? " pixel (" : " pixels (") << percent(count, A)
+                    << "%) over " << kDiffThreshold << "\n";
     }
     const bool passed = cr.nfail == 0 && !cr.error;
     out << (passed ? (cr.nwarn ? "WARNING" : "PASS") : "FAILURE") << "\n";

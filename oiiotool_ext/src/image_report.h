@@ -17,8 +17,7 @@ void print_info(std::ostream& out, const StackImage& image, bool verbose, bool a
 
 /// The "Stats Min/Max/Avg/StdDev/NanCount/InfCount/FiniteCount", "Constant" and
 /// "Monochrome" lines of subimage 0, or with `all_subimages` of each under a heading.
-void print_all_stats(std::ostream& out, const StackImage& image, bool all_subimages,
-                     int nthreads);
+void print_all_stats(std::ostream& out, const StackImage& image, bool all_subimages, int nthreads);
 
 /// Compares `a` with `b` (thresholds as oiiotool's defaults); prints the report and
 /// returns whether it passed.

@@ -21,7 +21,9 @@ struct StackImage {
         subimages.push_back(std::move(image));
     }
     StackImage(std::vector<OIIO::ImageBuf> images, std::string name)
-        : subimages(std::move(images)), label(std::move(name)) {}
+        : subimages(std::move(images)), label(std::move(name))
+    {
+    }
 
     std::vector<OIIO::ImageBuf> subimages;  ///< never empty
     std::string label;  ///< names the image in messages: its file, or the command that made it

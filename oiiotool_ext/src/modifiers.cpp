@@ -3,8 +3,8 @@
 #include <algorithm>
 
 #include "statmc/tool/number_parsing.h"
-#include "text_split.h"
 #include "statmc/tool/tool_error.h"
+#include "text_split.h"
 
 namespace statmc::tool {
 
@@ -23,8 +23,8 @@ bool parse_bool(const std::string& text, const std::string& what)
     for (const char* no : {"0", "false", "no", "off"})
         if (text == no)
             return false;
-    throw ToolError(what + ": expected a boolean (1/0, true/false, yes/no, on/off), got '" +
-                    text + "'");
+    throw ToolError(what + ": expected a boolean (1/0, true/false, yes/no, on/off), got '" + text +
+                    "'");
 }
 
 statmc::ParameterValue parse_text(const std::string& command, const ModifierSpec& spec,
@@ -32,17 +32,20 @@ statmc::ParameterValue parse_text(const std::string& command, const ModifierSpec
 {
     const std::string what = command + ": " + spec.name;
     switch (spec.type) {
-    case ModifierType::Int: return parse_int(text, what);
-    case ModifierType::Float: return parse_float(text, what);
-    case ModifierType::Bool: return parse_bool(text, what);
+    case ModifierType::Int:
+        return parse_int(text, what);
+    case ModifierType::Float:
+        return parse_float(text, what);
+    case ModifierType::Bool:
+        return parse_bool(text, what);
     case ModifierType::String:
         if (text.empty())
             throw ToolError(what + ": expected a value");
         return text;
     case ModifierType::Choice:
         if (!contains(spec.choices, text))
-            throw ToolError(what + ": expected one of " + OIIO::Strutil::join(spec.choices, ", ") + ", got '" +
-                            text + "'");
+            throw ToolError(what + ": expected one of " + OIIO::Strutil::join(spec.choices, ", ") +
+                            ", got '" + text + "'");
         return text;
     case ModifierType::List: {
         if (contains(spec.keywords, text))
@@ -51,8 +54,8 @@ statmc::ParameterValue parse_text(const std::string& command, const ModifierSpec
         for (const std::string& item : items)
             if (!contains(spec.choices, item))
                 throw ToolError(what + ": unknown item '" + item + "' (expected a list of " +
-                                OIIO::Strutil::join(spec.choices, ", ") + ", or " + OIIO::Strutil::join(spec.keywords, " or ") +
-                                ")");
+                                OIIO::Strutil::join(spec.choices, ", ") + ", or " +
+                                OIIO::Strutil::join(spec.keywords, " or ") + ")");
         return items;
     }
     }

@@ -7,10 +7,10 @@
 #include <sstream>
 #include <system_error>
 
-#include "statmc/plugin_sdk/plugin_loader.h"
 #include "help_text.h"
-#include "tool_context.h"
+#include "statmc/plugin_sdk/plugin_loader.h"
 #include "statmc/tool/tool_error.h"
+#include "tool_context.h"
 
 namespace statmc::tool {
 
@@ -76,15 +76,16 @@ std::size_t input_count(const statmc::OperatorSpec& op, const Invocation& inv,
 template <class Call>
 auto guarded(const statmc::OperatorSpec& op, const std::string& where, Call&& call)
 {
-    const std::string culprit = "--" + op.name + " (" + (op.module.empty() ? "the host" : op.module) + ")";
+    const std::string culprit =
+        "--" + op.name + " (" + (op.module.empty() ? "the host" : op.module) + ")";
     try {
         return call();
     } catch (const std::exception& e) {
-        throw ToolError("--" + op.name + ": " + where + "the operator threw, which it must not: " + e.what() +
-                        " [" + culprit + "]");
+        throw ToolError("--" + op.name + ": " + where + "the operator threw, which it must not: " +
+                        e.what() + " [" + culprit + "]");
     } catch (...) {
-        throw ToolError("--" + op.name + ": " + where + "the operator threw a non-standard exception [" +
-                        culprit + "]");
+        throw ToolError("--" + op.name + ": " + where +
+                        "the operator threw a non-standard exception [" + culprit + "]");
     }
 }
 
@@ -108,16 +109,18 @@ void run_operator(const statmc::OperatorSpec& op, ToolContext& ctx, const Invoca
         // The popped image is the stack's own, so the operator may reuse it (statmc's
         // operators read subimage 0 and push a one-part image either way).
         OIIO::ImageBuf image = std::move(popped[0].subimages.front());
-        guarded(op, where, [&] { return op.run_in_place(image, inv.modifiers.values(), run_context); });
+        guarded(op, where,
+                [&] { return op.run_in_place(image, inv.modifiers.values(), run_context); });
         result = StackImage{std::move(image), ""};
     } else {
-        result = StackImage{guarded(op, where, [&] { return op.run(images, inv.modifiers.values(), run_context); }),
-                            ""};
+        result = StackImage{
+            guarded(op, where, [&] { return op.run(images, inv.modifiers.values(), run_context); }),
+            ""};
     }
     if (result.image().has_error())
         throw ToolError(inv.name + ": " + where + result.image().geterror());
-    result.label = popped.size() == 1 ? popped[0].label + " (" + op.name + ")"
-                                      : inv.name + " result";
+    result.label =
+        popped.size() == 1 ? popped[0].label + " (" + op.name + ")" : inv.name + " result";
     ctx.stack.push(std::move(result));
 }
 
@@ -171,7 +174,8 @@ Command operator_command(const statmc::OperatorSpec& op)
     c.modifiers = op.parameters;
     c.check = [op](const Invocation& inv) {
         if (op.check)
-            if (const std::string why = guarded(op, "", [&] { return op.check(inv.modifiers.values()); });
+            if (const std::string why =
+                    guarded(op, "", [&] { return op.check(inv.modifiers.values()); });
                 !why.empty())
                 throw ToolError(inv.name + ": " + why);
     };
@@ -198,10 +202,13 @@ std::string operator_help_text(std::string_view name)
                         "' (see statmc --list-ops)");
     std::ostringstream os;
     os << "--" << op->name << (op->parameters.empty() ? "" : "[:name=value...]") << "   ("
-       << input_text(*op) << ")\n" << wrapped(op->summary) << "\n" << wrapped(op->help);
+       << input_text(*op) << ")\n"
+       << wrapped(op->summary) << "\n"
+       << wrapped(op->help);
     if (!op->parameters.empty()) {
         os << "\n  " << std::left << std::setw(14) << "parameter" << std::setw(8) << "type"
-           << std::setw(10) << "default" << std::setw(12) << "range" << "meaning\n";
+           << std::setw(10) << "default" << std::setw(12) << "range"
+           << "meaning\n";
         for (const statmc::ParameterSpec& p : op->parameters)
             os << "  " << std::setw(14) << p.name << std::setw(8) << statmc::type_name(p.type)
                << std::setw(10) << (p.default_value.empty() ? "-" : p.default_value)

@@ -4,9 +4,9 @@
 #include <string>
 
 #include "statmc/tool/number_parsing.h"
+#include "statmc/tool/tool_error.h"
 #include "text_split.h"
 #include "tool_context.h"
-#include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {
 
@@ -47,7 +47,8 @@ std::size_t find_subimage(const StackImage& image, const std::string& which,
     for (const OIIO::ImageBuf& sub : image.subimages)
         names.push_back(sub.spec().get_string_attribute("oiio:subimagename", "(unnamed)"));
     throw ToolError(command + ": " + image.label + " has no subimage '" + which + "' (it has " +
-                    std::to_string(image.subimages.size()) + ": " + OIIO::Strutil::join(names, ", ") + ")");
+                    std::to_string(image.subimages.size()) + ": " +
+                    OIIO::Strutil::join(names, ", ") + ")");
 }
 
 ModifierSpec subimages_modifier()

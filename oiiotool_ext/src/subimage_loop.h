@@ -10,8 +10,8 @@
 
 #include <OpenImageIO/imagebuf.h>
 
-#include "statmc/tool/command.h"
 #include "image_stack.h"
+#include "statmc/tool/command.h"
 
 namespace statmc::tool {
 

@@ -2,12 +2,12 @@
 
 #include <new>
 
+#include "plugin_commands.h"
 #include "statmc/layers/file_error.h"
 #include "statmc/tool/command_line.h"
 #include "statmc/tool/command_table.h"
-#include "plugin_commands.h"
-#include "tool_context.h"
 #include "statmc/tool/tool_error.h"
+#include "tool_context.h"
 
 namespace statmc::tool {
 

@@ -7,8 +7,8 @@
 
 #include <OpenImageIO/color.h>
 
-#include "statmc/layers/exr_files.h"
 #include "image_stack.h"
+#include "statmc/layers/exr_files.h"
 
 namespace statmc::tool {
 
@@ -21,13 +21,13 @@ struct ToolContext {
     int exit_code = 0;  ///< 1 once a --diff has failed; the commands after it still run
 
     // oiiotool's flags, each affecting the commands after it.
-    bool all_subimages = false;  ///< -a
-    bool verbose = false;        ///< -v
-    bool print_info = false;     ///< --info: report each input as it is read
-    bool info_verbose = false;   ///< --info:verbose=1, as -v does for --info
-    bool print_stats = false;    ///< --stats
-    layers::WriteOptions output; ///< -d, --compression
-    std::string colorconfig;     ///< --colorconfig; empty = $OCIO, else OIIO's built-in
+    bool all_subimages = false;   ///< -a
+    bool verbose = false;         ///< -v
+    bool print_info = false;      ///< --info: report each input as it is read
+    bool info_verbose = false;    ///< --info:verbose=1, as -v does for --info
+    bool print_stats = false;     ///< --stats
+    layers::WriteOptions output;  ///< -d, --compression
+    std::string colorconfig;      ///< --colorconfig; empty = $OCIO, else OIIO's built-in
     /// The loaded colorconfig: made by --colorconfig, else by the first colour command
     /// (not const: ImageBufAlgo 2.4 takes a ColorConfig*).
     std::shared_ptr<OIIO::ColorConfig> color_config;

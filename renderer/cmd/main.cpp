@@ -1,24 +1,24 @@
 // statmc-render: renders a pbrt-v3 scene with statmc's path tracer and writes the
 // per-pixel statistics EXR (docs/exr-layers.md), optionally denoised as well.
 #include <atomic>
+#include <charconv>
 #include <chrono>
 #include <csignal>
-#include <functional>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <charconv>
+#include <functional>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "statmc/denoise/denoise.h"
 
+#include "sampling_options.h"
 #include "statmc/render/camera.h"
 #include "statmc/render/exr_output.h"
 #include "statmc/render/progress.h"
 #include "statmc/render/render_loop.h"
-#include "sampling_options.h"
 #include "statmc/render/scene.h"
 #include "statmc/render/scene_parser.h"
 
@@ -38,7 +38,8 @@ bool parse_resolution(const std::string& text, int& width, int& height)
 {
     const char* end = text.data() + text.size();
     const auto w = std::from_chars(text.data(), end, width);
-    if (w.ec != std::errc() || w.ptr == text.data() || w.ptr == end || (*w.ptr != 'x' && *w.ptr != 'X'))
+    if (w.ec != std::errc() || w.ptr == text.data() || w.ptr == end ||
+        (*w.ptr != 'x' && *w.ptr != 'X'))
         return false;
     const auto h = std::from_chars(w.ptr + 1, end, height);
     return h.ec == std::errc() && h.ptr == end && h.ptr != w.ptr + 1;
@@ -54,7 +55,8 @@ int main(int argc, char** argv)
     std::string scene_path, output;
     int spp = 0, iterations = 0, seed = 0, threads = 0, maxdepth = -1;
     std::string resolution;
-    bool denoise = false, quiet = false, profile = false, every_iteration = false, bounce_layers = false;
+    bool denoise = false, quiet = false, profile = false, every_iteration = false,
+         bounce_layers = false;
     SamplingOptions sampling;
     app.add_option("scene", scene_path, "pbrt-v3 scene file")->required();
     app.add_option("-o,--output", output, "output statistics EXR")->required();
@@ -63,25 +65,33 @@ int main(int argc, char** argv)
                                    "[default: the scene's Sampler pixelsamples]")
                         ->check(CLI::PositiveNumber);
     app.add_option("--iterations", iterations,
-                   "number of progressive iterations instead of --spp (totals 4, 8, 16, ...) [default: unset]")
+                   "number of progressive iterations instead of --spp (totals 4, 8, 16, ...) "
+                   "[default: unset]")
         ->check(CLI::PositiveNumber)
         ->excludes(spp_opt);
-    app.add_option("--resolution", resolution,
-                   "image size WxH; the scene's fov is kept [default: the scene's Film resolution]");
-    app.add_option("--seed", seed, "random seed")->capture_default_str()->check(CLI::NonNegativeNumber);
+    app.add_option(
+        "--resolution", resolution,
+        "image size WxH; the scene's fov is kept [default: the scene's Film resolution]");
+    app.add_option("--seed", seed, "random seed")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
     app.add_option("--threads", threads, "worker threads, 0 = all cores")
         ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
-    app.add_option("--maxdepth", maxdepth, "maximum path depth [default: the scene's Integrator maxdepth]")
+    app.add_option("--maxdepth", maxdepth,
+                   "maximum path depth [default: the scene's Integrator maxdepth]")
         ->check(CLI::NonNegativeNumber);
     add_sampling_options(app, sampling);
-    app.add_flag("--bounce-layers", bounce_layers,
-                 "track and write every per-bounce layer (L and win counts) even with classic RR and "
-                 "standard MIS [default: only those --rr/--mis use]");
-    app.add_flag("--denoise", denoise, "also write the denoised image to OUT.denoised.exr [default: off]");
-    app.add_flag("--write-every-iteration", every_iteration,
-                 "rewrite OUT (and OUT.denoised.exr with --denoise) after every progressive iteration, "
-                 "each time atomically, to watch the render refine [default: off]");
+    app.add_flag(
+        "--bounce-layers", bounce_layers,
+        "track and write every per-bounce layer (L and win counts) even with classic RR and "
+        "standard MIS [default: only those --rr/--mis use]");
+    app.add_flag("--denoise", denoise,
+                 "also write the denoised image to OUT.denoised.exr [default: off]");
+    app.add_flag(
+        "--write-every-iteration", every_iteration,
+        "rewrite OUT (and OUT.denoised.exr with --denoise) after every progressive iteration, "
+        "each time atomically, to watch the render refine [default: off]");
     app.add_flag("-q,--quiet", quiet, "no progress bar and no summary [default: off]");
     app.add_flag("--profile", profile,
                  "print samples/s, rays/s and the share of render time spent in Embree traversal "
@@ -93,7 +103,8 @@ int main(int argc, char** argv)
             const std::filesystem::path out(output);
             const auto dir = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
             if (!std::filesystem::is_directory(dir))
-                throw std::runtime_error(output + ": cannot write: directory '" + dir.string() + "' does not exist");
+                throw std::runtime_error(output + ": cannot write: directory '" + dir.string() +
+                                         "' does not exist");
         }
         SceneDescription desc = parse_scene_file(scene_path);
         for (const std::string& w : desc.warnings)
@@ -141,22 +152,28 @@ int main(int argc, char** argv)
         IterationCallback after_iteration;
         if (every_iteration)
             after_iteration = [&](int, const Film& f, const IterationStats&) {
-                write_outputs(f, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+                write_outputs(
+                    f, std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                           .count());
             };
         std::signal(SIGINT, on_sigint);
-        const RenderStats stats = render(scene, camera, settings, film, &g_interrupted, after_iteration);
+        const RenderStats stats =
+            render(scene, camera, settings, film, &g_interrupted, after_iteration);
         std::signal(SIGINT, SIG_DFL);
         const OutputInfo info = write_outputs(film, stats.seconds);
         if (!quiet)
-            std::fprintf(stderr, "%s: %dx%d, %d spp%s, %.2f s, %.2f Msamples/s\n", output.c_str(), width, height,
-                         info.spp, stats.interrupted ? " (interrupted)" : "", stats.seconds,
+            std::fprintf(stderr, "%s: %dx%d, %d spp%s, %.2f s, %.2f Msamples/s\n", output.c_str(),
+                         width, height, info.spp, stats.interrupted ? " (interrupted)" : "",
+                         stats.seconds,
                          stats.seconds > 0 ? double(stats.samples) / stats.seconds * 1e-6 : 0.0);
         if (profile) {
             const auto t = scene.traversal_counters();
-            std::printf("%s: %dx%d, %d spp, %zu triangles, threads %s\n", scene_path.c_str(), width, height,
-                        info.spp, scene.triangle_count(), threads > 0 ? std::to_string(threads).c_str() : "all");
-            std::printf("  %.3f s, %.3f Msamples/s, %.2f Mrays/s, %.2f rays/sample\n", stats.seconds,
-                        double(stats.samples) / stats.seconds * 1e-6, double(t.rays) / stats.seconds * 1e-6,
+            std::printf("%s: %dx%d, %d spp, %zu triangles, threads %s\n", scene_path.c_str(), width,
+                        height, info.spp, scene.triangle_count(),
+                        threads > 0 ? std::to_string(threads).c_str() : "all");
+            std::printf("  %.3f s, %.3f Msamples/s, %.2f Mrays/s, %.2f rays/sample\n",
+                        stats.seconds, double(stats.samples) / stats.seconds * 1e-6,
+                        double(t.rays) / stats.seconds * 1e-6,
                         stats.samples ? double(t.rays) / double(stats.samples) : 0.0);
             std::printf("  Embree traversal %.1f%% of render time, shading and the rest %.1f%%\n",
                         100.0 * double(t.cycles) / double(stats.tile_cycles),

@@ -30,7 +30,8 @@ struct SamplingOptions {
 /// nothing else accepted (CLI::CheckedTransformer would also take the enum's numbers).
 template <class Mode>
 CLI::Option* add_mode_option(CLI::App& app, const std::string& name, Mode& mode,
-                             const std::vector<std::pair<std::string, Mode>>& spellings, const std::string& help)
+                             const std::vector<std::pair<std::string, Mode>>& spellings,
+                             const std::string& help)
 {
     std::string set, current;
     for (const auto& [spelling, value] : spellings) {
@@ -49,25 +50,33 @@ CLI::Option* add_mode_option(CLI::App& app, const std::string& name, Mode& mode,
             return input + " not in " + set;
         },
         set);
-    return app.add_option(name, mode, help)->type_name("TEXT")->default_str(current)->transform(spelled);
+    return app.add_option(name, mode, help)
+        ->type_name("TEXT")
+        ->default_str(current)
+        ->transform(spelled);
 }
 
 inline void add_sampling_options(CLI::App& app, SamplingOptions& o)
 {
-    add_mode_option<RouletteMode>(app, "--rr", o.roulette.mode, {{"classic", RouletteMode::Classic}, {"acrr", RouletteMode::Acrr}},
-                                  "Russian roulette: classic (pbrt-v3, from the throughput) or acrr (approximate "
-                                  "contribution from denoised per-bounce radiance, docs/method.md §7)");
+    add_mode_option<RouletteMode>(
+        app, "--rr", o.roulette.mode,
+        {{"classic", RouletteMode::Classic}, {"acrr", RouletteMode::Acrr}},
+        "Russian roulette: classic (pbrt-v3, from the throughput) or acrr (approximate "
+        "contribution from denoised per-bounce radiance, docs/method.md §7)");
     app.add_option("--rr-bounces", o.roulette.tracked_bounces,
                    "ACRR: tracked bounces beside the pixel (layers bounce0L..bounce<N>L)")
         ->capture_default_str()
         ->check(CLI::Range(1, 32));
-    app.add_option("--rr-start-bounce", o.roulette.start_bounce,
-                   "roulette after the BSDF sample at vertices >= this one (0 = first hit; 4 = pbrt-v3)")
+    app.add_option(
+           "--rr-start-bounce", o.roulette.start_bounce,
+           "roulette after the BSDF sample at vertices >= this one (0 = first hit; 4 = pbrt-v3)")
         ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
-    add_mode_option<MisMode>(app, "--mis", o.mis.mode, {{"standard", MisMode::Standard}, {"selective", MisMode::Selective}},
-                             "MIS: standard (power heuristic) or selective (skip a technique whose denoised win "
-                             "share is below --mis-threshold, docs/method.md §8)");
+    add_mode_option<MisMode>(
+        app, "--mis", o.mis.mode,
+        {{"standard", MisMode::Standard}, {"selective", MisMode::Selective}},
+        "MIS: standard (power heuristic) or selective (skip a technique whose denoised win "
+        "share is below --mis-threshold, docs/method.md §8)");
     app.add_option("--mis-bounces", o.mis.tracked_bounces,
                    "SMIS: tracked vertices (layers bounce<j>LightWins, bounce<j>BsdfWins)")
         ->capture_default_str()

@@ -15,7 +15,8 @@ std::string BounceLayout::aov(int q) const
     if (q < luminance_bounces)
         return layers::bounce_aov(BounceQuantity::Luminance, q);
     const int m = q - luminance_bounces;
-    return layers::bounce_aov(m % 2 == 0 ? BounceQuantity::LightWins : BounceQuantity::BsdfWins, m / 2);
+    return layers::bounce_aov(m % 2 == 0 ? BounceQuantity::LightWins : BounceQuantity::BsdfWins,
+                              m / 2);
 }
 
 void bounce_sample(const PathRecord& record, const BounceLayout& layout, float* out)
@@ -55,7 +56,8 @@ BounceStatistics::BounceStatistics(int width, int height, BounceLayout layout)
 {
     if (layout.luminance_bounces < 0 || layout.luminance_bounces > BounceLayout::kMaxLuminances ||
         layout.mis_bounces < 0)
-        throw std::invalid_argument("BounceStatistics: at most " + std::to_string(BounceLayout::kMaxLuminances) +
+        throw std::invalid_argument("BounceStatistics: at most " +
+                                    std::to_string(BounceLayout::kMaxLuminances) +
                                     " luminances and a non-negative number of MIS bounces");
     const int groups = (layout.quantities() + kGroup - 1) / kGroup;
     groups_.reserve(std::size_t(groups));
@@ -97,7 +99,8 @@ StatisticsView BounceStatistics::quantity_view(const std::vector<StatisticsPlane
     return v;
 }
 
-BounceEstimates BounceStatistics::denoise(const Guides& guides, const DenoiseOptions& options, int threads) const
+BounceEstimates BounceStatistics::denoise(const Guides& guides, const DenoiseOptions& options,
+                                          int threads) const
 {
     const int q_total = layout_.quantities();
     const std::size_t npix = std::size_t(width_) * height_;
@@ -111,7 +114,8 @@ BounceEstimates BounceStatistics::denoise(const Guides& guides, const DenoiseOpt
         // The filter writes each channel straight into its slot of the pixel-major values.
         std::vector<Plane> out;
         for (int c = 0; c < channels; ++c)
-            out.push_back(Plane{est.values.data() + first + c, q_total, std::ptrdiff_t(width_) * q_total});
+            out.push_back(
+                Plane{est.values.data() + first + c, q_total, std::ptrdiff_t(width_) * q_total});
         filter(e, guides, options, out, {}, threads);
     }
     return est;

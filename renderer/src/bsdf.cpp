@@ -87,7 +87,8 @@ std::optional<BsdfSample> Bsdf::sample(Vec3 wo, float u1, float u2, float uc) co
 
 bool Bsdf::is_specular() const
 {
-    return std::visit([](const auto& lobe) { return std::decay_t<decltype(lobe)>::kSpecular; }, lobe_);
+    return std::visit([](const auto& lobe) { return std::decay_t<decltype(lobe)>::kSpecular; },
+                      lobe_);
 }
 
 Rgb Bsdf::albedo() const

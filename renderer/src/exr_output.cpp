@@ -4,9 +4,9 @@
 #include <stdexcept>
 
 #include "statmc/core/plane.h"
-#include "statmc/layers/statistics_layers.h"
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/layer_names.h"
+#include "statmc/layers/statistics_layers.h"
 
 namespace statmc::render {
 

@@ -21,11 +21,12 @@ TechniqueChoice PathIntegrator::techniques(int bounce, const PixelEstimates* est
     if (settings_.mis.mode != MisMode::Selective || !estimates || !estimates->has_wins() ||
         bounce >= estimates->layout->mis_bounces)
         return {};
-    return choose_techniques(estimates->light_wins(bounce), estimates->bsdf_wins(bounce), settings_.mis.threshold);
+    return choose_techniques(estimates->light_wins(bounce), estimates->bsdf_wins(bounce),
+                             settings_.mis.threshold);
 }
 
-Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSample& guide, PathRecord* record,
-                             const PixelEstimates* estimates) const
+Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSample& guide,
+                             PathRecord* record, const PixelEstimates* estimates) const
 {
     Rgb L, beta{1.f};
     if (record)
@@ -38,7 +39,7 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
     Ray ray = camera_ray;
     bool specular_bounce = false;
     bool guide_done = false;
-    float bsdf_pdf = 0;  // solid-angle pdf of the BSDF sample that produced `ray`
+    float bsdf_pdf = 0;           // solid-angle pdf of the BSDF sample that produced `ray`
     TechniqueChoice prev_choice;  // the techniques of the vertex that sampled `ray`
     float roulette_weight = 1;    // Π 1/p so far, for the record
     Vec3 prev_p;
@@ -68,20 +69,22 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
                     // Direct lighting of the previous vertex, found by its BSDF sample.
                     const float light_pdf = lights.pdf(prev_p, hit->emitter, hit->p, hit->ng);
                     const float w = prev_choice.bsdf_weight(bsdf_pdf, light_pdf);
-                    contribute(bounce - 1, PathRecord::Technique::Bsdf, power_heuristic(bsdf_pdf, light_pdf),
-                               beta * Le * w);
+                    contribute(bounce - 1, PathRecord::Technique::Bsdf,
+                               power_heuristic(bsdf_pdf, light_pdf), beta * Le * w);
                 } else if (record) {
                     // SMIS skipped BSDF sampling: nothing is added, but the would-be weight
                     // still counts a win, so that the technique can come back.
                     const float light_pdf = lights.pdf(prev_p, hit->emitter, hit->p, hit->ng);
-                    contribute(bounce - 1, PathRecord::Technique::Bsdf, power_heuristic(bsdf_pdf, light_pdf), Rgb{});
+                    contribute(bounce - 1, PathRecord::Technique::Bsdf,
+                               power_heuristic(bsdf_pdf, light_pdf), Rgb{});
                 }
             }
         }
         if (bounce >= settings_.maxdepth)
             break;
 
-        const Bsdf bsdf = material_bsdf(scene_.material(hit->material), hit->ns, hit->ng, hit->dpdu, hit->u, hit->v);
+        const Bsdf bsdf = material_bsdf(scene_.material(hit->material), hit->ns, hit->ng, hit->dpdu,
+                                        hit->u, hit->v);
         if (!guide_done && !bsdf.is_specular()) {
             guide.albedo = beta * bsdf.albedo();
             guide.normal = face_forward(hit->ns, wo);
@@ -101,7 +104,8 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
                     if (!scene_.occluded(o, ls->wi, tmax)) {
                         const float pdf_b = bsdf.pdf(wo, ls->wi);
                         const float w = choice.light_weight(ls->pdf, pdf_b);
-                        contribute(bounce, PathRecord::Technique::Light, power_heuristic(ls->pdf, pdf_b),
+                        contribute(bounce, PathRecord::Technique::Light,
+                                   power_heuristic(ls->pdf, pdf_b),
                                    beta * f * ls->radiance * (w / ls->pdf));
                     }
                 }

@@ -12,10 +12,7 @@ float Emitter::area() const
     return 4 * kPi * radius * radius;
 }
 
-Rgb Emitter::emitted(Vec3 n, Vec3 w) const
-{
-    return two_sided || dot(n, w) > 0 ? radiance : Rgb{};
-}
+Rgb Emitter::emitted(Vec3 n, Vec3 w) const { return two_sided || dot(n, w) > 0 ? radiance : Rgb{}; }
 
 int Lights::add(const Emitter& e)
 {
@@ -31,7 +28,8 @@ void Lights::finish()
     std::vector<double> w;
     for (Emitter& e : emitters_) {
         e.cached_area = e.area();
-        const double power = double(std::max(e.radiance.luminance(), 0.f)) * e.area() * (e.two_sided ? 2 : 1);
+        const double power =
+            double(std::max(e.radiance.luminance(), 0.f)) * e.area() * (e.two_sided ? 2 : 1);
         w.push_back(power);
         total += power;
     }
@@ -127,7 +125,8 @@ std::optional<LightSample> Lights::sample(Vec3 p, float u_select, float u1, floa
     const float cos_l = std::abs(dot(e.normal, wi));
     if (cos_l <= 1e-7f)
         return std::nullopt;
-    return LightSample{wi, dist, e.emitted(e.normal, -wi), p_select * dist2 / (cos_l * e.cached_area)};
+    return LightSample{wi, dist, e.emitted(e.normal, -wi),
+                       p_select * dist2 / (cos_l * e.cached_area)};
 }
 
 float Lights::pdf(Vec3 p, int i, Vec3 q, Vec3 n) const

@@ -12,20 +12,23 @@ namespace statmc::render {
 namespace {
 
 /// "matte": Kd as an rgb or an imagemap texture; sigma (Oren-Nayar) is read and warned about.
-Material read_matte(ParameterList& ps, const NamedTextures& textures, std::vector<std::string>& warnings)
+Material read_matte(ParameterList& ps, const NamedTextures& textures,
+                    std::vector<std::string>& warnings)
 {
     Material m;
     m.type = Material::Type::Matte;
     if (const Parameter* t = ps.find("texture", "Kd")) {
         const auto it = t->strings.size() == 1 ? textures.find(t->strings[0]) : textures.end();
         if (it == textures.end())
-            ps.error(t->line, "texture \"" + (t->strings.empty() ? "" : t->strings[0]) + "\" was not defined");
+            ps.error(t->line, "texture \"" + (t->strings.empty() ? "" : t->strings[0]) +
+                                  "\" was not defined");
         m.kd_texture = it->second;
     } else if (auto kd = ps.get_rgb("Kd")) {
         m.kd = *kd;
     }
     if (ps.get_float("sigma").value_or(0.f) != 0.f)
-        warnings.push_back(ps.warning("matte \"float sigma\" (Oren-Nayar) not supported, rendered as Lambertian"));
+        warnings.push_back(
+            ps.warning("matte \"float sigma\" (Oren-Nayar) not supported, rendered as Lambertian"));
     return m;
 }
 
@@ -34,10 +37,13 @@ Material read_metal(ParameterList& ps)
 {
     Material m;
     m.type = Material::Type::Metal;
-    if (auto e = ps.get_rgb("eta")) m.eta = *e;
-    if (auto k = ps.get_rgb("k")) m.k = *k;
+    if (auto e = ps.get_rgb("eta"))
+        m.eta = *e;
+    if (auto k = ps.get_rgb("k"))
+        m.k = *k;
     const float rough = ps.get_float("roughness").value_or(0.01f);
-    float u = ps.get_float("uroughness").value_or(rough), v = ps.get_float("vroughness").value_or(rough);
+    float u = ps.get_float("uroughness").value_or(rough),
+          v = ps.get_float("vroughness").value_or(rough);
     if (ps.get_bool("remaproughness").value_or(true)) {
         u = roughness_to_alpha(u);
         v = roughness_to_alpha(v);
@@ -52,11 +58,14 @@ Material read_glass(ParameterList& ps)
 {
     Material m;
     m.type = Material::Type::Glass;
-    if (auto kr = ps.get_rgb("Kr")) m.kr = *kr;
-    if (auto kt = ps.get_rgb("Kt")) m.kt = *kt;
+    if (auto kr = ps.get_rgb("Kr"))
+        m.kr = *kr;
+    if (auto kt = ps.get_rgb("Kt"))
+        m.kt = *kt;
     m.ior = ps.get_float("index").value_or(1.5f);
     const float rough = ps.get_float("roughness").value_or(0.f);
-    if (ps.get_float("uroughness").value_or(rough) != 0.f || ps.get_float("vroughness").value_or(rough) != 0.f)
+    if (ps.get_float("uroughness").value_or(rough) != 0.f ||
+        ps.get_float("vroughness").value_or(rough) != 0.f)
         ps.error("unsupported: rough glass (only smooth dielectrics)");
     ps.get_bool("remaproughness");  // checked; meaningless without roughness
     return m;
@@ -68,7 +77,8 @@ Material read_mirror(ParameterList& ps)
     Material m;
     m.type = Material::Type::Mirror;
     m.kr = Rgb{0.9f};
-    if (auto kr = ps.get_rgb("Kr")) m.kr = *kr;
+    if (auto kr = ps.get_rgb("Kr"))
+        m.kr = *kr;
     return m;
 }
 
@@ -110,7 +120,8 @@ Bsdf material_bsdf(const Material& m, Vec3 ns, Vec3 ng, Vec3 dpdu, float u, floa
         return Bsdf(MatteLobe{kd}, ns, ng, dpdu);
     }
     case Material::Type::Metal:
-        return Bsdf(MetalLobe{m.eta, m.k, std::max(m.alpha_u, 1e-4f), std::max(m.alpha_v, 1e-4f)}, ns, ng, dpdu);
+        return Bsdf(MetalLobe{m.eta, m.k, std::max(m.alpha_u, 1e-4f), std::max(m.alpha_v, 1e-4f)},
+                    ns, ng, dpdu);
     case Material::Type::Glass:
         return Bsdf(GlassLobe{m.kr, m.kt, m.ior}, ns, ng, dpdu);
     case Material::Type::Mirror:

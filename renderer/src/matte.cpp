@@ -6,10 +6,7 @@
 
 namespace statmc::render {
 
-Rgb MatteLobe::f(Vec3 wo, Vec3 wi) const
-{
-    return wo.z * wi.z > 0 ? kd * kInvPi : Rgb{};
-}
+Rgb MatteLobe::f(Vec3 wo, Vec3 wi) const { return wo.z * wi.z > 0 ? kd * kInvPi : Rgb{}; }
 
 float MatteLobe::pdf(Vec3 wo, Vec3 wi) const
 {

@@ -61,7 +61,8 @@ Rgb MetalLobe::f(Vec3 wo, Vec3 wi) const
     if (wo.z <= 0 || wi.z <= 0)
         return {};
     const Vec3 wh = normalize(wo + wi);
-    const float g = 1.f / (1.f + smith_lambda(wo, alpha_u, alpha_v) + smith_lambda(wi, alpha_u, alpha_v));
+    const float g =
+        1.f / (1.f + smith_lambda(wo, alpha_u, alpha_v) + smith_lambda(wi, alpha_u, alpha_v));
     const Rgb F = fresnel_conductor(dot(wi, wh), eta, k);
     return F * (ggx_d(wh, alpha_u, alpha_v) * g / (4 * wo.z * wi.z));
 }

@@ -10,8 +10,8 @@ ParameterList::ParameterList(std::string file, int line, std::vector<Parameter> 
 {
 }
 
-ParameterList ParameterList::parse(const std::vector<Token>& tokens, std::size_t& pos, const std::string& file,
-                                   int line)
+ParameterList ParameterList::parse(const std::vector<Token>& tokens, std::size_t& pos,
+                                   const std::string& file, int line)
 {
     ParameterList out(file, line);
     auto at_end = [&] { return pos >= tokens.size(); };
@@ -21,18 +21,23 @@ ParameterList ParameterList::parse(const std::vector<Token>& tokens, std::size_t
         Parameter p;
         p.line = decl.line;
         if (!(ss >> p.type >> p.name))
-            out.error(decl.line, "malformed parameter declaration \"" + decl.text + "\" (expected \"type name\")");
-        if (p.type == "point3") p.type = "point";
-        if (p.type == "normal3") p.type = "normal";
-        if (p.type == "color") p.type = "rgb";
-        static const char* known[] = {"integer", "float", "point2", "vector2", "point", "vector",
-                                      "normal", "rgb", "bool", "string", "texture", "spectrum",
-                                      "blackbody", "xyz"};
+            out.error(decl.line, "malformed parameter declaration \"" + decl.text +
+                                     "\" (expected \"type name\")");
+        if (p.type == "point3")
+            p.type = "point";
+        if (p.type == "normal3")
+            p.type = "normal";
+        if (p.type == "color")
+            p.type = "rgb";
+        static const char* known[] = {"integer", "float",    "point2",    "vector2", "point",
+                                      "vector",  "normal",   "rgb",       "bool",    "string",
+                                      "texture", "spectrum", "blackbody", "xyz"};
         bool ok = false;
         for (const char* k : known)
             ok = ok || p.type == k;
         if (!ok)
-            out.error(decl.line, "unknown parameter type '" + p.type + "' in \"" + decl.text + "\"");
+            out.error(decl.line,
+                      "unknown parameter type '" + p.type + "' in \"" + decl.text + "\"");
         const bool is_text = p.type == "string" || p.type == "texture" || p.type == "bool";
         auto value = [&] {
             if (at_end())
@@ -44,7 +49,8 @@ ParameterList ParameterList::parse(const std::vector<Token>& tokens, std::size_t
                 p.strings.push_back(t.text);
             } else {
                 if (t.kind != Token::Kind::Number)
-                    out.error(t.line, "parameter \"" + decl.text + "\" expects numbers, got '" + t.text + "'");
+                    out.error(t.line, "parameter \"" + decl.text + "\" expects numbers, got '" +
+                                          t.text + "'");
                 p.numbers.push_back(t.number);
             }
         };
@@ -128,7 +134,8 @@ std::optional<Rgb> ParameterList::get_rgb(const std::string& name)
     for (Parameter& p : params_)
         if (p.name == name && (p.type == "spectrum" || p.type == "blackbody" || p.type == "xyz")) {
             p.used = true;
-            error(p.line, "unsupported: \"" + p.type + " " + name + "\" (only rgb colours are supported)");
+            error(p.line,
+                  "unsupported: \"" + p.type + " " + name + "\" (only rgb colours are supported)");
         }
     const Parameter* p = find("rgb", name);
     if (!p)
@@ -147,7 +154,8 @@ std::vector<std::string> ParameterList::ignore(std::initializer_list<const char*
             if (p.name == name) {
                 p.used = true;
                 if (warn_as)
-                    warnings.push_back(warning(p.line, *warn_as + " \"" + name + "\" not supported, ignored"));
+                    warnings.push_back(
+                        warning(p.line, *warn_as + " \"" + name + "\" not supported, ignored"));
             }
     return warnings;
 }
@@ -157,8 +165,8 @@ std::vector<std::string> ParameterList::unused_warnings(const std::string& direc
     std::vector<std::string> warnings;
     for (const Parameter& p : params_)
         if (!p.used)
-            warnings.push_back(
-                warning(p.line, "unknown parameter \"" + p.type + " " + p.name + "\" of " + directive + " ignored"));
+            warnings.push_back(warning(p.line, "unknown parameter \"" + p.type + " " + p.name +
+                                                   "\" of " + directive + " ignored"));
     return warnings;
 }
 

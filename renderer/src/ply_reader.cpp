@@ -30,25 +30,42 @@ struct Element {
 
 Type parse_type(const std::string& t)
 {
-    if (t == "char" || t == "int8") return Type::Int8;
-    if (t == "uchar" || t == "uint8") return Type::UInt8;
-    if (t == "short" || t == "int16") return Type::Int16;
-    if (t == "ushort" || t == "uint16") return Type::UInt16;
-    if (t == "int" || t == "int32") return Type::Int32;
-    if (t == "uint" || t == "uint32") return Type::UInt32;
-    if (t == "float" || t == "float32") return Type::Float32;
-    if (t == "double" || t == "float64") return Type::Float64;
+    if (t == "char" || t == "int8")
+        return Type::Int8;
+    if (t == "uchar" || t == "uint8")
+        return Type::UInt8;
+    if (t == "short" || t == "int16")
+        return Type::Int16;
+    if (t == "ushort" || t == "uint16")
+        return Type::UInt16;
+    if (t == "int" || t == "int32")
+        return Type::Int32;
+    if (t == "uint" || t == "uint32")
+        return Type::UInt32;
+    if (t == "float" || t == "float32")
+        return Type::Float32;
+    if (t == "double" || t == "float64")
+        return Type::Float64;
     return Type::Invalid;
 }
 
 int type_size(Type t)
 {
     switch (t) {
-    case Type::Int8: case Type::UInt8: return 1;
-    case Type::Int16: case Type::UInt16: return 2;
-    case Type::Int32: case Type::UInt32: case Type::Float32: return 4;
-    case Type::Float64: return 8;
-    case Type::Invalid: break;
+    case Type::Int8:
+    case Type::UInt8:
+        return 1;
+    case Type::Int16:
+    case Type::UInt16:
+        return 2;
+    case Type::Int32:
+    case Type::UInt32:
+    case Type::Float32:
+        return 4;
+    case Type::Float64:
+        return 8;
+    case Type::Invalid:
+        break;
     }
     return 0;
 }
@@ -83,15 +100,45 @@ public:
             le[i] = little ? b[i] : b[n - 1 - i];
         // The host is little-endian (x86-64, the only target Embree runs on here).
         switch (type) {
-        case Type::Int8: { std::int8_t v; std::memcpy(&v, le, 1); return v; }
-        case Type::UInt8: return le[0];
-        case Type::Int16: { std::int16_t v; std::memcpy(&v, le, 2); return v; }
-        case Type::UInt16: { std::uint16_t v; std::memcpy(&v, le, 2); return v; }
-        case Type::Int32: { std::int32_t v; std::memcpy(&v, le, 4); return v; }
-        case Type::UInt32: { std::uint32_t v; std::memcpy(&v, le, 4); return v; }
-        case Type::Float32: { float v; std::memcpy(&v, le, 4); return v; }
-        case Type::Float64: { double v; std::memcpy(&v, le, 8); return v; }
-        case Type::Invalid: break;
+        case Type::Int8: {
+            std::int8_t v;
+            std::memcpy(&v, le, 1);
+            return v;
+        }
+        case Type::UInt8:
+            return le[0];
+        case Type::Int16: {
+            std::int16_t v;
+            std::memcpy(&v, le, 2);
+            return v;
+        }
+        case Type::UInt16: {
+            std::uint16_t v;
+            std::memcpy(&v, le, 2);
+            return v;
+        }
+        case Type::Int32: {
+            std::int32_t v;
+            std::memcpy(&v, le, 4);
+            return v;
+        }
+        case Type::UInt32: {
+            std::uint32_t v;
+            std::memcpy(&v, le, 4);
+            return v;
+        }
+        case Type::Float32: {
+            float v;
+            std::memcpy(&v, le, 4);
+            return v;
+        }
+        case Type::Float64: {
+            double v;
+            std::memcpy(&v, le, 8);
+            return v;
+        }
+        case Type::Invalid:
+            break;
         }
         fail("invalid property type");
     }
@@ -133,10 +180,14 @@ TriangleMesh read_ply(const std::string& path)
         if (word == "format") {
             std::string f;
             ls >> f;
-            if (f == "ascii") format = Format::Ascii;
-            else if (f == "binary_little_endian") format = Format::BinaryLittle;
-            else if (f == "binary_big_endian") format = Format::BinaryBig;
-            else fail("unknown format '" + f + "'");
+            if (f == "ascii")
+                format = Format::Ascii;
+            else if (f == "binary_little_endian")
+                format = Format::BinaryLittle;
+            else if (f == "binary_big_endian")
+                format = Format::BinaryBig;
+            else
+                fail("unknown format '" + f + "'");
         } else if (word == "element") {
             Element e;
             ls >> e.name >> e.count;
@@ -176,14 +227,22 @@ TriangleMesh read_ply(const std::string& path)
             int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, iu = -1, iv = -1;
             for (int i = 0; i < int(e.properties.size()); ++i) {
                 const std::string& n = e.properties[i].name;
-                if (n == "x") ix = i;
-                else if (n == "y") iy = i;
-                else if (n == "z") iz = i;
-                else if (n == "nx") inx = i;
-                else if (n == "ny") iny = i;
-                else if (n == "nz") inz = i;
-                else if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s") iu = i;
-                else if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t") iv = i;
+                if (n == "x")
+                    ix = i;
+                else if (n == "y")
+                    iy = i;
+                else if (n == "z")
+                    iz = i;
+                else if (n == "nx")
+                    inx = i;
+                else if (n == "ny")
+                    iny = i;
+                else if (n == "nz")
+                    inz = i;
+                else if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s")
+                    iu = i;
+                else if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t")
+                    iv = i;
             }
             if (ix < 0 || iy < 0 || iz < 0)
                 fail("vertices lack x, y or z");
@@ -203,7 +262,8 @@ TriangleMesh read_ply(const std::string& path)
                 }
                 mesh.positions.push_back({float(values[ix]), float(values[iy]), float(values[iz])});
                 if (has_n)
-                    mesh.normals.push_back({float(values[inx]), float(values[iny]), float(values[inz])});
+                    mesh.normals.push_back(
+                        {float(values[inx]), float(values[iny]), float(values[inz])});
                 if (has_uv) {
                     mesh.uvs.push_back(float(values[iu]));
                     mesh.uvs.push_back(float(values[iv]));

@@ -7,7 +7,8 @@
 namespace statmc::render {
 
 Progress::Progress(std::uint64_t total_samples, bool enabled)
-    : total_(total_samples), enabled_(enabled), start_(std::chrono::steady_clock::now()), last_draw_(start_)
+    : total_(total_samples), enabled_(enabled), start_(std::chrono::steady_clock::now()),
+      last_draw_(start_)
 {
 }
 
@@ -30,7 +31,8 @@ void Progress::advance(std::uint64_t samples)
 
 void Progress::draw(bool final)
 {
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const std::uint64_t done = done_.load();
     const double frac = total_ ? double(done) / double(total_) : 1.0;
     const double rate = elapsed > 0 ? double(done) / elapsed : 0.0;
@@ -41,8 +43,8 @@ void Progress::draw(bool final)
     for (int i = 0; i < kWidth; ++i)
         bar[i] = i < filled ? '#' : '.';
     bar[kWidth] = 0;
-    std::fprintf(stderr, "\r[%s] %5.1f%%  %.2f Msamples/s  ETA %.0fs   %s", bar, 100 * frac, rate * 1e-6, eta,
-                 final ? "\n" : "");
+    std::fprintf(stderr, "\r[%s] %5.1f%%  %.2f Msamples/s  ETA %.0fs   %s", bar, 100 * frac,
+                 rate * 1e-6, eta, final ? "\n" : "");
     std::fflush(stderr);
 }
 

@@ -57,13 +57,16 @@ BounceLayout bounce_layout_for(const IntegratorSettings& settings, bool record_a
 namespace {
 
 // The render on whatever threads the calling arena has.
-RenderStats render_in_arena(const Scene& scene, const Camera& camera, const RenderSettings& settings, Film& film,
-                            const std::atomic<bool>* cancel, const IterationCallback& after_iteration)
+RenderStats render_in_arena(const Scene& scene, const Camera& camera,
+                            const RenderSettings& settings, Film& film,
+                            const std::atomic<bool>* cancel,
+                            const IterationCallback& after_iteration)
 {
     const auto start = std::chrono::steady_clock::now();
     const PathIntegrator integrator(scene, settings.integrator);
     constexpr int kTile = 16;
-    const int tiles_x = (settings.width + kTile - 1) / kTile, tiles_y = (settings.height + kTile - 1) / kTile;
+    const int tiles_x = (settings.width + kTile - 1) / kTile,
+              tiles_y = (settings.height + kTile - 1) / kTile;
     const std::size_t npix = std::size_t(settings.width) * settings.height;
 
     std::uint64_t total = 0;
@@ -72,8 +75,9 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera, const Rend
     Progress progress(total, settings.progress);
 
     const BounceLayout needed = bounce_layout_for(settings.integrator);
-    if (!needed.empty() && (!film.bounces || film.bounces->layout().luminance_bounces < needed.luminance_bounces ||
-                            film.bounces->layout().mis_bounces < needed.mis_bounces))
+    if (!needed.empty() &&
+        (!film.bounces || film.bounces->layout().luminance_bounces < needed.luminance_bounces ||
+         film.bounces->layout().mis_bounces < needed.mis_bounces))
         throw std::invalid_argument("render: the film does not track the bounces ACRR/SMIS need");
     // Estimates steer sampling only from the second iteration on (§7, §8).
     std::optional<BounceEstimates> estimates;
@@ -94,8 +98,10 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera, const Rend
             // cost 15% lower.
             estimates = film.bounces->denoise({}, settings.bounce_filter, settings.threads);
             is.denoise_seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - denoise_start).count();
-            if (cancel && cancel->load()) {  // stopped while denoising: as if after the last iteration
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - denoise_start)
+                    .count();
+            if (cancel &&
+                cancel->load()) {  // stopped while denoising: as if after the last iteration
                 rs.interrupted = true;
                 break;
             }
@@ -109,21 +115,25 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera, const Rend
             _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
             _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
             const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
-            const int x1 = std::min(x0 + kTile, settings.width), y1 = std::min(y0 + kTile, settings.height);
+            const int x1 = std::min(x0 + kTile, settings.width),
+                      y1 = std::min(y0 + kTile, settings.height);
             PathRecord record;
-            std::vector<float> bounce_values(film.bounces ? std::size_t(film.bounces->layout().quantities()) : 0);
+            std::vector<float> bounce_values(
+                film.bounces ? std::size_t(film.bounces->layout().quantities()) : 0);
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
                     const std::size_t pixel = std::size_t(y) * settings.width + x;
                     // PixelEstimates{} steers nothing, as no estimates would.
-                    const PixelEstimates pixel_estimates = estimates ? estimates->pixel(pixel) : PixelEstimates{};
+                    const PixelEstimates pixel_estimates =
+                        estimates ? estimates->pixel(pixel) : PixelEstimates{};
                     for (int s = 0; s < spp; ++s) {
                         Sampler sampler(settings.seed, pixel, first_sample + std::uint64_t(s));
                         const float jx = sampler.get1d(), jy = sampler.get1d();
                         const Ray ray = camera.generate(float(x) + jx, float(y) + jy);
                         GuideSample guide;
-                        const Rgb L = integrator.radiance(ray, sampler, guide, film.bounces ? &record : nullptr,
-                                                          &pixel_estimates);
+                        const Rgb L =
+                            integrator.radiance(ray, sampler, guide,
+                                                film.bounces ? &record : nullptr, &pixel_estimates);
                         const float value[3] = {L.r, L.g, L.b};
                         film.stats.add(x, y, value);
                         if (film.bounces) {
@@ -166,14 +176,16 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera, const Rend
 
 }  // namespace
 
-RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings, Film& film,
-                   const std::atomic<bool>* cancel, const IterationCallback& after_iteration)
+RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings,
+                   Film& film, const std::atomic<bool>* cancel,
+                   const IterationCallback& after_iteration)
 {
     // An arena, not tbb::global_control: the limit holds for this render only, never for
     // the rest of the process (a host may render and denoise side by side).
     RenderStats stats;
-    run_with_threads(settings.threads,
-                     [&] { stats = render_in_arena(scene, camera, settings, film, cancel, after_iteration); });
+    run_with_threads(settings.threads, [&] {
+        stats = render_in_arena(scene, camera, settings, film, cancel, after_iteration);
+    });
     return stats;
 }
 

@@ -58,7 +58,8 @@ Vec3 triangle_normal(const TriangleMesh& m, std::size_t tri, Vec3 shading)
 
 }  // namespace
 
-Scene::Scene(const SceneDescription& desc) : embree_(std::make_unique<Embree>()), materials_(desc.materials)
+Scene::Scene(const SceneDescription& desc)
+    : embree_(std::make_unique<Embree>()), materials_(desc.materials)
 {
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device)
@@ -68,13 +69,14 @@ Scene::Scene(const SceneDescription& desc) : embree_(std::make_unique<Embree>())
     rtcSetSceneBuildQuality(embree_->scene, RTC_BUILD_QUALITY_HIGH);
 
     for (const ShapeDesc& shape : desc.shapes) {
-        Record rec{shape.kind, shape.mesh, shape.center, shape.radius, shape.flip_normals, shape.material, -1};
+        Record rec{shape.kind,     shape.mesh, shape.center, shape.radius, shape.flip_normals,
+                   shape.material, -1};
         RTCGeometry geom = nullptr;
         if (shape.kind == ShapeDesc::Kind::Sphere) {
             geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
             // New buffers are allocated (and padded for 16-byte loads) by Embree itself.
-            auto* v = static_cast<float*>(
-                rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+                geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
             if (!v)
                 throw std::runtime_error("Embree: " + embree_->first_error);
             v[0] = shape.center.x;
@@ -95,10 +97,10 @@ Scene::Scene(const SceneDescription& desc) : embree_(std::make_unique<Embree>())
             const TriangleMesh& m = *shape.mesh;
             const std::size_t nv = m.positions.size(), nt = m.indices.size() / 3;
             geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-            auto* v = static_cast<float*>(
-                rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
-            auto* idx = static_cast<unsigned*>(
-                rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), nt));
+            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+                geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
+            auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+                geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), nt));
             if (!v || !idx)
                 throw std::runtime_error("Embree: " + embree_->first_error);
             for (std::size_t i = 0; i < nv; ++i) {
@@ -157,7 +159,8 @@ Scene::TraversalCounters Scene::traversal_counters() const
 
 Vec3 Scene::offset_origin(Vec3 p, Vec3 ng, Vec3 w)
 {
-    const float scale = 1e-4f * (1.f + std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
+    const float scale =
+        1e-4f * (1.f + std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
     return p + face_forward(ng, w) * scale;
 }
 
@@ -212,7 +215,8 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const
     }
     const TriangleMesh& m = *rec.mesh;
     const std::size_t tri = rh.hit.primID;
-    const std::uint32_t i0 = m.indices[3 * tri], i1 = m.indices[3 * tri + 1], i2 = m.indices[3 * tri + 2];
+    const std::uint32_t i0 = m.indices[3 * tri], i1 = m.indices[3 * tri + 1],
+                        i2 = m.indices[3 * tri + 2];
     const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
     hit.p = m.positions[i0] * b0 + m.positions[i1] * b1 + m.positions[i2] * b2;
     Vec3 ns;
@@ -236,7 +240,8 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const
     const float du12 = uv[1][0] - uv[2][0], dv12 = uv[1][1] - uv[2][1];
     const float det = du02 * dv12 - dv02 * du12;
     if (std::abs(det) > 1e-12f) {
-        const Vec3 dp02 = m.positions[i0] - m.positions[i2], dp12 = m.positions[i1] - m.positions[i2];
+        const Vec3 dp02 = m.positions[i0] - m.positions[i2],
+                   dp12 = m.positions[i1] - m.positions[i2];
         hit.dpdu = (dp02 * dv12 - dp12 * dv02) / det;
     }
     if (rec.emitter_base >= 0)

@@ -44,7 +44,8 @@ public:
         if (in_world_)
             warn(tokens_.empty() ? 1 : tokens_.back().line, "missing WorldEnd");
         if (!stack_.empty())
-            warn(tokens_.empty() ? 1 : tokens_.back().line, "unbalanced AttributeBegin/TransformBegin");
+            warn(tokens_.empty() ? 1 : tokens_.back().line,
+                 "unbalanced AttributeBegin/TransformBegin");
         if (!saw_camera_)
             warn(1, "no Camera directive: using a perspective camera at the origin");
         return std::move(scene_);
@@ -76,7 +77,10 @@ private:
     // ---- token helpers ----
     const Token& peek() const { return tokens_[pos_]; }
     bool at_end() const { return pos_ >= tokens_.size(); }
-    int last_line() const { return tokens_.empty() ? 1 : tokens_[std::min(pos_, tokens_.size() - 1)].line; }
+    int last_line() const
+    {
+        return tokens_.empty() ? 1 : tokens_[std::min(pos_, tokens_.size() - 1)].line;
+    }
 
     std::string expect_string(const std::string& what)
     {
@@ -98,7 +102,8 @@ private:
         }
         if (bracket) {
             if (at_end() || peek().kind != Token::Kind::CloseBracket)
-                fail(last_line(), what + " needs exactly " + std::to_string(n) + " numbers and ']'");
+                fail(last_line(),
+                     what + " needs exactly " + std::to_string(n) + " numbers and ']'");
             ++pos_;
         }
         return v;
@@ -191,7 +196,8 @@ private:
         } else if (d == "LightSource") {
             const std::string type = expect_string("a light type");
             params(line);
-            fail(line, "unsupported: LightSource \"" + type + "\" (only area lights are supported)");
+            fail(line,
+                 "unsupported: LightSource \"" + type + "\" (only area lights are supported)");
         } else if (d == "Shape") {
             shape(line);
         } else if (d == "Include" || d == "Import") {
@@ -225,7 +231,8 @@ private:
         if (stack_.empty())
             fail(line, d + " without a matching begin");
         if (stack_.back().second != (d == "TransformEnd"))
-            fail(line, d + " closes a " + (stack_.back().second ? "TransformBegin" : "AttributeBegin"));
+            fail(line,
+                 d + " closes a " + (stack_.back().second ? "TransformBegin" : "AttributeBegin"));
         if (stack_.back().second)
             gs_.ctm = stack_.back().first.ctm;
         else
@@ -294,7 +301,8 @@ private:
         scene_.camera.fov_degrees = ps.get_float("fov").value_or(90.f);
         if (!(scene_.camera.fov_degrees > 0 && scene_.camera.fov_degrees < 180))
             fail(line, "Camera fov must be in (0, 180) degrees");
-        warn_all(ps.ignore({"lensradius", "focaldistance", "frameaspectratio", "screenwindow"}, "Camera parameter"));
+        warn_all(ps.ignore({"lensradius", "focaldistance", "frameaspectratio", "screenwindow"},
+                           "Camera parameter"));
         warn_all(ps.unused_warnings("Camera"));
     }
 
@@ -307,13 +315,15 @@ private:
         if (type != "imagemap")
             fail(line, "unsupported: Texture \"" + type + "\" (only \"imagemap\")");
         if (cls != "spectrum" && cls != "color" && cls != "rgb")
-            fail(line, "unsupported: " + cls + " texture \"" + name + "\" (only spectrum textures)");
+            fail(line,
+                 "unsupported: " + cls + " texture \"" + name + "\" (only spectrum textures)");
         const std::string filename = ps.get_string("filename").value_or("");
         if (filename.empty())
             fail(line, "Texture \"" + name + "\" needs \"string filename\"");
         const bool gamma = ps.get_bool("gamma").value_or(default_texture_gamma(filename));
         const float scale = ps.get_float("scale").value_or(1.f);
-        ps.ignore({"trilinear", "maxanisotropy", "wrap", "filter"});  // filtering options: lookups are bilinear
+        ps.ignore({"trilinear", "maxanisotropy", "wrap",
+                   "filter"});  // filtering options: lookups are bilinear
         warn_all(ps.unused_warnings("Texture"));
         const std::string path = resolve(filename);
         try {
@@ -350,7 +360,8 @@ private:
         auto ps = params(line);
         if (!in_world_)
             fail(line, "Shape outside WorldBegin/WorldEnd");
-        ShapeDesc s = read_shape(type, ps, gs_.ctm, gs_.reverse_orientation, ply_loader(line), scene_.warnings);
+        ShapeDesc s = read_shape(type, ps, gs_.ctm, gs_.reverse_orientation, ply_loader(line),
+                                 scene_.warnings);
         warn_all(ps.unused_warnings("Shape \"" + type + "\""));
         s.material = gs_.material;
         s.emission = gs_.emission;
@@ -368,7 +379,10 @@ private:
             auto cached = ply_cache_.find(path);
             if (cached == ply_cache_.end()) {
                 try {
-                    cached = ply_cache_.emplace(path, std::make_shared<const TriangleMesh>(read_ply(path))).first;
+                    cached =
+                        ply_cache_
+                            .emplace(path, std::make_shared<const TriangleMesh>(read_ply(path)))
+                            .first;
                 } catch (const std::exception& e) {
                     fail(line, e.what());
                 }
@@ -380,7 +394,8 @@ private:
 
 }  // namespace
 
-SceneDescription parse_scene_string(const std::string& text, const std::string& file, const std::string& directory)
+SceneDescription parse_scene_string(const std::string& text, const std::string& file,
+                                    const std::string& directory)
 {
     return Parser(tokenize(text, file), file, directory).run();
 }

@@ -45,7 +45,8 @@ TriangleMesh trianglemesh(ParameterList& ps, std::vector<std::string>& warnings)
     if (P->numbers.size() % 3 != 0)
         ps.error(P->line, "\"point P\" needs a multiple of 3 values");
     for (std::size_t i = 0; i < P->numbers.size(); i += 3)
-        mesh.positions.push_back({float(P->numbers[i]), float(P->numbers[i + 1]), float(P->numbers[i + 2])});
+        mesh.positions.push_back(
+            {float(P->numbers[i]), float(P->numbers[i + 1]), float(P->numbers[i + 2])});
     if (idx) {
         if (idx->numbers.size() % 3 != 0 || idx->numbers.empty())
             ps.error(idx->line, "\"integer indices\" needs a positive multiple of 3 values");
@@ -64,11 +65,14 @@ TriangleMesh trianglemesh(ParameterList& ps, std::vector<std::string>& warnings)
         if (N->numbers.size() != P->numbers.size())
             ps.error(N->line, "\"normal N\" must have as many values as \"point P\"");
         for (std::size_t i = 0; i < N->numbers.size(); i += 3)
-            mesh.normals.push_back({float(N->numbers[i]), float(N->numbers[i + 1]), float(N->numbers[i + 2])});
+            mesh.normals.push_back(
+                {float(N->numbers[i]), float(N->numbers[i + 1]), float(N->numbers[i + 2])});
     }
     const Parameter* uv = ps.find("float", "uv");
-    if (!uv) uv = ps.find("float", "st");
-    if (!uv) uv = ps.find("point2", "uv");
+    if (!uv)
+        uv = ps.find("float", "st");
+    if (!uv)
+        uv = ps.find("point2", "uv");
     if (uv) {
         if (uv->numbers.size() != mesh.positions.size() * 2)
             ps.error(uv->line, "\"" + uv->type + " " + uv->name + "\" needs 2 values per vertex");
@@ -92,7 +96,8 @@ TriangleMesh plymesh(ParameterList& ps, const PlyLoader& load_ply)
 }  // namespace
 
 ShapeDesc read_shape(const std::string& type, ParameterList& ps, const Transform& object_to_world,
-                     bool reverse_orientation, const PlyLoader& load_ply, std::vector<std::string>& warnings)
+                     bool reverse_orientation, const PlyLoader& load_ply,
+                     std::vector<std::string>& warnings)
 {
     const auto inv = object_to_world.inverse();
     if (!inv)

@@ -19,7 +19,8 @@ std::string lower_extension(const std::string& path)
 {
     const auto dot = path.find_last_of('.');
     std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
     return ext;
 }
 
@@ -38,7 +39,8 @@ ImageTexture::ImageTexture(int width, int height, std::vector<float> rgb)
         throw std::invalid_argument("ImageTexture: pixel count does not match resolution");
 }
 
-std::shared_ptr<const ImageTexture> ImageTexture::load(const std::string& path, bool gamma, float scale)
+std::shared_ptr<const ImageTexture> ImageTexture::load(const std::string& path, bool gamma,
+                                                       float scale)
 {
     OIIO::ImageBuf buf(path);
     if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT))
@@ -46,8 +48,8 @@ std::shared_ptr<const ImageTexture> ImageTexture::load(const std::string& path, 
     const OIIO::ImageSpec& spec = buf.spec();
     const int w = spec.width, h = spec.height, nc = spec.nchannels;
     std::vector<float> pixels(std::size_t(w) * h * nc);
-    buf.get_pixels(OIIO::ROI(spec.x, spec.x + w, spec.y, spec.y + h, 0, 1, 0, nc), OIIO::TypeDesc::FLOAT,
-                   pixels.data());
+    buf.get_pixels(OIIO::ROI(spec.x, spec.x + w, spec.y, spec.y + h, 0, 1, 0, nc),
+                   OIIO::TypeDesc::FLOAT, pixels.data());
     // 8-bit files (the common case for sRGB textures) decode through a 256-entry table:
     // a pow per texel made loading Veach Ajar's textures slower than building its BVH.
     const bool eight_bit = buf.nativespec().format == OIIO::TypeDesc::UINT8;
@@ -61,7 +63,8 @@ std::shared_ptr<const ImageTexture> ImageTexture::load(const std::string& path, 
             if (gamma) {
                 const float q = v * 255.f;
                 const float r = std::round(q);
-                v = eight_bit && r >= 0 && r <= 255 && std::abs(q - r) < 1e-3f ? table[int(r)] : srgb_to_linear(v);
+                v = eight_bit && r >= 0 && r <= 255 && std::abs(q - r) < 1e-3f ? table[int(r)]
+                                                                               : srgb_to_linear(v);
             }
             rgb[i * 3 + c] = v * scale;
         }

@@ -47,7 +47,8 @@ std::vector<Token> tokenize(const std::string& text, const std::string& file)
                 fail("unterminated string");
             ++i;
             tokens.push_back({Token::Kind::String, s, 0, start_line});
-        } else if (std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.') {
+        } else if (std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' ||
+                   c == '.') {
             const std::size_t start = i;
             while (i < n && (std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '-' ||
                              text[i] == '+' || text[i] == '.'))

@@ -34,8 +34,8 @@ OIIO::ImageBuf cli_render(int k, int width, int height)
         for (int x = 0; x < width; ++x) {
             const float noise = 0.1f * float((x * 5 + y * 3 + k * 7) % 5);
             const float level = x < width / 2 ? 0.2f : 0.9f;
-            const float px[7] = {level + noise, 0.7f * level + noise, 0.4f * level + noise, 1.f,
-                                 0.5f, 0.5f, 0.5f};
+            const float px[7] = {
+                level + noise, 0.7f * level + noise, 0.4f * level + noise, 1.f, 0.5f, 0.5f, 0.5f};
             img.setpixel(x, y, px);
         }
     return img;

@@ -8,8 +8,8 @@
 namespace statmc::test {
 
 struct CliResult {
-    int exit_code = -1;   ///< -1 when the process did not exit normally
-    int signal = 0;       ///< the signal that ended it, if one did
+    int exit_code = -1;  ///< -1 when the process did not exit normally
+    int signal = 0;      ///< the signal that ended it, if one did
     bool timed_out = false;
     std::string out, err;
 };

@@ -42,8 +42,8 @@ protected:
         EXPECT_EQ(r.signal, 0) << "killed by signal " << r.signal;
         EXPECT_EQ(r.exit_code, 1) << r.err;
         EXPECT_EQ(r.err.rfind("statmc: error: ", 0), 0u) << r.err;
-        EXPECT_NE(r.err.find(message), std::string::npos)
-            << "expected \"" << message << "\" in:\n" << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << "expected \"" << message << "\" in:\n"
+                                                          << r.err;
         EXPECT_EQ(r.out, "");
         std::vector<std::string> expected = inputs;
         std::sort(expected.begin(), expected.end());
@@ -72,8 +72,8 @@ TEST_F(CliError, MissingSampleCount)
 
 TEST_F(CliError, MisnamedLayer)
 {
-    const auto in = input("in.exr", renamed_channels(cli_variance_aov_image(), "variance",
-                                                     "Variance"));
+    const auto in =
+        input("in.exr", renamed_channels(cli_variance_aov_image(), "variance", "Variance"));
     expect_failure({in, "--denoise", "-o", out()},
                    "missing layer variance (channels variance.R, variance.G, variance.B); "
                    "denoising needs it or the Box-Cox layers (boxcoxMean, boxcoxVariance, "
@@ -83,8 +83,8 @@ TEST_F(CliError, MisnamedLayer)
 
 TEST_F(CliError, MissingRequestedGuide)
 {
-    const auto in = input("in.exr", without_channels(cli_statistics_image(),
-                                                     {"normal.X", "normal.Y", "normal.Z"}));
+    const auto in = input(
+        "in.exr", without_channels(cli_statistics_image(), {"normal.X", "normal.Y", "normal.Z"}));
     expect_failure({in, "--denoise:guides=albedo,normal", "-o", out()},
                    in + ": missing guide layer normal (channels normal.X, normal.Y, normal.Z)");
 }
@@ -93,9 +93,9 @@ TEST_F(CliError, PassesWithMismatchedResolutions)
 {
     const auto a = input("a.exr", cli_render(0));
     const auto b = input("b.exr", cli_render(1, kCliWidth, kCliHeight - 2));
-    expect_failure({a, b, "--passes", "-o", out()},
-                   "--passes: render 1 (" + b + ") and render 0 (" + a +
-                       ") differ in resolution: 24x14 vs 24x16");
+    expect_failure({a, b, "--passes", "-o", out()}, "--passes: render 1 (" + b +
+                                                        ") and render 0 (" + a +
+                                                        ") differ in resolution: 24x14 vs 24x16");
 }
 
 TEST_F(CliError, PassesWithMismatchedDataWindows)
@@ -112,8 +112,8 @@ TEST_F(CliError, PassesWithMismatchedDataWindows)
 TEST_F(CliError, PassesWithMismatchedChannels)
 {
     const auto a = input("a.exr", cli_render(0));
-    const auto b = input("b.exr", without_channels(cli_render(1), {"albedo.R", "albedo.G",
-                                                                   "albedo.B"}));
+    const auto b =
+        input("b.exr", without_channels(cli_render(1), {"albedo.R", "albedo.G", "albedo.B"}));
     expect_failure({a, b, "--passes", "-o", out()},
                    "render 1 (" + b + ") and render 0 (" + a + ") differ in channels");
 }
@@ -123,7 +123,8 @@ TEST_F(CliError, PassesNeedsTwoRenders)
     const auto a = input("a.exr", cli_render(0));
     expect_failure({a, "--passes", "-o", out()},
                    "--passes: needs at least 2 renders on the stack, got 1");
-    expect_failure({a, a, "--passes:n=3", "-o", out()}, "--passes: needs 3 images, the stack holds 2");
+    expect_failure({a, a, "--passes:n=3", "-o", out()},
+                   "--passes: needs 3 images, the stack holds 2");
     expect_failure({a, a, "--passes:n=1", "-o", out()}, "--passes: n must be at least 2, got 1");
 }
 
@@ -191,9 +192,9 @@ TEST_F(CliError, UnwritableOutput)
 {
     const auto in = input("in.exr", cli_statistics_image());
     const std::string target = dir.file("no/such/dir/out.exr");
-    expect_failure({in, "--denoise", "-o", target},
-                   target + ": cannot write: directory '" + dir.file("no/such/dir") +
-                       "' does not exist");
+    expect_failure({in, "--denoise", "-o", target}, target + ": cannot write: directory '" +
+                                                        dir.file("no/such/dir") +
+                                                        "' does not exist");
     expect_failure({in, "-o", dir.file("out.png")},
                    "out.png: cannot write: statmc writes OpenEXR files only");
     expect_failure({in, "-o", dir.path().string()}, ": cannot write: it is a directory");
@@ -296,8 +297,9 @@ TEST_F(CliError, BadChannelLists)
     expect_failure({in, "--ch", "R,9", "-o", out()},
                    "--ch: channel index 9 is out of range (the image has 7 channels)");
     // A constant must be finite: "nan" is a channel name, and the image has none.
-    expect_failure({in, "--ch", "R,A=nan", "-o", out()},
-                   "--ch: no channel 'nan' (the image has R, G, B, A, albedo.R, albedo.G, albedo.B)");
+    expect_failure(
+        {in, "--ch", "R,A=nan", "-o", out()},
+        "--ch: no channel 'nan' (the image has R, G, B, A, albedo.R, albedo.G, albedo.B)");
     expect_failure({"-i:ch=R,variance.R", in, "-o", out()},
                    in + ": -i:ch: no channel 'variance.R'");
 }
@@ -312,8 +314,7 @@ TEST_F(CliError, BadGeometryTypesAndCompression)
     // nothing (expect_failure checks that no file was left).
     expect_failure({in, "-o", out(), "--crop", "10y8"},
                    "--crop: geometry '10y8' is not WxH, WxH+X+Y or xmin,ymin,xmax,ymax");
-    expect_failure({in, "-o", out(), "--resize", "0x8"},
-                   "--resize: geometry '0x8' has no pixels");
+    expect_failure({in, "-o", out(), "--resize", "0x8"}, "--resize: geometry '0x8' has no pixels");
     expect_failure({in, "--compression", "dwaa", "-o", out()},
                    "--compression: 'dwaa' is lossy; statmc writes none, rle, zip, zips or piz");
     expect_failure({"-d", "uint8", in, "-o", out()},

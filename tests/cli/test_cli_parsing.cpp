@@ -55,8 +55,8 @@ TEST(CliParsing, InvocationsConsumeTheirArguments)
 
 TEST(CliParsing, TheTableKnowsItsCommandsAndAliases)
 {
-    for (const char* name : {"-i", "-o", "--denoise", "--passes", "--threads", "--help", "-h",
-                             "--version"})
+    for (const char* name :
+         {"-i", "-o", "--denoise", "--passes", "--threads", "--help", "-h", "--version"})
         EXPECT_TRUE(find_command(name)) << name;
     EXPECT_FALSE(find_command("--denoize"));
     EXPECT_EQ(find_command("-h"), find_command("--help"));

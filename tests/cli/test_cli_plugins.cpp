@@ -37,10 +37,9 @@ TEST(CliPlugins, HelpOfAnOperatorIsItsParameterTable)
 {
     const CliResult r = run_cli({"--help", "denoise"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    for (const char* row : {"radius        int     20        [0, 1000]",
-                            "alpha         float   0.005     (0, 1)",
-                            "sigma_s       float   10        > 0",
-                            "test          choice  auto      -", "denoise.so"})
+    for (const char* row :
+         {"radius        int     20        [0, 1000]", "alpha         float   0.005     (0, 1)",
+          "sigma_s       float   10        > 0", "test          choice  auto      -", "denoise.so"})
         EXPECT_NE(r.out.find(row), std::string::npos) << row << "\n" << r.out;
     EXPECT_EQ(run_cli({"--help", "--denoise"}).out, r.out);
     const CliResult unknown = run_cli({"--help", "denoize"});
@@ -53,29 +52,29 @@ TEST(CliPlugins, ModuleOnThePluginPathRunsLikeAShippedOne)
     TempDir dir;
     write_exr(cli_render(0), dir.file("in.exr"));
     // The shipped directory named again is searched once, not refused as duplicates.
-    PluginPath path("/nonexistent:" + kModules + "/good:" + kModules + "/good/:" +
-                    std::string(STATMC_PLUGIN_DIR));
+    PluginPath path("/nonexistent:" + kModules + "/good:" + kModules +
+                    "/good/:" + std::string(STATMC_PLUGIN_DIR));
     const CliResult list = run_cli({"--list-ops"});
     EXPECT_NE(list.out.find("--testscale"), std::string::npos) << list.out << list.err;
     const CliResult help = run_cli({"--help", "testscale"});
     EXPECT_NE(help.out.find("factor        float   2         [0.01, 100]"), std::string::npos)
         << help.out;
 
-    const CliResult run = run_cli({dir.file("in.exr"), "--testscale:factor=3", "-o",
-                                   dir.file("out.exr")});
+    const CliResult run =
+        run_cli({dir.file("in.exr"), "--testscale:factor=3", "-o", dir.file("out.exr")});
     ASSERT_EQ(run.exit_code, 0) << run.err;
     const OIIO::ImageBuf in = read_exr(dir.file("in.exr"));
     const OIIO::ImageBuf out = read_exr(dir.file("out.exr"));
     EXPECT_FLOAT_EQ(out.getchannel(5, 7, 0, 1), 3 * in.getchannel(5, 7, 0, 1));
 
-    const CliResult bad = run_cli({dir.file("in.exr"), "--testscale:factor=500", "-o",
-                                   dir.file("bad.exr")});
+    const CliResult bad =
+        run_cli({dir.file("in.exr"), "--testscale:factor=500", "-o", dir.file("bad.exr")});
     EXPECT_EQ(bad.exit_code, 1);
     EXPECT_NE(bad.err.find("--testscale: factor must be in [0.01, 100], got 500"),
               std::string::npos)
         << bad.err;
-    const CliResult notbool = run_cli({dir.file("in.exr"), "--testscale:reciprocal=maybe", "-o",
-                                       dir.file("bad.exr")});
+    const CliResult notbool =
+        run_cli({dir.file("in.exr"), "--testscale:reciprocal=maybe", "-o", dir.file("bad.exr")});
     EXPECT_NE(notbool.err.find("--testscale: reciprocal: expected a boolean"), std::string::npos)
         << notbool.err;
 }
@@ -99,7 +98,8 @@ TEST(CliPlugins, ModuleBuiltAgainstAnotherOiioIsRefused)
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.signal, 0);  // refused before its registration (which aborts) is called
     const std::string module = kModules + "/wrong_identity/wrong_identity.so";
-    EXPECT_NE(r.err.find(module + ": built differently from this statmc: OpenImageIO "), std::string::npos)
+    EXPECT_NE(r.err.find(module + ": built differently from this statmc: OpenImageIO "),
+              std::string::npos)
         << r.err;
     EXPECT_NE(r.err.find("sizeof(OIIO::ImageBuf) "), std::string::npos) << r.err;
 }
@@ -115,14 +115,16 @@ TEST(CliPlugins, AnOperatorThatThrowsIsAnErrorNamingItsModule)
         EXPECT_EQ(r.exit_code, 1) << op;
         EXPECT_EQ(r.signal, 0) << op;
         EXPECT_NE(r.err.find("statmc: error: " + op + ": " + dir.file("in.exr") +
-                             ": the operator threw, which it must not: deliberate failure [" + op + " (" +
-                             module + ")]"),
+                             ": the operator threw, which it must not: deliberate failure [" + op +
+                             " (" + module + ")]"),
                   std::string::npos)
             << r.err;
         EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
-        const CliResult odd = run_cli({dir.file("in.exr"), op + ":not_std=1", "-o", dir.file("out.exr")});
+        const CliResult odd =
+            run_cli({dir.file("in.exr"), op + ":not_std=1", "-o", dir.file("out.exr")});
         EXPECT_EQ(odd.exit_code, 1) << op;
-        EXPECT_NE(odd.err.find("the operator threw a non-standard exception [" + op + " (" + module + ")]"),
+        EXPECT_NE(odd.err.find("the operator threw a non-standard exception [" + op + " (" +
+                               module + ")]"),
                   std::string::npos)
             << odd.err;
         EXPECT_FALSE(std::filesystem::exists(dir.file("out.exr"))) << op;
@@ -139,7 +141,8 @@ TEST(CliPlugins, MergeAddsFarmTasksAndNamesMismatchedFiles)
     const CliResult r = run_cli({a, b, a, "--merge", "-o", dir.file("all.exr")});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const OIIO::ImageBuf in = read_exr(a), all = read_exr(dir.file("all.exr"));
-    EXPECT_EQ(channel_value(all, "sampleCount.Y", 3, 2), 3 * channel_value(in, "sampleCount.Y", 3, 2));
+    EXPECT_EQ(channel_value(all, "sampleCount.Y", 3, 2),
+              3 * channel_value(in, "sampleCount.Y", 3, 2));
     EXPECT_NEAR(channel_value(all, "G", 3, 2), channel_value(in, "G", 3, 2), 1e-5);
 
     const CliResult n = run_cli({v, a, b, "--merge:n=2", "-o", dir.file("two.exr")});
@@ -149,8 +152,8 @@ TEST(CliPlugins, MergeAddsFarmTasksAndNamesMismatchedFiles)
     EXPECT_NE(bad.err.find("--merge: part 1 (" + v + ") and part 0 (" + a + ") differ in"),
               std::string::npos)
         << bad.err;
-    const CliResult denoised = run_cli({a, "--denoise:radius=1", b, "--merge", "-o",
-                                        dir.file("bad.exr")});
+    const CliResult denoised =
+        run_cli({a, "--denoise:radius=1", b, "--merge", "-o", dir.file("bad.exr")});
     EXPECT_NE(denoised.err.find("is denoised (statmc:denoised=1)"), std::string::npos)
         << denoised.err;
 }
@@ -161,8 +164,8 @@ TEST(CliPlugins, ComparePrintsMetricsAndPushesTheErrorImage)
     const std::string a = dir.file("a.exr"), ref = dir.file("ref.exr");
     write_exr(cli_render(0), a);
     write_exr(cli_render(1), ref);
-    const CliResult r = run_cli({a, ref, "--compare:errorimage=" + dir.file("e1.exr"), "-o",
-                                 dir.file("e2.exr")});
+    const CliResult r =
+        run_cli({a, ref, "--compare:errorimage=" + dir.file("e1.exr"), "-o", dir.file("e2.exr")});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     for (const char* row : {"RMSE", "MAE", "relMSE", "SSIM", "DSSIM"})
         EXPECT_NE(r.out.find("\n  " + std::string(row) + " "), std::string::npos) << r.out;
@@ -185,14 +188,14 @@ TEST(CliPlugins, DisplayUsesTheShippedConfigWithoutOcio)
     const CliResult r = run_cli({in, "--display", "-o", dir.file("srgb.exr")});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const float linear = read_exr(in).getchannel(6, 3, 0, 1);
-    const float encoded = linear <= 0.0031308f ? 12.92f * linear
-                                               : 1.055f * std::pow(linear, 1 / 2.4f) - 0.055f;
+    const float encoded =
+        linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1 / 2.4f) - 0.055f;
     EXPECT_NEAR(read_exr(dir.file("srgb.exr")).getchannel(6, 3, 0, 1), encoded, 1e-4f);
     const CliResult bad = run_cli({in, "--display:view=Nope", "-o", dir.file("bad.exr")});
     EXPECT_EQ(bad.exit_code, 1);
-    EXPECT_NE(bad.err.find("--display: " + in +
-                           ": view 'Nope' of display 'sRGB' is not in OCIO config "),
-              std::string::npos)
+    EXPECT_NE(
+        bad.err.find("--display: " + in + ": view 'Nope' of display 'sRGB' is not in OCIO config "),
+        std::string::npos)
         << bad.err;
     EXPECT_NE(bad.err.find("(views: sRGB, Filmic, Raw)"), std::string::npos) << bad.err;
 }

@@ -77,8 +77,7 @@ TEST(CliRun, OutputMayReplaceTheInput)
 {
     TempDir dir;
     write_exr(cli_statistics_image(), dir.file("frame.exr"));
-    const OIIO::ImageBuf expected =
-        denoise(read_exr(dir.file("frame.exr")), DenoiseImageOptions{});
+    const OIIO::ImageBuf expected = denoise(read_exr(dir.file("frame.exr")), DenoiseImageOptions{});
     expect_success(run_cli({dir.file("frame.exr"), "--denoise", "-o", dir.file("frame.exr")}));
     EXPECT_EQ(dir.entries(), (std::vector<std::string>{"frame.exr"}));
     expect_same_channels(read_exr(dir.file("frame.exr")), expected);
@@ -89,10 +88,10 @@ TEST(CliRun, PassesThenDenoise)
     TempDir dir;
     for (int k = 0; k < 3; ++k)
         write_exr(cli_render(k), dir.file("r" + std::to_string(k) + ".exr"));
-    expect_success(run_cli({dir.file("r0.exr"), dir.file("r1.exr"), dir.file("r2.exr"),
-                            "--passes", "-o", dir.file("stats.exr")}));
-    expect_success(run_cli({dir.file("r0.exr"), dir.file("r1.exr"), dir.file("r2.exr"),
-                            "--passes", "--denoise:radius=4", "-o", dir.file("out.exr")}));
+    expect_success(run_cli({dir.file("r0.exr"), dir.file("r1.exr"), dir.file("r2.exr"), "--passes",
+                            "-o", dir.file("stats.exr")}));
+    expect_success(run_cli({dir.file("r0.exr"), dir.file("r1.exr"), dir.file("r2.exr"), "--passes",
+                            "--denoise:radius=4", "-o", dir.file("out.exr")}));
 
     const OIIO::ImageBuf r0 = read_exr(dir.file("r0.exr")), r1 = read_exr(dir.file("r1.exr")),
                          r2 = read_exr(dir.file("r2.exr"));
@@ -134,10 +133,10 @@ TEST(CliRun, ThreadsDoNotChangeTheResult)
 {
     TempDir dir;
     write_exr(cli_statistics_image(), dir.file("in.exr"));
-    expect_success(run_cli({"--threads", "1", dir.file("in.exr"), "--denoise", "-o",
-                            dir.file("one.exr")}));
-    expect_success(run_cli({"--threads", "0", dir.file("in.exr"), "--denoise", "-o",
-                            dir.file("all.exr")}));
+    expect_success(
+        run_cli({"--threads", "1", dir.file("in.exr"), "--denoise", "-o", dir.file("one.exr")}));
+    expect_success(
+        run_cli({"--threads", "0", dir.file("in.exr"), "--denoise", "-o", dir.file("all.exr")}));
     expect_same_channels(read_exr(dir.file("one.exr")), read_exr(dir.file("all.exr")));
 }
 
@@ -173,9 +172,9 @@ TEST(CliRun, HelpListsEveryCommandAndModifier)
     const CliResult r = run_cli({"--help"});
     expect_success(r);
     for (const char* text :
-         {"-i[:mod=val...] FILE", "-o[:mod=val...] FILE", "--denoise", "--passes", "--threads N", "--help", "--version",
-          ":radius=20 ", ":alpha=0.005 ", ":sigma_s=10 ", ":sigma_albedo=0.02 ",
-          ":sigma_normal=0.1 ", ":guides=auto ", "(albedo,normal|auto|none)",
+         {"-i[:mod=val...] FILE", "-o[:mod=val...] FILE", "--denoise", "--passes", "--threads N",
+          "--help", "--version", ":radius=20 ", ":alpha=0.005 ", ":sigma_s=10 ",
+          ":sigma_albedo=0.02 ", ":sigma_normal=0.1 ", ":guides=auto ", "(albedo,normal|auto|none)",
           ":albedo_layer=albedo ", ":normal_layer=normal ", ":test=auto ",
           "(auto|boxcox|untransformed)", ":nonfinite=error ", "(error|zero)", ":n=int ",
           ":diagnostics=0 ", ":aov=name ",

@@ -147,9 +147,7 @@ protected:
     {
         std::vector<std::string> line;
         for (const std::string& a : args)
-            line.push_back(a == "OUT"              ? out
-                           : a.rfind("@", 0) == 0 ? dir->file(a.substr(1))
-                                                  : a);
+            line.push_back(a == "OUT" ? out : a.rfind("@", 0) == 0 ? dir->file(a.substr(1)) : a);
         return line;
     }
 
@@ -189,8 +187,8 @@ const Case kCases[] = {
     {"input_ch_now_float", {"-i:ch=B,sampleCount.Y:type=float:now=1", "@stats.exr", "-o", "OUT"}},
     {"chnames", {"@render.exr", "--chnames", "X,,Z", "-o", "OUT"}},
     {"chappend",
-     {"@render.exr", "@stats.exr", "--ch", "variance.R,variance.G,variance.B", "--chappend",
-      "-o", "OUT"}},
+     {"@render.exr", "@stats.exr", "--ch", "variance.R,variance.G,variance.B", "--chappend", "-o",
+      "OUT"}},
     {"chappend_n_duplicate_names",
      {"@render.exr", "--ch", "R,G,B", "@render.exr", "--ch", "A", "@render2.exr", "--ch", "A",
       "--chappend:n=3", "-o", "OUT"}},
@@ -209,8 +207,8 @@ const Case kCases[] = {
      {"@render.exr", "--ch", "R,G,B,A=0.5", "--colorconvert:unpremult=1", "sRGB", "linear", "-o",
       "OUT"}},
     {"ociodisplay_alpha",
-     {"--colorconfig", STATMC_DISPLAY_CONFIG, "@render.exr", "--ch", "R,G,B,A=0.5",
-      "--ociodisplay", "sRGB", "Filmic", "-o", "OUT"}},
+     {"--colorconfig", STATMC_DISPLAY_CONFIG, "@render.exr", "--ch", "R,G,B,A=0.5", "--ociodisplay",
+      "sRGB", "Filmic", "-o", "OUT"}},
     {"ociodisplay",
      {"--colorconfig", STATMC_DISPLAY_CONFIG, "@render.exr", "--ociodisplay", "sRGB", "Filmic",
       "-o", "OUT"}},
@@ -243,19 +241,29 @@ const Case kCases[] = {
     // Reports.
     {"info", {"--info", "@render.exr", "@parts.exr"}, Compare::Text},
     {"info_verbose", {"--info", "-v", "@stats.exr"}, Compare::Text},
-    {"info_verbose_modifier", {"--info:verbose=1", "@render.exr"}, Compare::Text,
+    {"info_verbose_modifier",
+     {"--info:verbose=1", "@render.exr"},
+     Compare::Text,
      "channel list: R, G, B, A, albedo.R, albedo.G, albedo.B"},
-    {"info_verbose_parts", {"-a", "--info", "-v", "@parts.exr"}, Compare::Text,
+    {"info_verbose_parts",
+     {"-a", "--info", "-v", "@parts.exr"},
+     Compare::Text,
      "2 subimages: 24x16 [f,f,f,f], 24x16 [f,f,f]"},
-    {"info_windows", {"--info", "-v", "@cropped.exr"}, Compare::Text, "pixel data origin: x=2, y=3"},
+    {"info_windows",
+     {"--info", "-v", "@cropped.exr"},
+     Compare::Text,
+     "pixel data origin: x=2, y=3"},
     {"stats", {"--stats", "@render.exr"}, Compare::Text},
-    {"info_stats_mixed_types", {"--info", "-v", "--stats", "@mixed.exr"}, Compare::Text,
+    {"info_stats_mixed_types",
+     {"--info", "-v", "--stats", "@mixed.exr"},
+     Compare::Text,
      "half/half/half/float/float/float/float"},
     {"mixed_types_to_float", {"@mixed.exr", "-d", "float", "-o", "OUT"}},
     {"stats_parts", {"-a", "--stats", "@parts.exr"}, Compare::Text},
     {"diff_fails", {"@render.exr", "@render2.exr", "--diff"}, Compare::Text, "FAILURE"},
     {"diff_passes", {"@render.exr", "@render.exr", "--diff"}, Compare::Text, "PASS"},
-    {"echo", {"--echo", "hello statmc", "--echo:newline=0", "no newline", "--echo", "!"},
+    {"echo",
+     {"--echo", "hello statmc", "--echo:newline=0", "no newline", "--echo", "!"},
      Compare::Text},
 };
 
@@ -275,17 +283,15 @@ TEST(OiiotoolDifference, HalfInputIsWrittenAsFloatUnlessAsked)
     };
     ASSERT_EQ(oiiotool({"-d", "half", dir.file("render.exr"), "-o", dir.file("half.exr")}), 0);
     ASSERT_EQ(oiiotool({dir.file("half.exr"), "--mulc", "2", "-o", dir.file("oiiotool.exr")}), 0);
-    ASSERT_EQ(run_cli({dir.file("half.exr"), "--mulc", "2", "-o", dir.file("statmc.exr")})
-                  .exit_code,
-              0);
+    ASSERT_EQ(
+        run_cli({dir.file("half.exr"), "--mulc", "2", "-o", dir.file("statmc.exr")}).exit_code, 0);
     EXPECT_EQ(read_subimages(dir.file("oiiotool.exr"))[0].nativespec().format,
               OIIO::TypeDesc::HALF);
-    EXPECT_EQ(read_subimages(dir.file("statmc.exr"))[0].nativespec().format,
-              OIIO::TypeDesc::FLOAT);
+    EXPECT_EQ(read_subimages(dir.file("statmc.exr"))[0].nativespec().format, OIIO::TypeDesc::FLOAT);
     // The values are the same: doubling a half is exact.
-    const auto cr = OIIO::ImageBufAlgo::compare(read_subimages(dir.file("statmc.exr"))[0],
-                                                read_subimages(dir.file("oiiotool.exr"))[0],
-                                                0.0f, 0.0f);
+    const auto cr =
+        OIIO::ImageBufAlgo::compare(read_subimages(dir.file("statmc.exr"))[0],
+                                    read_subimages(dir.file("oiiotool.exr"))[0], 0.0f, 0.0f);
     EXPECT_EQ(cr.maxerror, 0.0);
 }
 

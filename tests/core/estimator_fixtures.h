@@ -49,13 +49,15 @@ inline float draw_lognormal(std::mt19937_64& rng, float mean)
 }
 
 /// Mean squared error of dense planes (channel-major) against the truth.
-inline double mse(const std::vector<float>& planes, int w, int h, int channels, const TruthFn& truth)
+inline double mse(const std::vector<float>& planes, int w, int h, int channels,
+                  const TruthFn& truth)
 {
     double sum = 0;
     for (int c = 0; c < channels; ++c)
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
-                const double d = planes[std::size_t(c) * w * h + std::size_t(y) * w + x] - truth(x, y, c);
+                const double d =
+                    planes[std::size_t(c) * w * h + std::size_t(y) * w + x] - truth(x, y, c);
                 sum += d * d;
             }
     return sum / (double(w) * h * channels);

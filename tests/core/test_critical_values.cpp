@@ -12,18 +12,16 @@ namespace {
 struct TableRow {
     double alpha;  // two-sided
     double df;
-    double t;      // published, 3 decimals
+    double t;  // published, 3 decimals
 };
 
 // Student-t upper-tail critical values as printed in standard statistical tables
 // (e.g. NIST/SEMATECH e-Handbook, Table 1.3.6.7.2), at one-sided tail α/2.
 constexpr TableRow kTable[] = {
-    {0.05, 1, 12.706}, {0.05, 2, 4.303}, {0.05, 5, 2.571}, {0.05, 10, 2.228},
-    {0.05, 30, 2.042}, {0.05, 100, 1.984},
-    {0.01, 1, 63.657}, {0.01, 5, 4.032}, {0.01, 10, 3.169}, {0.01, 30, 2.750},
-    {0.01, 100, 2.626},
-    {0.002, 1, 318.313}, {0.002, 5, 5.893}, {0.002, 10, 4.144}, {0.002, 30, 3.385},
-    {0.002, 100, 3.174},
+    {0.05, 1, 12.706}, {0.05, 2, 4.303},   {0.05, 5, 2.571},   {0.05, 10, 2.228},
+    {0.05, 30, 2.042}, {0.05, 100, 1.984}, {0.01, 1, 63.657},  {0.01, 5, 4.032},
+    {0.01, 10, 3.169}, {0.01, 30, 2.750},  {0.01, 100, 2.626}, {0.002, 1, 318.313},
+    {0.002, 5, 5.893}, {0.002, 10, 4.144}, {0.002, 30, 3.385}, {0.002, 100, 3.174},
 };
 
 TEST(CriticalValues, MatchPublishedTables)
@@ -53,7 +51,8 @@ TEST(CriticalValues, TailInterpolationIsExactToNineDigits)
         for (double df : {1024.0, 1025.0, 1500.5, 2046.0, 4094.0, 65534.0, 1e6, 3.3e8})
             EXPECT_NEAR(cv.gamma(df), CriticalValues::exact(alpha, df), 1e-8) << df;
         // A table sized for small df still answers large df exactly (slow path).
-        EXPECT_NEAR(CriticalValues(alpha, 126).gamma(5000.0), CriticalValues::exact(alpha, 5000.0), 1e-12);
+        EXPECT_NEAR(CriticalValues(alpha, 126).gamma(5000.0), CriticalValues::exact(alpha, 5000.0),
+                    1e-12);
     }
 }
 

@@ -23,7 +23,8 @@ TEST(Exp2, WithinThreeUlpOverTheNormalRange)
         const double exact = std::exp2(double(x));
         worst = std::max(worst, std::abs(exp2_scalar(x) - exact) / exact);
     }
-    EXPECT_LT(worst, 3 * std::numeric_limits<float>::epsilon() / 2) << "max relative error " << worst;
+    EXPECT_LT(worst, 3 * std::numeric_limits<float>::epsilon() / 2)
+        << "max relative error " << worst;
 }
 
 TEST(Exp2, ExactAtIntegersAndOneAtZero)

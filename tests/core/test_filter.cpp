@@ -18,7 +18,9 @@ struct Output {
     std::vector<float> values, members, weights, effective;
     Output(int w_, int h_, int c_)
         : w(w_), h(h_), c(c_), values(std::size_t(w) * h * c), members(std::size_t(w) * h),
-          weights(std::size_t(w) * h), effective(std::size_t(w) * h) {}
+          weights(std::size_t(w) * h), effective(std::size_t(w) * h)
+    {
+    }
     std::vector<Plane> planes()
     {
         std::vector<Plane> p;
@@ -66,14 +68,16 @@ EstimatorImage random_estimators(int w, int h, int channels, std::uint64_t seed)
 struct GuideImages {
     std::vector<float> data;
     Guides guides;
-    GuideImages(int w, int h, bool albedo, bool normal, std::uint64_t seed) : data(std::size_t(w) * h * 6)
+    GuideImages(int w, int h, bool albedo, bool normal, std::uint64_t seed)
+        : data(std::size_t(w) * h * 6)
     {
         std::mt19937_64 rng(seed);
         std::uniform_real_distribution<float> u(0.f, 1.f);
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x)
                 for (int k = 0; k < 6; ++k)
-                    data[std::size_t(k) * w * h + std::size_t(y) * w + x] = ((x / 7) % 2) * 0.05f + 0.03f * u(rng) + 0.1f * k;
+                    data[std::size_t(k) * w * h + std::size_t(y) * w + x] =
+                        ((x / 7) % 2) * 0.05f + 0.03f * u(rng) + 0.1f * k;
         for (int k = 0; k < 3; ++k) {
             if (albedo)
                 guides.albedo[k] = dense_plane(data.data() + std::size_t(k) * w * h, w);
@@ -83,8 +87,8 @@ struct GuideImages {
     }
 };
 
-void expect_matches_reference(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& opt,
-                              SimdLevel level)
+void expect_matches_reference(const EstimatorImage& est, const Guides& guides,
+                              const DenoiseOptions& opt, SimdLevel level)
 {
     Output fast(est.width, est.height, est.channels), ref(est.width, est.height, est.channels);
     filter(est, guides, opt, fast.planes(), fast.diagnostics(), 0, level);
@@ -93,7 +97,8 @@ void expect_matches_reference(const EstimatorImage& est, const Guides& guides, c
     for (std::size_t i = 0; i < ref.members.size(); ++i)
         ASSERT_EQ(fast.members[i], ref.members[i]) << "pixel " << i;
     for (std::size_t i = 0; i < ref.values.size(); ++i)
-        ASSERT_NEAR(fast.values[i], ref.values[i], 2e-5f * (1 + std::abs(ref.values[i]))) << "value " << i;
+        ASSERT_NEAR(fast.values[i], ref.values[i], 2e-5f * (1 + std::abs(ref.values[i])))
+            << "value " << i;
     for (std::size_t i = 0; i < ref.weights.size(); ++i)
         ASSERT_NEAR(fast.weights[i], ref.weights[i], 1e-4f * ref.weights[i]) << "weight " << i;
     for (std::size_t i = 0; i < ref.effective.size(); ++i)
@@ -126,21 +131,22 @@ TEST_P(FilterVsReference, Agree)
 
 INSTANTIATE_TEST_SUITE_P(
     Shapes, FilterVsReference,
-    ::testing::Values(Case{37, 23, 3, 5, false, false},   // width not a multiple of 8
-                      Case{37, 23, 3, 1, false, false},   // r = 1
-                      Case{37, 23, 3, 0, false, false},   // r = 0: identity
-                      Case{9, 6, 3, 20, false, false},    // r larger than the image
-                      Case{1, 1, 3, 20, false, false},    // one pixel
-                      Case{1, 17, 3, 4, false, false},    // one column
-                      Case{40, 3, 1, 6, false, false},    // one channel
-                      Case{24, 16, 4, 6, false, false},   // four channels
-                      Case{33, 19, 3, 6, true, false},    // albedo guide
-                      Case{33, 19, 3, 6, false, true},    // normal guide
-                      Case{33, 19, 3, 6, true, true}),    // both guides
+    ::testing::Values(Case{37, 23, 3, 5, false, false},  // width not a multiple of 8
+                      Case{37, 23, 3, 1, false, false},  // r = 1
+                      Case{37, 23, 3, 0, false, false},  // r = 0: identity
+                      Case{9, 6, 3, 20, false, false},   // r larger than the image
+                      Case{1, 1, 3, 20, false, false},   // one pixel
+                      Case{1, 17, 3, 4, false, false},   // one column
+                      Case{40, 3, 1, 6, false, false},   // one channel
+                      Case{24, 16, 4, 6, false, false},  // four channels
+                      Case{33, 19, 3, 6, true, false},   // albedo guide
+                      Case{33, 19, 3, 6, false, true},   // normal guide
+                      Case{33, 19, 3, 6, true, true}),   // both guides
     [](const ::testing::TestParamInfo<Case>& info) {
         const Case& k = info.param;
         return std::to_string(k.w) + "x" + std::to_string(k.h) + "_c" + std::to_string(k.channels) +
-               "_r" + std::to_string(k.radius) + (k.albedo ? "_albedo" : "") + (k.normal ? "_normal" : "");
+               "_r" + std::to_string(k.radius) + (k.albedo ? "_albedo" : "") +
+               (k.normal ? "_normal" : "");
     });
 
 TEST(Filter, TheFixturesFirefliesAreGuardedAgainst)
@@ -152,7 +158,8 @@ TEST(Filter, TheFixturesFirefliesAreGuardedAgainst)
     int refused = 0;
     for (int y = 1; y + 1 < est.height; ++y)
         for (int x = 1; x + 1 < est.width; ++x)
-            refused += noise.level[std::size_t(y) * est.width + x] > noise.limit[std::size_t(y) * est.width + x + 1];
+            refused += noise.level[std::size_t(y) * est.width + x] >
+                       noise.limit[std::size_t(y) * est.width + x + 1];
     EXPECT_GT(refused, 5);
 }
 
@@ -191,14 +198,19 @@ TEST(Filter, VectorKernelsAgree)
         filter(est, g.guides, opt, avx512.planes(), avx512.diagnostics(), 0, SimdLevel::Avx512);
         EXPECT_EQ(avx2.members, avx512.members);
         if (!guided) {
-            EXPECT_EQ(std::memcmp(avx2.values.data(), avx512.values.data(), avx2.values.size() * 4), 0);
-            EXPECT_EQ(std::memcmp(avx2.weights.data(), avx512.weights.data(), avx2.weights.size() * 4), 0);
+            EXPECT_EQ(std::memcmp(avx2.values.data(), avx512.values.data(), avx2.values.size() * 4),
+                      0);
+            EXPECT_EQ(
+                std::memcmp(avx2.weights.data(), avx512.weights.data(), avx2.weights.size() * 4),
+                0);
             continue;
         }
         for (std::size_t i = 0; i < avx2.weights.size(); ++i)
-            ASSERT_NEAR(avx512.weights[i], avx2.weights[i], 1e-6f * avx2.weights[i]) << "weight " << i;
+            ASSERT_NEAR(avx512.weights[i], avx2.weights[i], 1e-6f * avx2.weights[i])
+                << "weight " << i;
         for (std::size_t i = 0; i < avx2.values.size(); ++i)
-            ASSERT_NEAR(avx512.values[i], avx2.values[i], 1e-6f * (1 + std::abs(avx2.values[i]))) << "value " << i;
+            ASSERT_NEAR(avx512.values[i], avx2.values[i], 1e-6f * (1 + std::abs(avx2.values[i])))
+                << "value " << i;
     }
 }
 

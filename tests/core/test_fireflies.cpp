@@ -31,8 +31,8 @@ const TruthFn kTexture = [](int x, int y, int c) {
 };
 const TruthFn kFlat = [](int, int, int c) { return 0.5f + 0.1f * c; };
 
-// n normal samples per pixel (σ = 5% of the mean: a well-converged render); with `firefly`, pixel (kFx, kFy)'s first sample is
-// `firefly` times its truth instead.
+// n normal samples per pixel (σ = 5% of the mean: a well-converged render); with `firefly`, pixel
+// (kFx, kFy)'s first sample is `firefly` times its truth instead.
 StatisticsPlanes render(const TruthFn& truth, int n, float firefly, std::uint64_t seed)
 {
     std::mt19937_64 rng(seed);
@@ -42,7 +42,8 @@ StatisticsPlanes render(const TruthFn& truth, int n, float firefly, std::uint64_
             for (int i = 0; i < n; ++i) {
                 float s[3];
                 for (int c = 0; c < 3; ++c)
-                    s[c] = std::normal_distribution<float>(truth(x, y, c), 0.05f * truth(x, y, c))(rng);
+                    s[c] = std::normal_distribution<float>(truth(x, y, c),
+                                                           0.05f * truth(x, y, c))(rng);
                 if (firefly > 0 && x == kFx && y == kFy && i == 0)
                     for (int c = 0; c < 3; ++c)
                         s[c] = firefly * truth(x, y, c);
@@ -76,14 +77,16 @@ double energy_added_around(const std::vector<float>& with, const std::vector<flo
 }
 
 /// The largest rise of any channel at a pixel at least `distance` from the firefly.
-double largest_rise_beyond(const std::vector<float>& with, const std::vector<float>& without, double distance)
+double largest_rise_beyond(const std::vector<float>& with, const std::vector<float>& without,
+                           double distance)
 {
     double rise = 0;
     for (int c = 0; c < 3; ++c)
         for (int y = 0; y < kSize; ++y)
             for (int x = 0; x < kSize; ++x)
                 if (std::hypot(x - kFx, y - kFy) >= distance) {
-                    const std::size_t i = std::size_t(c) * kSize * kSize + std::size_t(y) * kSize + x;
+                    const std::size_t i =
+                        std::size_t(c) * kSize * kSize + std::size_t(y) * kSize + x;
                     rise = std::max(rise, double(with[i]) - without[i]);
                 }
     return rise;
@@ -94,7 +97,8 @@ double firefly_excess(const StatisticsPlanes& fire, const TruthFn& truth)
 {
     double excess = 0;
     for (int c = 0; c < 3; ++c)
-        excess += fire.mean[std::size_t(c) * kSize * kSize + kFy * kSize + kFx] - truth(kFx, kFy, c);
+        excess +=
+            fire.mean[std::size_t(c) * kSize * kSize + kFy * kSize + kFx] - truth(kFx, kFy, c);
     return excess;
 }
 
@@ -158,8 +162,8 @@ TEST(Fireflies, AFireflyOfTheDistributionItselfCostsLittle)
 TEST(Fireflies, EmittersStayExactNextToNoise)
 {
     // A noise-free lit region (an emitter: every sample 5) beside a noisy one whose pixels
-    // straddle its edge (half the samples 5, half a dimmer surface). The paper's test lets those edge
-    // pixels into the emitter's average; the guard keeps every emitter pixel exact.
+    // straddle its edge (half the samples 5, half a dimmer surface). The paper's test lets those
+    // edge pixels into the emitter's average; the guard keeps every emitter pixel exact.
     std::mt19937_64 rng(2);
     StatisticsImage<3> img(kSize, 24);
     for (int y = 0; y < 24; ++y)
@@ -195,14 +199,16 @@ TEST(Fireflies, SparseSamplesInBlackRegionsStillSpread)
     };
     const StatisticsPlanes stats = testing::sample_statistics(kSize, kSize, 8, truth, draw, 5);
     const std::vector<float> guard = denoise(stats, 256), paper = denoise(stats, 0);
-    EXPECT_NEAR(testing::mse(guard, kSize, kSize, 3, truth), testing::mse(paper, kSize, kSize, 3, truth),
+    EXPECT_NEAR(testing::mse(guard, kSize, kSize, 3, truth),
+                testing::mse(paper, kSize, kSize, 3, truth),
                 0.05 * testing::mse(paper, kSize, kSize, 3, truth));
 }
 
 TEST(Fireflies, ZeroTurnsTheGuardOff)
 {
     const StatisticsPlanes fire = render(kTexture, 16, 2e4f, 5);
-    const NoiseLevels noise = noise_levels(estimators_from_statistics(fire.view(), TestDomain::BoxCox), 0);
+    const NoiseLevels noise =
+        noise_levels(estimators_from_statistics(fire.view(), TestDomain::BoxCox), 0);
     for (float limit : noise.limit)
         ASSERT_EQ(limit, INFINITY);
 }
@@ -212,7 +218,8 @@ TEST(Fireflies, TheGuardNeedsBoxCoxStatistics)
     // Raw variances grow with brightness; compared across an edge they would exclude the
     // bright side. With the untransformed test the guard is off.
     const StatisticsPlanes fire = render(kTexture, 16, 2e4f, 5);
-    const NoiseLevels noise = noise_levels(estimators_from_statistics(fire.view(), TestDomain::Untransformed), 256);
+    const NoiseLevels noise =
+        noise_levels(estimators_from_statistics(fire.view(), TestDomain::Untransformed), 256);
     for (float limit : noise.limit)
         ASSERT_EQ(limit, INFINITY);
 }

@@ -21,12 +21,12 @@ TEST(WeightIdentities, OptimalWeightIsAFunctionOfWelchT)
         const double v = scale(rng);
         const double w = (2 * delta * delta + v) / (2 * (delta * delta + v));  // Eq. 12
         const double s = 1 - w;
-        const double t = std::abs(delta) / std::sqrt(v);                         // Eq. S.1
+        const double t = std::abs(delta) / std::sqrt(v);  // Eq. S.1
         ASSERT_GE(w, 0.5);
         ASSERT_LE(w, 1.0);
-        EXPECT_NEAR(s, 1 - (t * t + 0.5) / (t * t + 1), 1e-12);                  // Eq. S.5
+        EXPECT_NEAR(s, 1 - (t * t + 0.5) / (t * t + 1), 1e-12);  // Eq. S.5
         if (s > 1e-6) {
-            EXPECT_NEAR(t, std::sqrt(1 / (2 * s) - 1), 1e-6 * (1 + t));          // Eq. S.6
+            EXPECT_NEAR(t, std::sqrt(1 / (2 * s) - 1), 1e-6 * (1 + t));  // Eq. S.6
         }
     }
 }
@@ -36,7 +36,7 @@ TEST(WeightIdentities, ThresholdOnWeightEqualsWelchTest)
     std::mt19937_64 rng(12);
     std::uniform_real_distribution<double> tdist(0.0, 8.0);
     for (double gamma_w : {1.96, 2.807, 4.317, 12.7}) {
-        const double gamma = 1 / (2 * (gamma_w * gamma_w + 1));                  // Eq. S.7
+        const double gamma = 1 / (2 * (gamma_w * gamma_w + 1));  // Eq. S.7
         for (int i = 0; i < 5000; ++i) {
             const double t = tdist(rng);
             if (std::abs(t - gamma_w) < 1e-9)
@@ -69,7 +69,8 @@ TEST(WeightIdentities, ExpandedFastFormEqualsSquaredWelch)
 
 // A 2×1 image whose two pixels hold the given estimators; the filter's member count at
 // pixel 0 (with radius 1) says whether pixel 1 passed the test.
-bool filter_says_member(float mi, float vi, float mj, float vj, float n, double alpha, SimdLevel level)
+bool filter_says_member(float mi, float vi, float mj, float vj, float n, double alpha,
+                        SimdLevel level)
 {
     EstimatorImage est(2, 1, 1);
     est.count = {n, n};
@@ -110,7 +111,7 @@ TEST(Membership, EqualCountsGiveExactlyWelchsTest)
                 }
             }
             EXPECT_GT(checked, 1500);
-            EXPECT_GT(members, 100);             // both outcomes well exercised
+            EXPECT_GT(members, 100);  // both outcomes well exercised
             EXPECT_LT(members, checked - 100);
         }
 }

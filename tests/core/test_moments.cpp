@@ -180,7 +180,8 @@ TEST(StatisticsImage, PlanesRoundTripAndMergeEqualsAccumulatingAll)
         EXPECT_NEAR(pa.variance[i], pall.variance[i], 1e-5f * pall.variance[i] + 1e-7f);
         EXPECT_NEAR(pa.bc_mean[i], pall.bc_mean[i], 1e-5f * std::abs(pall.bc_mean[i]) + 1e-7f);
         EXPECT_NEAR(pa.bc_variance[i], pall.bc_variance[i], 1e-5f * pall.bc_variance[i] + 1e-7f);
-        EXPECT_NEAR(pa.bc_moment3[i], pall.bc_moment3[i], 1e-4f * std::abs(pall.bc_moment3[i]) + 1e-6f);
+        EXPECT_NEAR(pa.bc_moment3[i], pall.bc_moment3[i],
+                    1e-4f * std::abs(pall.bc_moment3[i]) + 1e-6f);
     }
     // Planes → accumulators → planes is the identity (up to float rounding).
     const StatisticsPlanes back = StatisticsImage<3>::from_view(pall.view()).planes();

@@ -34,7 +34,8 @@ DenoiseOptions caustic_settings()
 }
 
 /// Mean over channels and pixels where `select` holds.
-double mean_where(const std::vector<float>& img, int w, int h, const std::function<bool(int, int)>& select)
+double mean_where(const std::vector<float>& img, int w, int h,
+                  const std::function<bool(int, int)>& select)
 {
     double sum = 0;
     int count = 0;
@@ -65,7 +66,8 @@ TEST_P(Detail, KeepsItsContrast)
     // n = 64 exponential samples: the bright and dark levels are ≥ 6 standard errors apart.
     const DetailCase& k = GetParam();
     const int w = 64, h = 64;
-    const StatisticsPlanes stats = testing::sample_statistics(w, h, 64, k.truth, testing::draw_exponential, 17);
+    const StatisticsPlanes stats =
+        testing::sample_statistics(w, h, 64, k.truth, testing::draw_exponential, 17);
     auto dark = [&](int x, int y) { return !k.bright(x, y); };
     std::vector<float> truth(std::size_t(3) * w * h);
     for (int c = 0; c < 3; ++c)
@@ -76,9 +78,11 @@ TEST_P(Detail, KeepsItsContrast)
     for (const DenoiseOptions& opt : {DenoiseOptions{}, caustic_settings()}) {
         const std::vector<float> out = denoise(stats, w, opt);
         const double got = mean_where(out, w, h, k.bright) - mean_where(out, w, h, dark);
-        const double gain = testing::mse(stats.mean, w, h, 3, k.truth) / testing::mse(out, w, h, 3, k.truth);
+        const double gain =
+            testing::mse(stats.mean, w, h, 3, k.truth) / testing::mse(out, w, h, 3, k.truth);
         EXPECT_NEAR(got, want, k.tolerance * want) << "radius " << opt.radius;
-        EXPECT_GT(gain, k.min_gain) << "radius " << opt.radius << ": the detail must still be denoised";
+        EXPECT_GT(gain, k.min_gain)
+            << "radius " << opt.radius << ": the detail must still be denoised";
     }
 }
 
@@ -87,7 +91,9 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         // A checkerboard of 2-pixel squares, 0.2 and 1.0.
         DetailCase{"checker2",
-                   [](int x, int y, int c) { return ((x / 2 + y / 2) % 2 ? 1.f : 0.2f) * (1.f + 0.1f * c); },
+                   [](int x, int y, int c) {
+                       return ((x / 2 + y / 2) % 2 ? 1.f : 0.2f) * (1.f + 0.1f * c);
+                   },
                    [](int x, int y) { return (x / 2 + y / 2) % 2 == 1; }, 0.02, 11},
         // One-pixel stripes.
         DetailCase{"stripes1",
@@ -95,10 +101,11 @@ INSTANTIATE_TEST_SUITE_P(
                    [](int x, int) { return x % 2 == 1; }, 0.02, 12},
         // Caustic-like: thin bright lines (1 px, 20×) on a dim floor.
         DetailCase{"caustic_lines",
-                   [](int x, int y, int c) { return ((x + 2 * y) % 11 == 0 ? 4.f : 0.2f) * (1.f + 0.1f * c); },
+                   [](int x, int y, int c) {
+                       return ((x + 2 * y) % 11 == 0 ? 4.f : 0.2f) * (1.f + 0.1f * c);
+                   },
                    [](int x, int y) { return (x + 2 * y) % 11 == 0; }, 0.02, 3}),
     [](const auto& info) { return std::string(info.param.name); });
-
 
 /// Every output pixel must lie within the range of the finite input means (a weighted
 /// average creates no energy and no new extremes) and be finite.
@@ -128,7 +135,9 @@ TEST(Degenerate, ZeroVarianceRegionsStayExact)
     // equals, so the whole left half comes back bit for bit. The paper's symmetric test
     // may average a noisy neighbour in where that neighbour's own uncertainty covers the
     // difference; there only pixels whose window is all noise-free stay exact.
-    const TruthFn truth = [](int x, int y, int c) { return (x < 32 ? 0.25f : 1.0f) * (y < 12 ? 1.f : 2.f) * (1.f + 0.1f * c); };
+    const TruthFn truth = [](int x, int y, int c) {
+        return (x < 32 ? 0.25f : 1.0f) * (y < 12 ? 1.f : 2.f) * (1.f + 0.1f * c);
+    };
     testing::DrawFn draw = [](std::mt19937_64& rng, float mean) {
         return mean < 0.9f ? mean : testing::draw_exponential(rng, mean);
     };
@@ -141,7 +150,8 @@ TEST(Degenerate, ZeroVarianceRegionsStayExact)
             for (int y = 0; y < 24; ++y)
                 for (int x = 0; x < exact_columns; ++x) {
                     const std::size_t i = std::size_t(c) * 64 * 24 + std::size_t(y) * 64 + x;
-                    ASSERT_EQ(out[i], stats.mean[i]) << x << "," << y << " guard " << opt.firefly_ratio;
+                    ASSERT_EQ(out[i], stats.mean[i])
+                        << x << "," << y << " guard " << opt.firefly_ratio;
                 }
     }
 }
@@ -150,7 +160,8 @@ TEST(Degenerate, OneAndTwoSamplesGiveFiniteBoundedOutput)
 {
     for (int n : {1, 2}) {
         SCOPED_TRACE(n);
-        const StatisticsPlanes stats = testing::sample_statistics(32, 24, n, kRegions, testing::draw_exponential, 8);
+        const StatisticsPlanes stats =
+            testing::sample_statistics(32, 24, n, kRegions, testing::draw_exponential, 8);
         const std::vector<float> out = denoise(stats, 32);
         expect_finite_and_bounded(stats, out);
         if (n == 1) {
@@ -163,7 +174,8 @@ TEST(Degenerate, ConstantImagesAreUnchanged)
 {
     for (int n : {1, 2, 16}) {
         const StatisticsPlanes stats = testing::sample_statistics(
-            20, 10, n, [](int, int, int) { return 0.37f; }, [](std::mt19937_64&, float m) { return m; }, 1);
+            20, 10, n, [](int, int, int) { return 0.37f; },
+            [](std::mt19937_64&, float m) { return m; }, 1);
         EXPECT_EQ(denoise(stats, 20), stats.mean) << "n = " << n;
     }
 }
@@ -171,7 +183,8 @@ TEST(Degenerate, ConstantImagesAreUnchanged)
 TEST(Degenerate, ImagesSmallerThanTheKernel)
 {
     for (auto [w, h] : {std::pair{1, 1}, std::pair{3, 2}, std::pair{2, 7}}) {
-        const StatisticsPlanes stats = testing::sample_statistics(w, h, 8, kRegions, testing::draw_exponential, 3);
+        const StatisticsPlanes stats =
+            testing::sample_statistics(w, h, 8, kRegions, testing::draw_exponential, 3);
         const std::vector<float> out = denoise(stats, w);
         expect_finite_and_bounded(stats, out);
         if (w * h == 1) {
@@ -183,8 +196,11 @@ TEST(Degenerate, ImagesSmallerThanTheKernel)
 TEST(Degenerate, ExtremeDynamicRange)
 {
     // Truth from 1e-6 to 1e6 in decades across the image, exponential noise.
-    const TruthFn truth = [](int x, int, int c) { return std::pow(10.f, float(x / 4 - 6)) * (1.f + 0.1f * c); };
-    const StatisticsPlanes stats = testing::sample_statistics(52, 16, 16, truth, testing::draw_exponential, 6);
+    const TruthFn truth = [](int x, int, int c) {
+        return std::pow(10.f, float(x / 4 - 6)) * (1.f + 0.1f * c);
+    };
+    const StatisticsPlanes stats =
+        testing::sample_statistics(52, 16, 16, truth, testing::draw_exponential, 6);
     for (float ratio : {0.f, 16.f}) {
         DenoiseOptions opt;
         opt.firefly_ratio = ratio;
@@ -209,7 +225,8 @@ TEST(Consistency, ErrorFallsMonotonicallyTowardZeroWithSamples)
     };
     std::vector<double> errors;
     for (int n : {4, 16, 64, 256, 1024}) {
-        const StatisticsPlanes stats = testing::sample_statistics(64, 48, n, truth, testing::draw_exponential, 12);
+        const StatisticsPlanes stats =
+            testing::sample_statistics(64, 48, n, truth, testing::draw_exponential, 12);
         errors.push_back(testing::mse(denoise(stats, 64), 64, 48, 3, truth));
     }
     for (std::size_t k = 1; k < errors.size(); ++k)

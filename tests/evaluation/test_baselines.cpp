@@ -1,5 +1,5 @@
-// The evaluation's baselines (bench/evaluation/baselines): what each must do for the comparison with
-// statmc to mean anything.
+// The evaluation's baselines (bench/evaluation/baselines): what each must do for the comparison
+// with statmc to mean anything.
 #include <cmath>
 #include <random>
 #include <vector>
@@ -14,8 +14,10 @@ namespace {
 constexpr int kW = 48, kH = 32;
 
 struct Frame {
-    std::vector<float> mean = std::vector<float>(3 * kW * kH), variance = std::vector<float>(3 * kW * kH),
-                       out = std::vector<float>(3 * kW * kH), albedo = std::vector<float>(3 * kW * kH),
+    std::vector<float> mean = std::vector<float>(3 * kW * kH),
+                       variance = std::vector<float>(3 * kW * kH),
+                       out = std::vector<float>(3 * kW * kH),
+                       albedo = std::vector<float>(3 * kW * kH),
                        normal = std::vector<float>(3 * kW * kH, 0.5f);
     std::array<ConstPlane, 3> m, v;
     std::array<Plane, 3> o;
@@ -49,7 +51,8 @@ struct Frame {
         for (int c = 0; c < 3; ++c)
             for (int y = 0; y < kH; ++y)
                 for (int x = 0; x < kW; ++x) {
-                    const double d = img[std::size_t(c) * kW * kH + std::size_t(y) * kW + x] - truth(x);
+                    const double d =
+                        img[std::size_t(c) * kW * kH + std::size_t(y) * kW + x] - truth(x);
                     s += d * d;
                 }
         return s / (3.0 * kW * kH);

@@ -13,7 +13,8 @@
 
 namespace {
 
-OIIO::ImageBuf image(int w, int h, const std::vector<std::string>& channels, const std::string& name = "")
+OIIO::ImageBuf image(int w, int h, const std::vector<std::string>& channels,
+                     const std::string& name = "")
 {
     OIIO::ImageSpec spec(w, h, int(channels.size()), OIIO::TypeFloat);
     spec.channelnames = channels;
@@ -46,13 +47,15 @@ TEST(FrameMatch, SameChannelsInAnotherOrderMatch)
 
 TEST(FrameMatch, NamesTheChannelsOnlyOneSideHas)
 {
-    const OIIO::ImageBuf a = image(4, 3, {"R", "G", "B"}, "a.exr"), b = image(4, 3, {"R", "G", "A"}, "b.exr");
-    EXPECT_EQ(message_of({&a, &b}),
-              "render 1 (b.exr) and render 0 (a.exr) differ in channels: only in render 1 (b.exr): A; "
-              "only in render 0 (a.exr): B");
+    const OIIO::ImageBuf a = image(4, 3, {"R", "G", "B"}, "a.exr"),
+                         b = image(4, 3, {"R", "G", "A"}, "b.exr");
+    EXPECT_EQ(
+        message_of({&a, &b}),
+        "render 1 (b.exr) and render 0 (a.exr) differ in channels: only in render 1 (b.exr): A; "
+        "only in render 0 (a.exr): B");
     const OIIO::ImageBuf c = image(4, 3, {"R", "G", "B", "Z"});
-    EXPECT_EQ(message_of({&a, &c}),
-              "render 1 and render 0 (a.exr) differ in channels: only in render 1: Z; only in render 0 (a.exr): none");
+    EXPECT_EQ(message_of({&a, &c}), "render 1 and render 0 (a.exr) differ in channels: only in "
+                                    "render 1: Z; only in render 0 (a.exr): none");
 }
 
 TEST(FrameMatch, ResolutionAndOriginComeFirst)
@@ -60,8 +63,10 @@ TEST(FrameMatch, ResolutionAndOriginComeFirst)
     const OIIO::ImageBuf a = image(4, 3, {"R"}), b = image(4, 3, {"G"}), wide = image(5, 3, {"G"});
     OIIO::ImageBuf moved = image(4, 3, {"R"});
     moved.set_origin(1, 2);
-    EXPECT_EQ(message_of({&a, &a, &wide}), "render 2 and render 0 differ in resolution: 5x3 vs 4x3");
-    EXPECT_EQ(message_of({&a, &moved, &b}), "render 1 and render 0 differ in data window: origin (1, 2) vs (0, 0)");
+    EXPECT_EQ(message_of({&a, &a, &wide}),
+              "render 2 and render 0 differ in resolution: 5x3 vs 4x3");
+    EXPECT_EQ(message_of({&a, &moved, &b}),
+              "render 1 and render 0 differ in data window: origin (1, 2) vs (0, 0)");
 }
 
 }  // namespace

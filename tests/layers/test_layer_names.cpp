@@ -95,11 +95,14 @@ TEST(LayerNames, BounceAovsAreOneNamePartWithoutLeadingDigit)
     EXPECT_EQ(bounce_aov(BounceQuantity::LightWins, 3), "bounce3LightWins");
     EXPECT_EQ(bounce_aov(BounceQuantity::BsdfWins, 5), "bounce5BsdfWins");
     // Two levels with the statistic: <aov>.<stat>.<channel>.
-    EXPECT_EQ(channel_name(statistic_layer(bounce_aov(BounceQuantity::Luminance, 2), Statistic::BoxCoxMoment3), "Y"),
+    EXPECT_EQ(channel_name(statistic_layer(bounce_aov(BounceQuantity::Luminance, 2),
+                                           Statistic::BoxCoxMoment3),
+                           "Y"),
               "bounce2L.boxcoxM3.Y");
     EXPECT_THROW(bounce_aov(BounceQuantity::Luminance, -1), LayerError);
     for (int b = 0; b < 40; ++b)
-        for (auto q : {BounceQuantity::Luminance, BounceQuantity::LightWins, BounceQuantity::BsdfWins})
+        for (auto q :
+             {BounceQuantity::Luminance, BounceQuantity::LightWins, BounceQuantity::BsdfWins})
             EXPECT_TRUE(is_valid_aov_name(bounce_aov(q, b)));
 }
 

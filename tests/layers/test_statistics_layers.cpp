@@ -1,9 +1,9 @@
 // The layer contract end to end: planes -> ImageBuf -> EXR file -> ImageBuf -> view.
 #include <array>
 
-#include <gtest/gtest.h>
 #include <OpenImageIO/half.h>
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
 #include "statmc/layers/float_pixels.h"
 #include "statmc/layers/layer_error.h"
@@ -34,8 +34,8 @@ void expect_same_planes(const StatisticsView& expected, const StatisticsView& go
         for (int y = 0; y < expected.height; ++y)
             for (int x = 0; x < expected.width; ++x)
                 ASSERT_TRUE(same_bits(e(x, y), g(x, y)))
-                    << what << "[" << c << "] at (" << x << ", " << y << "): " << e(x, y)
-                    << " vs " << g(x, y);
+                    << what << "[" << c << "] at (" << x << ", " << y << "): " << e(x, y) << " vs "
+                    << g(x, y);
         ++compared;
     };
     compare(expected.count, got.count, "count", 0);
@@ -58,13 +58,29 @@ TEST(StatisticsLayers, ImageHasTheContractsChannelsAndAttributes)
     const test::GuideData guides = test::make_guides(kW, kH, 2);
     const OIIO::ImageBuf buf = make_statistics_image(stats, meta, guides.planes());
     const OIIO::ImageSpec& spec = buf.spec();
-    EXPECT_EQ(spec.channelnames,
-              (std::vector<std::string>{
-                  "R", "G", "B", "sampleCount.Y", "variance.R", "variance.G", "variance.B",
-                  "boxcoxMean.R", "boxcoxMean.G", "boxcoxMean.B", "boxcoxVariance.R",
-                  "boxcoxVariance.G", "boxcoxVariance.B", "boxcoxM3.R", "boxcoxM3.G",
-                  "boxcoxM3.B", "albedo.R", "albedo.G", "albedo.B", "normal.X", "normal.Y",
-                  "normal.Z", "depth.Z"}));
+    EXPECT_EQ(spec.channelnames, (std::vector<std::string>{"R",
+                                                           "G",
+                                                           "B",
+                                                           "sampleCount.Y",
+                                                           "variance.R",
+                                                           "variance.G",
+                                                           "variance.B",
+                                                           "boxcoxMean.R",
+                                                           "boxcoxMean.G",
+                                                           "boxcoxMean.B",
+                                                           "boxcoxVariance.R",
+                                                           "boxcoxVariance.G",
+                                                           "boxcoxVariance.B",
+                                                           "boxcoxM3.R",
+                                                           "boxcoxM3.G",
+                                                           "boxcoxM3.B",
+                                                           "albedo.R",
+                                                           "albedo.G",
+                                                           "albedo.B",
+                                                           "normal.X",
+                                                           "normal.Y",
+                                                           "normal.Z",
+                                                           "depth.Z"}));
     EXPECT_EQ(spec.alpha_channel, -1);
     EXPECT_EQ(spec.format, OIIO::TypeDesc::FLOAT);
     EXPECT_EQ(spec.get_int_attribute("statmc:formatVersion"), 1);
@@ -159,7 +175,9 @@ TEST(StatisticsLayers, ExtraAovsAreChecked)
     const StatisticsPlanes other = test::noisy_statistics(kW, kH, 8, 12);
     const StatisticsPlanes more = test::noisy_statistics(kW, kH, 9, 12);  // counts differ
     const StatisticsPlanes small = test::noisy_statistics(kW - 1, kH, 8, 12);
-    auto make = [&](std::vector<AovStatistics> aovs) { return make_statistics_image(beauty.view(), {}, {}, aovs); };
+    auto make = [&](std::vector<AovStatistics> aovs) {
+        return make_statistics_image(beauty.view(), {}, {}, aovs);
+    };
     EXPECT_NO_THROW(make({{"bounce0L", other.view()}}));
     EXPECT_THROW(make({{"bounce0L", more.view()}}), LayerError);
     EXPECT_THROW(make({{"bounce0L", small.view()}}), LayerError);
@@ -222,11 +240,11 @@ std::string error_of(const OIIO::ImageBuf& buf)
 TEST(StatisticsLayers, MissingLayersAreNamed)
 {
     const OIIO::ImageBuf full = make_statistics_image(test::noisy_statistics(kW, kH, 5, 9));
-    EXPECT_EQ(error_of(test::without_channels(full, {"sampleCount.Y"})).rfind(
-                  "missing layer sampleCount (channels sampleCount.Y)", 0),
+    EXPECT_EQ(error_of(test::without_channels(full, {"sampleCount.Y"}))
+                  .rfind("missing layer sampleCount (channels sampleCount.Y)", 0),
               0u);
-    EXPECT_EQ(error_of(test::without_channels(full, {"R", "G", "B"})).rfind(
-                  "missing layer beauty (channels R, G, B)", 0),
+    EXPECT_EQ(error_of(test::without_channels(full, {"R", "G", "B"}))
+                  .rfind("missing layer beauty (channels R, G, B)", 0),
               0u);
     EXPECT_EQ(error_of(test::without_channels(full, {"variance.G"})),
               "incomplete layer variance (channels variance.R, variance.G, variance.B): "
@@ -237,8 +255,7 @@ TEST(StatisticsLayers, MissingLayersAreNamed)
                          0),
               0u);
     // Without the variance the reader still finds the rest; require_statistic names it.
-    const OIIO::ImageBuf no_variance =
-        test::renamed_channels(full, "variance", "Variance");
+    const OIIO::ImageBuf no_variance = test::renamed_channels(full, "variance", "Variance");
     const StatisticsChannels ch = find_statistics(no_variance.spec());
     EXPECT_FALSE(ch.has(Statistic::Variance));
     try {
@@ -293,8 +310,7 @@ TEST(StatisticsLayers, GuidesAreFoundWithEitherSuffixSet)
                   0u)
             << e.what();
     }
-    EXPECT_THROW(find_guide_layer(test::without_channels(buf, {"albedo.G"}).spec(), "albedo",
-                                  true),
+    EXPECT_THROW(find_guide_layer(test::without_channels(buf, {"albedo.G"}).spec(), "albedo", true),
                  LayerError);
 }
 

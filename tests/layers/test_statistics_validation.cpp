@@ -22,10 +22,7 @@ std::vector<StatisticsProblem> problems_of(const OIIO::ImageBuf& buf,
     return validate_statistics(buf, find_statistics(buf.spec()), options);
 }
 
-TEST(StatisticsValidation, ValidStatisticsPass)
-{
-    EXPECT_TRUE(problems_of(valid_image()).empty());
-}
+TEST(StatisticsValidation, ValidStatisticsPass) { EXPECT_TRUE(problems_of(valid_image()).empty()); }
 
 TEST(StatisticsValidation, NegativeVarianceNamesChannelPixelAndCount)
 {

@@ -146,14 +146,14 @@ TEST(Compare, RefusesDifferentWindowsAndMissingChannels)
     OIIO::ImageBuf moved = flat(4, 4, 0.5f);
     moved.set_origin(1, 0);
     EXPECT_FALSE(compare(m, error, flat(4, 4, 0.5f), moved));
-    EXPECT_NE(error.geterror().find("differ in data window: origin (0, 0) vs (1, 0)"), std::string::npos)
+    EXPECT_NE(error.geterror().find("differ in data window: origin (0, 0) vs (1, 0)"),
+              std::string::npos)
         << error.geterror();
     OIIO::ImageBuf gray(OIIO::ImageSpec(4, 4, 1, OIIO::TypeFloat));
     OIIO::ImageBuf error2;
     EXPECT_FALSE(compare(m, error2, flat(4, 4, 0.5f), gray));
     const std::string message = error2.geterror();
     EXPECT_NE(message.find("the reference has no channel"), std::string::npos) << message;
-
 }
 
 }  // namespace

@@ -74,8 +74,8 @@ TEST(DenoiseOperator, BoxCoxStatisticsMatchCoreFilterBitwise)
     Frame f;
     OIIO::ImageBuf out;
     ASSERT_TRUE(denoise(out, f.image, options())) << out.geterror();
-    expect_rgb_equals(out, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {},
-                                               small_filter()));
+    expect_rgb_equals(out,
+                      test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter()));
     EXPECT_GT(changed_pixels(out, f.image), std::size_t(kW * kH / 2));
     EXPECT_EQ(out.spec().get_int_attribute("statmc:denoised"), 1);
 }
@@ -117,8 +117,8 @@ TEST(DenoiseOperator, VarianceOfTheMeanIsHonoured)
     view.variance_of_mean = true;
     const OIIO::ImageBuf out = denoise(layers::make_statistics_image(view), options());
     ASSERT_FALSE(out.has_error()) << out.geterror();
-    expect_rgb_equals(out, test::core_filtered(view, TestDomain::Untransformed, {},
-                                               small_filter()));
+    expect_rgb_equals(out,
+                      test::core_filtered(view, TestDomain::Untransformed, {}, small_filter()));
 }
 
 TEST(DenoiseOperator, RequestedGuidesAreUsed)
@@ -142,9 +142,8 @@ TEST(DenoiseOperator, OnlyTheAlbedoGuideWhenOnlyItIsAsked)
     opt.guides.albedo = GuideUse::Required;
     Guides albedo_only;
     albedo_only.albedo = f.guides.planes().albedo;
-    expect_rgb_equals(denoise(f.image, opt), test::core_filtered(f.stats.view(),
-                                                                 TestDomain::BoxCox, albedo_only,
-                                                                 small_filter()));
+    expect_rgb_equals(denoise(f.image, opt), test::core_filtered(f.stats.view(), TestDomain::BoxCox,
+                                                                 albedo_only, small_filter()));
 }
 
 TEST(DenoiseOperator, MissingRequiredGuideIsAnError)
@@ -160,9 +159,9 @@ TEST(DenoiseOperator, MissingRequiredGuideIsAnError)
     // Auto quietly goes without it and uses the normal alone.
     Guides normal_only;
     normal_only.normal = f.guides.planes().normal;
-    expect_rgb_equals(denoise(no_albedo, options(GuideUse::Auto)),
-                      test::core_filtered(f.stats.view(), TestDomain::BoxCox, normal_only,
-                                          small_filter()));
+    expect_rgb_equals(
+        denoise(no_albedo, options(GuideUse::Auto)),
+        test::core_filtered(f.stats.view(), TestDomain::BoxCox, normal_only, small_filter()));
     // A renamed guide layer is found under its new name.
     DenoiseImageOptions renamed = options(GuideUse::Required);
     renamed.guides.normal_layer = "N";
@@ -205,8 +204,8 @@ TEST(DenoiseOperator, RoiAtTheCornerAndDataWindowOffset)
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x) {
             const bool inside = x < 4 && y < 4;
-            const float want = inside ? full[std::size_t(y) * kW + x]
-                                      : channel_value(f.image, "R", x, y);
+            const float want =
+                inside ? full[std::size_t(y) * kW + x] : channel_value(f.image, "R", x, y);
             ASSERT_TRUE(same_bits(channel_value(out, "R", x - 7, y + 30), want))
                 << "(" << x << ", " << y << ")";
         }
@@ -250,8 +249,8 @@ TEST(DenoiseOperator, DstMayBeSrcAndThreadCountDoesNotMatter)
     ASSERT_TRUE(denoise(in_place, in_place, options(), {}, 0)) << in_place.geterror();
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x)
-            ASSERT_TRUE(same_bits(channel_value(in_place, "B", x, y),
-                                  channel_value(once, "B", x, y)));
+            ASSERT_TRUE(
+                same_bits(channel_value(in_place, "B", x, y), channel_value(once, "B", x, y)));
 }
 
 // Every channel's pixels bit for bit, the channel names and every header attribute.
@@ -259,7 +258,8 @@ void expect_identical_images(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b)
 {
     ASSERT_EQ(a.spec().channelnames, b.spec().channelnames);
     ASSERT_EQ(a.roi(), b.roi());
-    EXPECT_EQ(a.spec().serialize(OIIO::ImageSpec::SerialText), b.spec().serialize(OIIO::ImageSpec::SerialText));
+    EXPECT_EQ(a.spec().serialize(OIIO::ImageSpec::SerialText),
+              b.spec().serialize(OIIO::ImageSpec::SerialText));
     std::vector<float> pa(a.spec().image_pixels() * a.nchannels()), pb(pa.size());
     ASSERT_TRUE(a.get_pixels(a.roi(), OIIO::TypeDesc::FLOAT, pa.data()));
     ASSERT_TRUE(b.get_pixels(b.roi(), OIIO::TypeDesc::FLOAT, pb.data()));
@@ -281,10 +281,11 @@ TEST(DenoiseOperator, InPlaceGivesTheCopysImageForEveryInputForm)
         OIIO::ROI roi;
         DenoiseImageOptions opt;
     };
-    for (const Form& form : {Form{"float", OIIO::TypeDesc::FLOAT, {}, options()},
-                             Form{"half", OIIO::TypeDesc::HALF, {}, options()},
-                             Form{"float, ROI", OIIO::TypeDesc::FLOAT, corner, options()},
-                             Form{"float, diagnostics", OIIO::TypeDesc::FLOAT, {}, with_diagnostics}}) {
+    for (const Form& form :
+         {Form{"float", OIIO::TypeDesc::FLOAT, {}, options()},
+          Form{"half", OIIO::TypeDesc::HALF, {}, options()},
+          Form{"float, ROI", OIIO::TypeDesc::FLOAT, corner, options()},
+          Form{"float, diagnostics", OIIO::TypeDesc::FLOAT, {}, with_diagnostics}}) {
         SCOPED_TRACE(form.what);
         const OIIO::ImageBuf input = f.image.copy(form.type);
         const OIIO::ImageBuf copied = denoise(input, form.opt, form.roi);
@@ -351,10 +352,10 @@ TEST(DenoiseOperator, MissingStatisticsAndBadOptionsAreErrorsNotExceptions)
 
     DenoiseImageOptions boxcox = options();
     boxcox.test = TestDomainChoice::BoxCox;
-    const OIIO::ImageBuf plain = test::without_channels(
-        f.image, {"boxcoxMean.R", "boxcoxMean.G", "boxcoxMean.B", "boxcoxVariance.R",
-                  "boxcoxVariance.G", "boxcoxVariance.B", "boxcoxM3.R", "boxcoxM3.G",
-                  "boxcoxM3.B"});
+    const OIIO::ImageBuf plain =
+        test::without_channels(f.image, {"boxcoxMean.R", "boxcoxMean.G", "boxcoxMean.B",
+                                         "boxcoxVariance.R", "boxcoxVariance.G", "boxcoxVariance.B",
+                                         "boxcoxM3.R", "boxcoxM3.G", "boxcoxM3.B"});
     EXPECT_FALSE(denoise(out, plain, boxcox));
     EXPECT_EQ(out.geterror().rfind("missing layer boxcoxMean", 0), 0u);
 
@@ -377,7 +378,8 @@ TEST(DenoiseOperator, AnAovIsDenoisedUnderItsPrefix)
     opt.aov = "diffuse";
     const OIIO::ImageBuf out = denoise(image, opt);
     ASSERT_FALSE(out.has_error()) << out.geterror();
-    const auto expected = test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter());
+    const auto expected =
+        test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter());
     const std::size_t n = std::size_t(kW) * kH;
     for (int c = 0; c < 3; ++c)
         for (int y = 0; y < kH; ++y)
@@ -406,7 +408,8 @@ TEST(DenoiseOperator, OneChannelQuantityUsesY)
     const auto expected = test::core_filtered(stats.view(), TestDomain::BoxCox, {}, small_filter());
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x)
-            ASSERT_TRUE(same_bits(channel_value(out, "Y", x, y), expected[std::size_t(y) * kW + x]));
+            ASSERT_TRUE(
+                same_bits(channel_value(out, "Y", x, y), expected[std::size_t(y) * kW + x]));
 }
 
 TEST(DenoiseOperator, HalfInputIsDenoisedAsItsFloatConversion)

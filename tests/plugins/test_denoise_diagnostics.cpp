@@ -67,8 +67,8 @@ Expected expected_at(int x, int y, int split, double sigma_s)
     for (int dy = -kRadius; dy <= kRadius; ++dy)
         for (int dx = -kRadius; dx <= kRadius; ++dx) {
             const int xj = x + dx, yj = y + dy;
-            if (dx * dx + dy * dy > kRadius * kRadius || xj < 0 || yj < 0 || xj >= kW ||
-                yj >= kH || (xj < split) != (x < split))
+            if (dx * dx + dy * dy > kRadius * kRadius || xj < 0 || yj < 0 || xj >= kW || yj >= kH ||
+                (xj < split) != (x < split))
                 continue;
             const double w = std::exp(-(dx * dx + dy * dy) / (2 * sigma_s * sigma_s));
             members += 1;

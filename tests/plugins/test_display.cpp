@@ -30,9 +30,9 @@ float shown(float linear, const std::string& view, int channel = 0)
 
 TEST(Display, SrgbViewIsTheSrgbEncoding)
 {
-    EXPECT_NEAR(shown(0.18f, "sRGB"), 0.461356f, 1e-4f);  // docs/ecosystem.md §4
+    EXPECT_NEAR(shown(0.18f, "sRGB"), 0.461356f, 1e-4f);         // docs/ecosystem.md §4
     EXPECT_NEAR(shown(0.002f, "sRGB"), 12.92f * 0.002f, 1e-5f);  // the linear toe
-    EXPECT_NEAR(shown(0.18f, "sRGB", 3), 0.5f, 0.f);              // alpha untouched
+    EXPECT_NEAR(shown(0.18f, "sRGB", 3), 0.5f, 0.f);             // alpha untouched
     // The defaults are the config's display and view: sRGB / sRGB.
     const OIIO::ImageBuf out = display(gray_rgba(0.18f), {kConfig, "", ""});
     EXPECT_NEAR(out.getchannel(0, 0, 0, 1), 0.461356f, 1e-4f);

@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include "statmc/layers/exr_files.h"
 #include "statmc/layers/layer_names.h"
 #include "statmc/layers/statistics_layers.h"
 #include "statmc/merge/merge.h"
-#include "statmc/layers/exr_files.h"
 #include "temp_dir.h"
 #include "test_images.h"
 
@@ -125,10 +125,9 @@ TEST(Merge, VarianceAovsMergeWithoutBoxCox)
     const FarmRender farm;
     std::vector<OIIO::ImageBuf> tasks;
     for (const OIIO::ImageBuf& t : task_images(farm))
-        tasks.push_back(without_channels(t, {"boxcoxMean.R", "boxcoxMean.G", "boxcoxMean.B",
-                                             "boxcoxVariance.R", "boxcoxVariance.G",
-                                             "boxcoxVariance.B", "boxcoxM3.R", "boxcoxM3.G",
-                                             "boxcoxM3.B"}));
+        tasks.push_back(without_channels(
+            t, {"boxcoxMean.R", "boxcoxMean.G", "boxcoxMean.B", "boxcoxVariance.R",
+                "boxcoxVariance.G", "boxcoxVariance.B", "boxcoxM3.R", "boxcoxM3.G", "boxcoxM3.B"}));
     const OIIO::ImageBuf merged = merge(pointers(tasks));
     ASSERT_FALSE(merged.has_error()) << merged.geterror();
     EXPECT_LT(merged.spec().channelindex("boxcoxMean.R"), 0);
@@ -144,12 +143,16 @@ TEST(Merge, RefusesMismatchedResolutionAndDataWindow)
     const FarmRender farm;
     std::vector<OIIO::ImageBuf> tasks = task_images(farm);
     tasks[2] = image(StatisticsImage<3>(kW + 1, kH), 1, "wide.exr");
-    EXPECT_NE(merge_error(tasks).find("part 2 (" + path("wide.exr") + ") and part 0 (" + path("task0.exr") + ") differ in "
+    EXPECT_NE(merge_error(tasks).find("part 2 (" + path("wide.exr") + ") and part 0 (" +
+                                      path("task0.exr") +
+                                      ") differ in "
                                       "resolution: 10x7 vs 9x7"),
               std::string::npos);
     tasks = task_images(farm);
     tasks[1].set_origin(3, 0);
-    EXPECT_NE(merge_error(tasks).find("part 1 (" + path("task1.exr") + ") and part 0 (" + path("task0.exr") + ") differ in "
+    EXPECT_NE(merge_error(tasks).find("part 1 (" + path("task1.exr") + ") and part 0 (" +
+                                      path("task0.exr") +
+                                      ") differ in "
                                       "data window"),
               std::string::npos);
 }
@@ -158,14 +161,16 @@ TEST(Merge, RefusesMismatchedChannelsAndVersions)
 {
     const FarmRender farm;
     std::vector<OIIO::ImageBuf> tasks = task_images(farm);
-    tasks[1] = named(without_channels(tasks[1], {"boxcoxM3.R", "boxcoxM3.G", "boxcoxM3.B"}),
-                     "task1b.exr");
+    tasks[1] =
+        named(without_channels(tasks[1], {"boxcoxM3.R", "boxcoxM3.G", "boxcoxM3.B"}), "task1b.exr");
     EXPECT_NE(merge_error(tasks).find("part 1 (" + path("task1b.exr") + ") and part 0 (" +
                                       path("task0.exr") + ") differ in channels"),
               std::string::npos);
     tasks = task_images(farm);
     tasks[2].specmod().attribute(layers::attr::kFormatVersion, 0);
-    EXPECT_NE(merge_error(tasks).find("part 2 (" + path("task2.exr") + ") and part 0 (" + path("task0.exr") + ") differ in "
+    EXPECT_NE(merge_error(tasks).find("part 2 (" + path("task2.exr") + ") and part 0 (" +
+                                      path("task0.exr") +
+                                      ") differ in "
                                       "statmc:formatVersion: 0 vs 1"),
               std::string::npos);
 }
@@ -175,7 +180,8 @@ TEST(Merge, RefusesDenoisedInputsAndSingleImages)
     const FarmRender farm;
     std::vector<OIIO::ImageBuf> tasks = task_images(farm);
     tasks[1].specmod().attribute(layers::attr::kDenoised, 1);
-    EXPECT_NE(merge_error(tasks).find("part 1 (" + path("task1.exr") + ") is denoised (statmc:denoised=1)"),
+    EXPECT_NE(merge_error(tasks).find("part 1 (" + path("task1.exr") +
+                                      ") is denoised (statmc:denoised=1)"),
               std::string::npos);
     tasks.resize(1);
     EXPECT_NE(merge_error(tasks).find("merge needs at least 2 images, got 1"), std::string::npos);

@@ -96,7 +96,8 @@ TEST(PassesOperator, BrokenRenderPixelsCountAsZero)
     for (int c = 0; c < 3; ++c) {
         const double r0 = base(2, 3, c), r2 = base(2, 3, c) + 2.0 * step(2, c);
         const double mean = (r0 + r2) / 3.0;
-        const double var = ((r0 - mean) * (r0 - mean) + mean * mean + (r2 - mean) * (r2 - mean)) / 2.0;
+        const double var =
+            ((r0 - mean) * (r0 - mean) + mean * mean + (r2 - mean) * (r2 - mean)) / 2.0;
         const std::string name = std::string(1, "RGB"[c]);
         EXPECT_FLOAT_EQ(channel_value(stats, name, 2, 3), float(mean)) << name;
         EXPECT_FLOAT_EQ(channel_value(stats, "variance." + name, 2, 3), float(var)) << name;
@@ -136,8 +137,8 @@ TEST(PassesOperator, DenoisingThePassesTestsUntransformedWithTheirCount)
         planes.push_back(p);
     }
     const StatisticsPlanes direct = statistics_from_passes(planes, kW, kH);
-    const auto expected = test::core_filtered(direct.view(), TestDomain::Untransformed, {},
-                                              opt.filter);
+    const auto expected =
+        test::core_filtered(direct.view(), TestDomain::Untransformed, {}, opt.filter);
     const std::size_t n = std::size_t(kW) * kH;
     for (int c = 0; c < 3; ++c)
         for (int y = 0; y < kH; ++y)

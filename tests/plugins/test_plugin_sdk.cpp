@@ -96,10 +96,12 @@ TEST(PluginApi, RefusesAModuleOfAnotherInterfaceVersion)
 
 TEST(PluginApi, RefusesAModuleBuiltDifferently)
 {
-    const std::string module = std::string(STATMC_TEST_MODULE_DIR) + "/wrong_identity/wrong_identity.so";
+    const std::string module =
+        std::string(STATMC_TEST_MODULE_DIR) + "/wrong_identity/wrong_identity.so";
     PluginRegistry registry;
     const std::string message = error_of([&] { load_plugin(module, registry); });
-    EXPECT_NE(message.find(module + ": built differently from this statmc: "), std::string::npos) << message;
+    EXPECT_NE(message.find(module + ": built differently from this statmc: "), std::string::npos)
+        << message;
     EXPECT_TRUE(registry.operators().empty());
 }
 
@@ -114,11 +116,13 @@ TEST(PluginApi, BuildIdentityNamesEachDifference)
     other.oiio_version = 20500;
     other.cxx11_abi = 1 - host.cxx11_abi;
     other.sizeof_operator_spec = host.sizeof_operator_spec + 8;
-    const std::string oiio = std::to_string(OIIO_VERSION_MAJOR) + "." + std::to_string(OIIO_VERSION_MINOR) + "." +
+    const std::string oiio = std::to_string(OIIO_VERSION_MAJOR) + "." +
+                             std::to_string(OIIO_VERSION_MINOR) + "." +
                              std::to_string(OIIO_VERSION_PATCH);
     EXPECT_EQ(build_identity_mismatch(other, host),
-              "OpenImageIO 2.5.0 (this statmc: " + oiio + "), _GLIBCXX_USE_CXX11_ABI=" +
-                  std::to_string(other.cxx11_abi) + " (this statmc: " + std::to_string(host.cxx11_abi) +
+              "OpenImageIO 2.5.0 (this statmc: " + oiio +
+                  "), _GLIBCXX_USE_CXX11_ABI=" + std::to_string(other.cxx11_abi) +
+                  " (this statmc: " + std::to_string(host.cxx11_abi) +
                   "), sizeof(statmc::OperatorSpec) " + std::to_string(other.sizeof_operator_spec) +
                   " (this statmc: " + std::to_string(host.sizeof_operator_spec) + ")");
 }
@@ -127,12 +131,13 @@ TEST(PluginApi, ReportsUnloadableFilesAndDuplicates)
 {
     PluginRegistry registry;
     const std::string missing = std::string(STATMC_TEST_MODULE_DIR) + "/none.so";
-    EXPECT_NE(error_of([&] { load_plugin(missing, registry); })
-                  .find(missing + ": cannot load plugin: "),
-              std::string::npos);
+    EXPECT_NE(
+        error_of([&] { load_plugin(missing, registry); }).find(missing + ": cannot load plugin: "),
+        std::string::npos);
     load_plugin(kGood, registry);
-    EXPECT_NE(error_of([&] { load_plugin(kGood, registry); })
-                  .find("operator 'testscale' is already registered by " + kGood),
+    EXPECT_NE(error_of([&] {
+                  load_plugin(kGood, registry);
+              }).find("operator 'testscale' is already registered by " + kGood),
               std::string::npos);
     EXPECT_EQ(registry.operators().size(), 3u);  // testscale, testthrow, testthrowinplace
 }

@@ -25,7 +25,8 @@ public:
     {
         static int serial = 0;
         path_ = std::filesystem::temp_directory_path() /
-                ("statmc-render-test-" + tag + "-" + std::to_string(::getpid()) + "-" + std::to_string(serial++));
+                ("statmc-render-test-" + tag + "-" + std::to_string(::getpid()) + "-" +
+                 std::to_string(serial++));
         std::filesystem::create_directories(path_);
     }
     ~ScratchDir()
@@ -57,8 +58,8 @@ inline std::string shared_dir()
 /// An axis-aligned quad as a pbrt trianglemesh with its normal given explicitly.
 inline std::string quad(const std::string& p, const std::string& n)
 {
-    return "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3] \"point P\" [" + p + "] \"normal N\" [" + n +
-           " " + n + " " + n + " " + n + "]\n";
+    return "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3] \"point P\" [" + p +
+           "] \"normal N\" [" + n + " " + n + " " + n + " " + n + "]\n";
 }
 
 /// A grey room (floor, back wall, ceiling) lit by a small quad under the ceiling: light
@@ -66,11 +67,14 @@ inline std::string quad(const std::string& p, const std::string& n)
 inline std::string test_room(int maxdepth = 8)
 {
     return "LookAt 0 1 3  0 1 0  0 1 0\nCamera \"perspective\" \"float fov\" 60\n"
-           "Integrator \"path\" \"integer maxdepth\" " + std::to_string(maxdepth) + "\nWorldBegin\n"
+           "Integrator \"path\" \"integer maxdepth\" " +
+           std::to_string(maxdepth) +
+           "\nWorldBegin\n"
            "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [8 8 8]\n" +
            quad("-0.3 1.99 -0.3  0.3 1.99 -0.3  0.3 1.99 0.3  -0.3 1.99 0.3", "0 -1 0") +
            "AttributeEnd\nMaterial \"matte\" \"rgb Kd\" [0.7 0.7 0.7]\n" +
-           quad("-1 0 -1  1 0 -1  1 0 1  -1 0 1", "0 1 0") + quad("-1 2 -1  1 2 -1  1 2 1  -1 2 1", "0 -1 0") +
+           quad("-1 0 -1  1 0 -1  1 0 1  -1 0 1", "0 1 0") +
+           quad("-1 2 -1  1 2 -1  1 2 1  -1 2 1", "0 -1 0") +
            quad("-1 0 -1  1 0 -1  1 2 -1  -1 2 -1", "0 0 1") + "WorldEnd\n";
 }
 
@@ -82,8 +86,8 @@ struct Rendered {
 
 /// Renders `desc` at w×h with the progressive schedule to `spp`; the integrator takes the
 /// scene's maxdepth, and the film tracks what `integrator` needs.
-inline Rendered render_scene(const SceneDescription& desc, int w, int h, int spp, std::uint64_t seed, int threads,
-                             IntegratorSettings integrator = {})
+inline Rendered render_scene(const SceneDescription& desc, int w, int h, int spp,
+                             std::uint64_t seed, int threads, IntegratorSettings integrator = {})
 {
     Scene scene(desc);
     scene.enable_profiling(true);

@@ -14,10 +14,10 @@
 #include "statmc/core/filter.h"
 #include "statmc/layers/statistics_layers.h"
 
+#include "renderer_test_support.h"
 #include "statmc/render/camera.h"
 #include "statmc/render/exr_output.h"
 #include "statmc/render/render_loop.h"
-#include "renderer_test_support.h"
 #include "statmc/render/scene.h"
 #include "statmc/render/scene_parser.h"
 
@@ -34,8 +34,8 @@ std::unique_ptr<Film> render_room(const std::string& text)
     IntegratorSettings integrator;
     integrator.roulette.mode = RouletteMode::Acrr;
     integrator.mis.mode = MisMode::Selective;
-    return statmc::render::test::render_scene(parse_scene_string(text, "room.pbrt"), kW, kH, kSpp, kSeed, 0,
-                                              integrator)
+    return statmc::render::test::render_scene(parse_scene_string(text, "room.pbrt"), kW, kH, kSpp,
+                                              kSeed, 0, integrator)
         .film;
 }
 
@@ -58,8 +58,9 @@ TEST(BounceLayers, RoundTripThroughTheExrAndStatmcDenoise)
     const std::string text = statmc::render::test::test_room();
     const std::string scene = dir.write("room.pbrt", text);
     const std::string out = dir.file("out.exr"), den = dir.file("den.exr");
-    ASSERT_EQ(run(std::string("\"") + STATMC_RENDER_EXE + "\" \"" + scene + "\" -o \"" + out + "\" --resolution " +
-                  std::to_string(kW) + "x" + std::to_string(kH) + " --spp 16 --seed 7 --rr acrr --mis selective -q"),
+    ASSERT_EQ(run(std::string("\"") + STATMC_RENDER_EXE + "\" \"" + scene + "\" -o \"" + out +
+                  "\" --resolution " + std::to_string(kW) + "x" + std::to_string(kH) +
+                  " --spp 16 --seed 7 --rr acrr --mis selective -q"),
               0);
     const auto film = render_room(text);
     const BounceLayout& layout = film->bounces->layout();
@@ -74,11 +75,14 @@ TEST(BounceLayers, RoundTripThroughTheExrAndStatmcDenoise)
         ASSERT_TRUE(got.has_box_cox()) << aov;
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x) {
-                ASSERT_TRUE(same_bits(expected.mean[0](x, y), got.mean[0](x, y))) << aov << " " << x << "," << y;
+                ASSERT_TRUE(same_bits(expected.mean[0](x, y), got.mean[0](x, y)))
+                    << aov << " " << x << "," << y;
                 ASSERT_TRUE(same_bits(expected.variance[0](x, y), got.variance[0](x, y))) << aov;
                 ASSERT_TRUE(same_bits(expected.bc_mean[0](x, y), got.bc_mean[0](x, y))) << aov;
-                ASSERT_TRUE(same_bits(expected.bc_variance[0](x, y), got.bc_variance[0](x, y))) << aov;
-                ASSERT_TRUE(same_bits(expected.bc_moment3[0](x, y), got.bc_moment3[0](x, y))) << aov;
+                ASSERT_TRUE(same_bits(expected.bc_variance[0](x, y), got.bc_variance[0](x, y)))
+                    << aov;
+                ASSERT_TRUE(same_bits(expected.bc_moment3[0](x, y), got.bc_moment3[0](x, y)))
+                    << aov;
                 ASSERT_EQ(got.count(x, y), float(kSpp));
             }
     }
@@ -89,7 +93,8 @@ TEST(BounceLayers, RoundTripThroughTheExrAndStatmcDenoise)
     // statmc denoises bounce1L alone: as core's filter does with the film's guides, and
     // everything else is left as it was. (The paper's filter, as the renderer uses for
     // these quantities.)
-    ASSERT_EQ(run(std::string("\"") + STATMC_CLI_EXE + "\" \"" + out + "\" --denoise:aov=bounce1L:fireflies=0 -o \"" + den + "\""),
+    ASSERT_EQ(run(std::string("\"") + STATMC_CLI_EXE + "\" \"" + out +
+                  "\" --denoise:aov=bounce1L:fireflies=0 -o \"" + den + "\""),
               0);
     const OIIO::ImageBuf denoised = read(den);
     const statmc::StatisticsView q1 = BounceStatistics::quantity_view(groups, layout.luminance(1));
@@ -102,16 +107,20 @@ TEST(BounceLayers, RoundTripThroughTheExrAndStatmcDenoise)
     }
     std::vector<float> expected(n);
     statmc::filter(statmc::estimators_from_statistics(q1, statmc::TestDomain::BoxCox), guides,
-                   statmc::DenoiseOptions::paper(), {statmc::dense_plane(expected.data(), kW)}, {}, 1);
-    const int ch = denoised.spec().channelindex("bounce1L.Y"), r = denoised.spec().channelindex("R");
+                   statmc::DenoiseOptions::paper(), {statmc::dense_plane(expected.data(), kW)}, {},
+                   1);
+    const int ch = denoised.spec().channelindex("bounce1L.Y"),
+              r = denoised.spec().channelindex("R");
     const int other = denoised.spec().channelindex("bounce2L.Y");
     ASSERT_GE(ch, 0);
     int changed = 0;
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x) {
-            EXPECT_FLOAT_EQ(denoised.getchannel(x, y, 0, ch), expected[std::size_t(y) * kW + x]) << x << "," << y;
+            EXPECT_FLOAT_EQ(denoised.getchannel(x, y, 0, ch), expected[std::size_t(y) * kW + x])
+                << x << "," << y;
             // Only changes beyond float rounding count.
-            const float before = back.getchannel(x, y, 0, ch), after = denoised.getchannel(x, y, 0, ch);
+            const float before = back.getchannel(x, y, 0, ch),
+                        after = denoised.getchannel(x, y, 0, ch);
             changed += std::abs(after - before) > 1e-6f * std::max(std::abs(before), 1e-6f);
             EXPECT_EQ(denoised.getchannel(x, y, 0, r), back.getchannel(x, y, 0, r));
             EXPECT_EQ(denoised.getchannel(x, y, 0, other), back.getchannel(x, y, 0, other));

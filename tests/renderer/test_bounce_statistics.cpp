@@ -19,10 +19,10 @@ PathRecord example_record()
     r.throughput = {Rgb{1.f}, Rgb{0.5f}, Rgb{0.25f, 0.f, 0.25f}};
     r.roulette_weight = {1.f, 1.f, 2.f};  // roulette survived with p = 1/2 after vertex 1
     r.contributions = {
-        {0, T::Emission, 1.f, Rgb{1.f}},         // arrives at 0
-        {0, T::Light, 0.8f, Rgb{0.2f}},          // at 0, light wins
-        {0, T::Bsdf, 0.3f, Rgb{0.1f}},           // found at 1, light wins (w ≤ 0.5)
-        {1, T::Light, 0.4f, Rgb{0.05f}},         // at 1, BSDF wins
+        {0, T::Emission, 1.f, Rgb{1.f}},               // arrives at 0
+        {0, T::Light, 0.8f, Rgb{0.2f}},                // at 0, light wins
+        {0, T::Bsdf, 0.3f, Rgb{0.1f}},                 // found at 1, light wins (w ≤ 0.5)
+        {1, T::Light, 0.4f, Rgb{0.05f}},               // at 1, BSDF wins
         {1, T::Bsdf, 0.9f, Rgb{0.025f, 0.f, 0.025f}},  // found at 2, BSDF wins
     };
     return r;
@@ -97,7 +97,7 @@ TEST(BounceStatistics, BatchedDenoisingMatchesTheStatistics)
         EXPECT_FLOAT_EQ(p.luminance(0), 1.5f);
         EXPECT_FLOAT_EQ(p.luminance(2), 0.25f);
         EXPECT_EQ(p.luminance(3), 0.f);
-        EXPECT_EQ(p.luminance(7), 0.f);  // beyond the tracked ones: the last
+        EXPECT_EQ(p.luminance(7), 0.f);           // beyond the tracked ones: the last
         EXPECT_NEAR(p.luminance(1), 0.5f, 0.1f);  // mean of ≥ 16 uniforms: sd ≤ 0.072
         EXPECT_NEAR(p.light_wins(0), 0.5f, 1e-6f);
         EXPECT_FLOAT_EQ(p.bsdf_wins(0), 2.f);

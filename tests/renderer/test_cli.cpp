@@ -6,9 +6,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <thread>
 #include <fstream>
 #include <sstream>
+#include <thread>
 #include <vector>
 
 #include <fcntl.h>
@@ -31,7 +31,8 @@ struct ProgramRun {
 ProgramRun run(const std::string& args, const ScratchDir& dir)
 {
     const std::string log = dir.file("log.txt");
-    const std::string cmd = std::string("\"") + STATMC_RENDER_EXE + "\" " + args + " > \"" + log + "\" 2>&1";
+    const std::string cmd =
+        std::string("\"") + STATMC_RENDER_EXE + "\" " + args + " > \"" + log + "\" 2>&1";
     const int raw = std::system(cmd.c_str());
     std::ifstream in(log);
     std::stringstream ss;
@@ -53,7 +54,8 @@ TEST(Cli, WritesStatisticsLayersAndHeader)
 {
     ScratchDir dir("cli");
     const std::string scene = dir.write("s.pbrt", kScene);
-    const ProgramRun r = run("\"" + scene + "\" -o \"" + dir.file("out.exr") + "\" --seed 5 --quiet --denoise", dir);
+    const ProgramRun r =
+        run("\"" + scene + "\" -o \"" + dir.file("out.exr") + "\" --seed 5 --quiet --denoise", dir);
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_TRUE(r.output.empty()) << r.output;  // --quiet and no TTY: silent
     OIIO::ImageBuf img(dir.file("out.exr"));
@@ -61,8 +63,8 @@ TEST(Cli, WritesStatisticsLayersAndHeader)
     const OIIO::ImageSpec& spec = img.spec();
     EXPECT_EQ(spec.width, 32);
     EXPECT_EQ(spec.height, 16);
-    for (const char* ch : {"R", "G", "B", "variance.R", "boxcoxMean.G", "boxcoxVariance.B", "boxcoxM3.R",
-                           "sampleCount.Y", "albedo.R", "normal.X", "depth.Z"})
+    for (const char* ch : {"R", "G", "B", "variance.R", "boxcoxMean.G", "boxcoxVariance.B",
+                           "boxcoxM3.R", "sampleCount.Y", "albedo.R", "normal.X", "depth.Z"})
         EXPECT_GE(spec.channelindex(ch), 0) << ch;
     EXPECT_EQ(spec.get_int_attribute("statmc:spp"), 8);  // the scene's pixelsamples
     EXPECT_EQ(spec.get_int_attribute("statmc:seed"), 5);
@@ -80,10 +82,12 @@ TEST(Cli, WriteEveryIterationEndsWithTheSameImage)
     // accumulates: the final file equals a run that writes once.
     ScratchDir dir("cli-iter");
     const std::string scene = dir.write("s.pbrt", kScene);
-    const ProgramRun once = run("\"" + scene + "\" -o \"" + dir.file("once.exr") + "\" --iterations 3 --quiet", dir);
+    const ProgramRun once =
+        run("\"" + scene + "\" -o \"" + dir.file("once.exr") + "\" --iterations 3 --quiet", dir);
     ASSERT_EQ(once.status, 0) << once.output;
     const ProgramRun each = run("\"" + scene + "\" -o \"" + dir.file("each.exr") +
-                                "\" --iterations 3 --quiet --denoise --write-every-iteration", dir);
+                                    "\" --iterations 3 --quiet --denoise --write-every-iteration",
+                                dir);
     ASSERT_EQ(each.status, 0) << each.output;
     OIIO::ImageBuf a(dir.file("once.exr")), b(dir.file("each.exr"));
     ASSERT_TRUE(a.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << a.geterror();
@@ -96,14 +100,16 @@ TEST(Cli, WriteEveryIterationEndsWithTheSameImage)
     EXPECT_EQ(0, std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(float)));
     EXPECT_TRUE(std::filesystem::exists(dir.file("each.denoised.exr")));
     for (const auto& entry : std::filesystem::directory_iterator(dir.file("")))
-        EXPECT_EQ(entry.path().filename().string().find("statmc-tmp"), std::string::npos) << entry.path();
+        EXPECT_EQ(entry.path().filename().string().find("statmc-tmp"), std::string::npos)
+            << entry.path();
 }
 
 TEST(Cli, ResolutionAndSppOverrides)
 {
     ScratchDir dir("cli");
     const std::string scene = dir.write("s.pbrt", kScene);
-    const ProgramRun r = run("\"" + scene + "\" -o \"" + dir.file("o.exr") + "\" --resolution 8x6 --spp 12 -q", dir);
+    const ProgramRun r =
+        run("\"" + scene + "\" -o \"" + dir.file("o.exr") + "\" --resolution 8x6 --spp 12 -q", dir);
     ASSERT_EQ(r.status, 0) << r.output;
     OIIO::ImageBuf img(dir.file("o.exr"));
     ASSERT_TRUE(img.read(0, 0, true, OIIO::TypeDesc::FLOAT));
@@ -116,7 +122,8 @@ TEST(Cli, ResolutionAndSppOverrides)
 TEST(Cli, MalformedSceneFailsWithFileLineAndNoOutput)
 {
     ScratchDir dir("cli");
-    const std::string scene = dir.write("bad.pbrt", "WorldBegin\nShape \"sphere\" \"float radius\" [ 1\n");
+    const std::string scene =
+        dir.write("bad.pbrt", "WorldBegin\nShape \"sphere\" \"float radius\" [ 1\n");
     const ProgramRun r = run("\"" + scene + "\" -o \"" + dir.file("o.exr") + "\" -q", dir);
     EXPECT_NE(r.status, 0);
     EXPECT_NE(r.output.find("bad.pbrt:2:"), std::string::npos) << r.output;
@@ -128,8 +135,8 @@ TEST(Cli, HelpListsEveryOptionWithItsDefault)
     ScratchDir dir("cli");
     const ProgramRun r = run("--help", dir);
     EXPECT_EQ(r.status, 0);
-    for (const char* opt : {"--output", "--spp", "--iterations", "--resolution", "--seed", "--threads", "--maxdepth",
-                            "--denoise", "--quiet"})
+    for (const char* opt : {"--output", "--spp", "--iterations", "--resolution", "--seed",
+                            "--threads", "--maxdepth", "--denoise", "--quiet"})
         EXPECT_NE(r.output.find(opt), std::string::npos) << opt;
     EXPECT_NE(r.output.find("default"), std::string::npos);
 }
@@ -145,8 +152,8 @@ TEST(Cli, InterruptWritesWhatWasRenderedAsAValidExr)
         const int devnull = ::open("/dev/null", O_WRONLY);
         ::dup2(devnull, 1);
         ::dup2(devnull, 2);
-        ::execl(STATMC_RENDER_EXE, STATMC_RENDER_EXE, scene.c_str(), "-o", out.c_str(), "--spp", "10000000",
-                "--resolution", "64x64", "--threads", "1", static_cast<char*>(nullptr));
+        ::execl(STATMC_RENDER_EXE, STATMC_RENDER_EXE, scene.c_str(), "-o", out.c_str(), "--spp",
+                "10000000", "--resolution", "64x64", "--threads", "1", static_cast<char*>(nullptr));
         ::_exit(127);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(1500));

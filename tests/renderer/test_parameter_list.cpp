@@ -33,9 +33,10 @@ std::string error_of(F&& f)
 
 TEST(ParameterList, ParseStopsAtTheNextDirectiveAndCanonicalisesTypes)
 {
-    const auto tokens = tokenize("\"integer n\" 3 \"point3 P\" [0 1 2\n 3 4 5]\n\"color Kd\" [.5 .5 .5]\n"
-                                 "\"string s\" [\"a\"] \"bool b\" \"true\"\nWorldBegin\n",
-                                 "t.pbrt");
+    const auto tokens =
+        tokenize("\"integer n\" 3 \"point3 P\" [0 1 2\n 3 4 5]\n\"color Kd\" [.5 .5 .5]\n"
+                 "\"string s\" [\"a\"] \"bool b\" \"true\"\nWorldBegin\n",
+                 "t.pbrt");
     std::size_t pos = 0;
     const ParameterList ps = ParameterList::parse(tokens, pos, "t.pbrt", 1);
     ASSERT_LT(pos, tokens.size());
@@ -43,7 +44,7 @@ TEST(ParameterList, ParseStopsAtTheNextDirectiveAndCanonicalisesTypes)
     ASSERT_EQ(ps.parameters().size(), 5u);
     EXPECT_EQ(ps.parameters()[1].type, "point");  // point3
     EXPECT_EQ(ps.parameters()[1].numbers.size(), 6u);
-    EXPECT_EQ(ps.parameters()[2].type, "rgb");    // color
+    EXPECT_EQ(ps.parameters()[2].type, "rgb");  // color
     EXPECT_EQ(ps.parameters()[2].line, 3);
     EXPECT_EQ(ps.parameters()[3].strings, std::vector<std::string>{"a"});
     EXPECT_EQ(ps.parameters()[4].strings, std::vector<std::string>{"true"});
@@ -59,15 +60,19 @@ TEST(ParameterList, ParseErrorsNameFileAndLine)
               "t.pbrt:1: unknown parameter type 'quaternion' in \"quaternion q\"");
     EXPECT_EQ(error_of([] { parse("\"float f\" [1\n\"x\"]"); }),
               "t.pbrt:2: parameter \"float f\" expects numbers, got 'x'");
-    EXPECT_EQ(error_of([] { parse("\"string s\" [1]"); }), "t.pbrt:1: parameter \"string s\" expects quoted strings");
-    EXPECT_EQ(error_of([] { parse("\n\n\"float f\" [1 2"); }), "t.pbrt:3: missing ']' after parameter \"float f\"");
-    EXPECT_EQ(error_of([] { parse("\"float f\""); }), "t.pbrt:1: parameter \"float f\" has no value");
+    EXPECT_EQ(error_of([] { parse("\"string s\" [1]"); }),
+              "t.pbrt:1: parameter \"string s\" expects quoted strings");
+    EXPECT_EQ(error_of([] { parse("\n\n\"float f\" [1 2"); }),
+              "t.pbrt:3: missing ']' after parameter \"float f\"");
+    EXPECT_EQ(error_of([] { parse("\"float f\""); }),
+              "t.pbrt:1: parameter \"float f\" has no value");
 }
 
 TEST(ParameterList, TypedGettersReadOneValueOrNothing)
 {
-    ParameterList ps = parse("\"integer n\" [7] \"float f\" 0.25 \"bool b\" \"false\" \"string s\" \"x.exr\" "
-                             "\"rgb c\" [1 2 3]");
+    ParameterList ps =
+        parse("\"integer n\" [7] \"float f\" 0.25 \"bool b\" \"false\" \"string s\" \"x.exr\" "
+              "\"rgb c\" [1 2 3]");
     EXPECT_EQ(ps.get_int("n"), 7);
     EXPECT_EQ(ps.get_float("f"), 0.25f);
     EXPECT_EQ(ps.get_bool("b"), false);
@@ -85,11 +90,14 @@ TEST(ParameterList, TypedGettersReadOneValueOrNothing)
 
 TEST(ParameterList, WrongArityIsAnErrorAtTheParametersLine)
 {
-    EXPECT_EQ(error_of([] { parse("\n\"integer n\" [1 2]").get_int("n"); }), "t.pbrt:2: \"integer n\" needs one value");
-    EXPECT_EQ(error_of([] { parse("\"float f\" []").get_float("f"); }), "t.pbrt:1: \"float f\" needs one value");
+    EXPECT_EQ(error_of([] { parse("\n\"integer n\" [1 2]").get_int("n"); }),
+              "t.pbrt:2: \"integer n\" needs one value");
+    EXPECT_EQ(error_of([] { parse("\"float f\" []").get_float("f"); }),
+              "t.pbrt:1: \"float f\" needs one value");
     EXPECT_EQ(error_of([] { parse("\n\n\"string s\" [\"a\" \"b\"]").get_string("s"); }),
               "t.pbrt:3: \"string s\" needs one value");
-    EXPECT_EQ(error_of([] { parse("\"rgb c\" [1 2]").get_rgb("c"); }), "t.pbrt:1: \"rgb c\" needs three values");
+    EXPECT_EQ(error_of([] { parse("\"rgb c\" [1 2]").get_rgb("c"); }),
+              "t.pbrt:1: \"rgb c\" needs three values");
     EXPECT_EQ(error_of([] { parse("\"bool b\" \"yes\"").get_bool("b"); }),
               "t.pbrt:1: \"bool b\" must be \"true\" or \"false\"");
     EXPECT_EQ(error_of([] { parse("\"spectrum L\" [400 1 700 1]").get_rgb("L"); }),
@@ -98,7 +106,8 @@ TEST(ParameterList, WrongArityIsAnErrorAtTheParametersLine)
 
 TEST(ParameterList, RawAccessForArrays)
 {
-    ParameterList ps = parse("\"point P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2] \"float uv\" [0 0 1 0 0 1]");
+    ParameterList ps = parse(
+        "\"point P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2] \"float uv\" [0 0 1 0 0 1]");
     const Parameter* P = ps.find("point", "P");
     ASSERT_TRUE(P);
     EXPECT_EQ(P->numbers.size(), 9u);
@@ -112,8 +121,11 @@ TEST(ParameterList, RawAccessForArrays)
     EXPECT_FALSE(uv->used);
     const auto w = ps.unused_warnings("Shape \"trianglemesh\"");
     ASSERT_EQ(w.size(), 2u);
-    EXPECT_EQ(w[0], "t.pbrt:1: warning: unknown parameter \"integer indices\" of Shape \"trianglemesh\" ignored");
-    EXPECT_EQ(w[1], "t.pbrt:1: warning: unknown parameter \"float uv\" of Shape \"trianglemesh\" ignored");
+    EXPECT_EQ(w[0], "t.pbrt:1: warning: unknown parameter \"integer indices\" of Shape "
+                    "\"trianglemesh\" ignored");
+    EXPECT_EQ(
+        w[1],
+        "t.pbrt:1: warning: unknown parameter \"float uv\" of Shape \"trianglemesh\" ignored");
 }
 
 TEST(ParameterList, UnusedParametersWarnInFileOrder)
@@ -122,13 +134,16 @@ TEST(ParameterList, UnusedParametersWarnInFileOrder)
     EXPECT_EQ(ps.get_float("radius"), 1.f);
     const auto w = ps.unused_warnings("Shape \"sphere\"");
     ASSERT_EQ(w.size(), 2u);
-    EXPECT_EQ(w[0], "t.pbrt:1: warning: unknown parameter \"float wobble\" of Shape \"sphere\" ignored");
-    EXPECT_EQ(w[1], "t.pbrt:3: warning: unknown parameter \"integer n\" of Shape \"sphere\" ignored");
+    EXPECT_EQ(w[0],
+              "t.pbrt:1: warning: unknown parameter \"float wobble\" of Shape \"sphere\" ignored");
+    EXPECT_EQ(w[1],
+              "t.pbrt:3: warning: unknown parameter \"integer n\" of Shape \"sphere\" ignored");
 }
 
 TEST(ParameterList, IgnoreMarksUsedWithOrWithoutAWarning)
 {
-    ParameterList quiet = parse("\"bool trilinear\" \"true\" \"float maxanisotropy\" 8 \"float other\" 1");
+    ParameterList quiet =
+        parse("\"bool trilinear\" \"true\" \"float maxanisotropy\" 8 \"float other\" 1");
     EXPECT_TRUE(quiet.ignore({"trilinear", "maxanisotropy", "wrap"}).empty());
     const auto w = quiet.unused_warnings("Texture");
     ASSERT_EQ(w.size(), 1u);
@@ -137,11 +152,15 @@ TEST(ParameterList, IgnoreMarksUsedWithOrWithoutAWarning)
     // With a warning: one per parameter present, names in the order given, any type.
     ParameterList loud = parse("\"float screenwindow\" [-1 1 -1 1]\n\"float lensradius\" 0.1\n"
                                "\"integer lensradius\" 2\n");
-    const auto ignored = loud.ignore({"lensradius", "focaldistance", "screenwindow"}, "Camera parameter");
+    const auto ignored =
+        loud.ignore({"lensradius", "focaldistance", "screenwindow"}, "Camera parameter");
     ASSERT_EQ(ignored.size(), 3u);
-    EXPECT_EQ(ignored[0], "t.pbrt:2: warning: Camera parameter \"lensradius\" not supported, ignored");
-    EXPECT_EQ(ignored[1], "t.pbrt:3: warning: Camera parameter \"lensradius\" not supported, ignored");
-    EXPECT_EQ(ignored[2], "t.pbrt:1: warning: Camera parameter \"screenwindow\" not supported, ignored");
+    EXPECT_EQ(ignored[0],
+              "t.pbrt:2: warning: Camera parameter \"lensradius\" not supported, ignored");
+    EXPECT_EQ(ignored[1],
+              "t.pbrt:3: warning: Camera parameter \"lensradius\" not supported, ignored");
+    EXPECT_EQ(ignored[2],
+              "t.pbrt:1: warning: Camera parameter \"screenwindow\" not supported, ignored");
     EXPECT_TRUE(loud.unused_warnings("Camera").empty());
 }
 

@@ -35,20 +35,21 @@ void expect_near(Vec3 a, Vec3 b, float tol = 1e-5f)
     EXPECT_NEAR(a.z, b.z, tol);
 }
 
-const char* kTriangle = "Shape \"trianglemesh\" \"integer indices\" [0 1 2] \"point P\" [0 0 0 1 0 0 0 1 0]\n";
+const char* kTriangle =
+    "Shape \"trianglemesh\" \"integer indices\" [0 1 2] \"point P\" [0 0 0 1 0 0 0 1 0]\n";
 
 }  // namespace
 
 TEST(Parser, RenderSettingsFromFilmSamplerIntegratorCamera)
 {
-    const auto s = parse(
-        "LookAt 0 0 -5  0 0 0  0 1 0\n"
-        "Camera \"perspective\" \"float fov\" [ 30 ]\n"
-        "Film \"image\" \"integer xresolution\" [ 200 ] \"integer yresolution\" 100 \"string filename\" \"x.exr\"\n"
-        "Sampler \"sobol\" \"integer pixelsamples\" 32\n"
-        "Integrator \"path\" \"integer maxdepth\" [ 7 ]\n"
-        "PixelFilter \"triangle\" \"float xwidth\" 1\n"
-        "WorldBegin\nWorldEnd\n");
+    const auto s = parse("LookAt 0 0 -5  0 0 0  0 1 0\n"
+                         "Camera \"perspective\" \"float fov\" [ 30 ]\n"
+                         "Film \"image\" \"integer xresolution\" [ 200 ] \"integer yresolution\" "
+                         "100 \"string filename\" \"x.exr\"\n"
+                         "Sampler \"sobol\" \"integer pixelsamples\" 32\n"
+                         "Integrator \"path\" \"integer maxdepth\" [ 7 ]\n"
+                         "PixelFilter \"triangle\" \"float xwidth\" 1\n"
+                         "WorldBegin\nWorldEnd\n");
     EXPECT_EQ(s.camera.width, 200);
     EXPECT_EQ(s.camera.height, 100);
     EXPECT_FLOAT_EQ(s.camera.fov_degrees, 30.f);
@@ -77,17 +78,18 @@ TEST(Parser, TransformDirectivesComposeLikePbrt)
     EXPECT_FLOAT_EQ(s.shapes[0].radius, 0.5f);
     expect_near(s.shapes[1].center, {1, 2, 3});
     EXPECT_FLOAT_EQ(s.shapes[1].radius, 2.f);
-    expect_near(s.shapes[2].center, {1, 3, 3});  // rotated +x onto +y, then translated
-    expect_near(s.shapes[3].center, {11, 2, 3}); // the transform block was undone
-    expect_near(s.shapes[4].center, {0, 0, -4}); // Transform replaces the CTM
+    expect_near(s.shapes[2].center, {1, 3, 3});   // rotated +x onto +y, then translated
+    expect_near(s.shapes[3].center, {11, 2, 3});  // the transform block was undone
+    expect_near(s.shapes[4].center, {0, 0, -4});  // Transform replaces the CTM
 }
 
 TEST(Parser, TriangleMeshIsTransformedToWorldSpace)
 {
-    const auto s = parse(
-        "WorldBegin\nTranslate 0 0 5\n"
-        "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3] \"point P\" [0 0 0 1 0 0 1 1 0 0 1 0]"
-        " \"normal N\" [0 0 1 0 0 1 0 0 1 0 0 1] \"float uv\" [0 0 1 0 1 1 0 1]\nWorldEnd\n");
+    const auto s =
+        parse("WorldBegin\nTranslate 0 0 5\n"
+              "Shape \"trianglemesh\" \"integer indices\" [0 1 2 0 2 3] \"point P\" [0 0 0 1 0 0 1 "
+              "1 0 0 1 0]"
+              " \"normal N\" [0 0 1 0 0 1 0 0 1 0 0 1] \"float uv\" [0 0 1 0 1 1 0 1]\nWorldEnd\n");
     ASSERT_EQ(s.shapes.size(), 1u);
     const TriangleMesh& m = *s.shapes[0].mesh;
     ASSERT_EQ(m.positions.size(), 4u);
@@ -104,11 +106,10 @@ TEST(Parser, MaterialsNamedAndAnonymous)
         "MakeNamedMaterial \"red\" \"string type\" \"matte\" \"rgb Kd\" [0.5 0.1 0.1]\n"
         "MakeNamedMaterial \"m\" \"string type\" \"metal\" \"rgb eta\" [1 2 3] \"rgb k\" [4 5 6]"
         " \"bool remaproughness\" \"false\" \"float uroughness\" 0.1 \"float vroughness\" 0.2\n"
-        "NamedMaterial \"red\"\n" + std::string(kTriangle) +
-        "NamedMaterial \"m\"\n" + kTriangle +
-        "Material \"glass\" \"float index\" 1.33\n" + kTriangle +
-        "Material \"mirror\"\n" + kTriangle +
-        "Material \"metal\" \"float roughness\" 0.5\n" + kTriangle + "WorldEnd\n");
+        "NamedMaterial \"red\"\n" +
+        std::string(kTriangle) + "NamedMaterial \"m\"\n" + kTriangle +
+        "Material \"glass\" \"float index\" 1.33\n" + kTriangle + "Material \"mirror\"\n" +
+        kTriangle + "Material \"metal\" \"float roughness\" 0.5\n" + kTriangle + "WorldEnd\n");
     ASSERT_EQ(s.shapes.size(), 5u);
     const Material& red = s.materials[std::size_t(s.shapes[0].material)];
     EXPECT_EQ(red.type, Material::Type::Matte);
@@ -148,9 +149,11 @@ TEST(Parser, ImageMapTextureIsReadAndFlippedInV)
     img.setpixel(0, 0, red);
     img.setpixel(0, 1, blue);
     ASSERT_TRUE(img.write(dir.file("tex.exr")));
-    const auto s = parse("WorldBegin\nTexture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"tex.exr\"\n"
-                         "Material \"matte\" \"texture Kd\" \"t\"\n" + std::string(kTriangle) + "WorldEnd\n",
-                         dir.file(""));
+    const auto s = parse(
+        "WorldBegin\nTexture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"tex.exr\"\n"
+        "Material \"matte\" \"texture Kd\" \"t\"\n" +
+            std::string(kTriangle) + "WorldEnd\n",
+        dir.file(""));
     const Material& m = s.materials[std::size_t(s.shapes[0].material)];
     ASSERT_TRUE(m.kd_texture);
     // Row centres (lookups are bilinear with repeat wrapping): v = 0.25 is the bottom row.
@@ -162,12 +165,14 @@ TEST(Parser, ImageMapTextureIsReadAndFlippedInV)
 TEST(Parser, PlyMeshAsciiWithQuadsAndTransform)
 {
     ScratchDir dir("ply");
-    dir.write("q.ply",
-              "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-              "property float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\n"
-              "end_header\n0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n4 0 1 2 3\n");
-    const auto s = parse("WorldBegin\nScale 2 2 2\nShape \"plymesh\" \"string filename\" \"q.ply\"\nWorldEnd\n",
-                         dir.file(""));
+    dir.write("q.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float "
+                       "y\nproperty float z\n"
+                       "property float u\nproperty float v\nelement face 1\nproperty list uchar "
+                       "int vertex_indices\n"
+                       "end_header\n0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n4 0 1 2 3\n");
+    const auto s = parse(
+        "WorldBegin\nScale 2 2 2\nShape \"plymesh\" \"string filename\" \"q.ply\"\nWorldEnd\n",
+        dir.file(""));
     ASSERT_EQ(s.shapes.size(), 1u);
     const TriangleMesh& m = *s.shapes[0].mesh;
     EXPECT_EQ(m.indices.size(), 6u);  // the quad split in two
@@ -181,43 +186,57 @@ TEST(Parser, UnknownDirectiveAndParameterWarnWithFileAndLine)
                          "Shape \"sphere\" \"float radius\" 1 \"float wobble\" 3\nWorldEnd\n");
     // (The scene also has no Camera, which is a third warning.)
     ASSERT_EQ(s.warnings.size(), 3u);
-    EXPECT_NE(s.warnings[0].find("t.pbrt:2: warning: unknown directive 'Frobnicate'"), std::string::npos)
+    EXPECT_NE(s.warnings[0].find("t.pbrt:2: warning: unknown directive 'Frobnicate'"),
+              std::string::npos)
         << s.warnings[0];
-    EXPECT_NE(s.warnings[1].find("t.pbrt:3: warning: unknown parameter \"float wobble\""), std::string::npos)
+    EXPECT_NE(s.warnings[1].find("t.pbrt:3: warning: unknown parameter \"float wobble\""),
+              std::string::npos)
         << s.warnings[1];
     EXPECT_EQ(s.shapes.size(), 1u);  // parsing went on
 }
 
 TEST(Parser, MalformedInputNamesFileAndLine)
 {
-    EXPECT_NE(error_of("WorldBegin\n\nShape \"sphere\" \"float radius\" \"oops\n").find("t.pbrt:3:"),
-              std::string::npos);
+    EXPECT_NE(
+        error_of("WorldBegin\n\nShape \"sphere\" \"float radius\" \"oops\n").find("t.pbrt:3:"),
+        std::string::npos);
     EXPECT_NE(error_of("Transform [1 2 3]\n").find("t.pbrt:1: Transform needs"), std::string::npos)
         << error_of("Transform [1 2 3]\n");
-    EXPECT_NE(error_of("WorldBegin\nNamedMaterial \"nope\"\n").find("t.pbrt:2: NamedMaterial \"nope\" was not defined"),
+    EXPECT_NE(error_of("WorldBegin\nNamedMaterial \"nope\"\n")
+                  .find("t.pbrt:2: NamedMaterial \"nope\" was not defined"),
               std::string::npos);
     EXPECT_NE(error_of("WorldBegin\nAttributeEnd\n").find("t.pbrt:2:"), std::string::npos);
     EXPECT_NE(error_of("WorldBegin\nShape \"trianglemesh\" \"integer indices\" [0 1 7] "
-                       "\"point P\" [0 0 0 1 0 0 0 1 0]\n").find("t.pbrt:2: index 7 out of range"),
+                       "\"point P\" [0 0 0 1 0 0 0 1 0]\n")
+                  .find("t.pbrt:2: index 7 out of range"),
               std::string::npos);
-    EXPECT_NE(error_of("Film \"image\" \"integer xresolution\" [ 10 \n").find("t.pbrt:1:"), std::string::npos);
-    EXPECT_NE(error_of("Camera \"perspective\" \"float fov\" [ 30 ] @\n").find("t.pbrt:1: unexpected character"),
+    EXPECT_NE(error_of("Film \"image\" \"integer xresolution\" [ 10 \n").find("t.pbrt:1:"),
+              std::string::npos);
+    EXPECT_NE(error_of("Camera \"perspective\" \"float fov\" [ 30 ] @\n")
+                  .find("t.pbrt:1: unexpected character"),
               std::string::npos);
 }
 
 TEST(Parser, MissingFilesAndUnsupportedFeaturesAreClearErrors)
 {
-    const std::string ply = error_of("WorldBegin\n\nShape \"plymesh\" \"string filename\" \"missing.ply\"\n");
+    const std::string ply =
+        error_of("WorldBegin\n\nShape \"plymesh\" \"string filename\" \"missing.ply\"\n");
     EXPECT_NE(ply.find("t.pbrt:3:"), std::string::npos) << ply;
     EXPECT_NE(ply.find("missing.ply"), std::string::npos) << ply;
-    const std::string tex = error_of("WorldBegin\nTexture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"no.tga\"\n");
+    const std::string tex = error_of(
+        "WorldBegin\nTexture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"no.tga\"\n");
     EXPECT_NE(tex.find("t.pbrt:2:"), std::string::npos) << tex;
     EXPECT_NE(tex.find("no.tga"), std::string::npos) << tex;
-    EXPECT_NE(error_of("WorldBegin\nShape \"cone\"\n").find("t.pbrt:2: unsupported: Shape \"cone\""), std::string::npos);
-    EXPECT_NE(error_of("WorldBegin\nMaterial \"plastic\"\n").find("t.pbrt:2: unsupported: material \"plastic\""),
+    EXPECT_NE(
+        error_of("WorldBegin\nShape \"cone\"\n").find("t.pbrt:2: unsupported: Shape \"cone\""),
+        std::string::npos);
+    EXPECT_NE(error_of("WorldBegin\nMaterial \"plastic\"\n")
+                  .find("t.pbrt:2: unsupported: material \"plastic\""),
               std::string::npos);
-    EXPECT_NE(error_of("LightSource \"point\"\n").find("t.pbrt:1: unsupported: LightSource"), std::string::npos);
-    EXPECT_NE(error_of("Camera \"orthographic\"\n").find("t.pbrt:1: unsupported: Camera"), std::string::npos);
+    EXPECT_NE(error_of("LightSource \"point\"\n").find("t.pbrt:1: unsupported: LightSource"),
+              std::string::npos);
+    EXPECT_NE(error_of("Camera \"orthographic\"\n").find("t.pbrt:1: unsupported: Camera"),
+              std::string::npos);
     EXPECT_NE(error_of("WorldBegin\nAreaLightSource \"diffuse\" \"spectrum L\" [400 1 700 1]\n")
                   .find("t.pbrt:2: unsupported"),
               std::string::npos);
@@ -244,10 +263,11 @@ TEST(Parser, PlyMeshBinaryBothEndiannesses)
             out += big ? b[n - 1 - i] : b[i];
     };
     for (const bool big : {false, true}) {
-        std::string ply = std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
-                          " 1.0\ncomment test\nelement vertex 3\nproperty double x\nproperty double y\n"
-                          "property double z\nproperty float nx\nproperty float ny\nproperty float nz\n"
-                          "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+        std::string ply =
+            std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
+            " 1.0\ncomment test\nelement vertex 3\nproperty double x\nproperty double y\n"
+            "property double z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+            "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
         const double pos[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 2, 0}};
         for (const auto& v : pos) {
             for (double c : v)
@@ -261,7 +281,9 @@ TEST(Parser, PlyMeshBinaryBothEndiannesses)
             put(ply, &i, sizeof i, big);
         ScratchDir dir("plybin");
         dir.write("t.ply", ply);
-        const auto s = parse("WorldBegin\nShape \"plymesh\" \"string filename\" \"t.ply\"\nWorldEnd\n", dir.file(""));
+        const auto s =
+            parse("WorldBegin\nShape \"plymesh\" \"string filename\" \"t.ply\"\nWorldEnd\n",
+                  dir.file(""));
         ASSERT_EQ(s.shapes.size(), 1u);
         const TriangleMesh& m = *s.shapes[0].mesh;
         ASSERT_EQ(m.positions.size(), 3u);
@@ -277,7 +299,8 @@ TEST(Parser, TruncatedPlyIsAnError)
     ScratchDir dir("plybad");
     dir.write("t.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
                        "property float y\nproperty float z\nend_header\nabc");
-    const std::string e = error_of("WorldBegin\nShape \"plymesh\" \"string filename\" \"t.ply\"\n", dir.file(""));
+    const std::string e =
+        error_of("WorldBegin\nShape \"plymesh\" \"string filename\" \"t.ply\"\n", dir.file(""));
     EXPECT_NE(e.find("t.pbrt:2:"), std::string::npos) << e;
     EXPECT_NE(e.find("truncated"), std::string::npos) << e;
 }

@@ -10,10 +10,10 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "renderer_test_support.h"
 #include "statmc/render/camera.h"
 #include "statmc/render/exr_output.h"
 #include "statmc/render/render_loop.h"
-#include "renderer_test_support.h"
 #include "statmc/render/scene.h"
 #include "statmc/render/scene_parser.h"
 
@@ -26,13 +26,18 @@ namespace {
 // A diffuse plane of albedo ρ inside a closed box whose walls all emit L (and reflect
 // nothing). Every point of the plane sees emitters over its whole upper hemisphere, so
 // the radiance it reflects is ρ·L exactly, and the camera sees only the plane.
-std::string furnace_scene(float L, const std::string& material, const std::string& shape, int maxdepth = 5)
+std::string furnace_scene(float L, const std::string& material, const std::string& shape,
+                          int maxdepth = 5)
 {
     const std::string l = std::to_string(L);
     std::string s = "LookAt 0 1 0  0 0 0  0 0 1\nCamera \"perspective\" \"float fov\" 40\n"
                     "Film \"image\" \"integer xresolution\" 16 \"integer yresolution\" 16\n"
-                    "Integrator \"path\" \"integer maxdepth\" " + std::to_string(maxdepth) + "\nWorldBegin\n"
-                    "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [" + l + " " + l + " " + l + "]\n"
+                    "Integrator \"path\" \"integer maxdepth\" " +
+                    std::to_string(maxdepth) +
+                    "\nWorldBegin\n"
+                    "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [" +
+                    l + " " + l + " " + l +
+                    "]\n"
                     "Material \"matte\" \"rgb Kd\" [0 0 0]\n";
     // Six walls of the cube [-20, 20]^3, normals pointing inwards.
     s += quad("-20 -20 -20  20 -20 -20  20 20 -20  -20 20 -20", "0 0 1");
@@ -72,7 +77,8 @@ TEST(Render, MirrorAndGlassVanishInAFurnace)
     for (float v : pm.mean)
         EXPECT_FLOAT_EQ(v, 1.5f);
     const auto glass = parse_scene_string(
-        furnace_scene(1.5f, "Material \"glass\"", "Translate 0 -3 0\nShape \"sphere\" \"float radius\" 2\n", 65),
+        furnace_scene(1.5f, "Material \"glass\"",
+                      "Translate 0 -3 0\nShape \"sphere\" \"float radius\" 2\n", 65),
         "glass.pbrt");
     const auto rg = render_scene(glass, 16, 16, 64, 3, 0);
     const auto pg = rg.film->stats.planes();
@@ -92,9 +98,11 @@ TEST(Render, SphereLightOnDiffusePlaneMatchesClosedForm)
     const std::string scene =
         "LookAt 0 1 0  0 0 0  0 0 1\nCamera \"perspective\" \"float fov\" 50\n"
         "Integrator \"path\" \"integer maxdepth\" 1\nWorldBegin\n"
-        "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 4 4]\nMaterial \"matte\" \"rgb Kd\" [0 0 0]\n"
+        "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 4 4]\nMaterial \"matte\" \"rgb "
+        "Kd\" [0 0 0]\n"
         "Translate 0.3 3 0.2\nShape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
-        "Material \"matte\" \"rgb Kd\" [0.5 0.5 0.5]\n" + kPlane + "WorldEnd\n";
+        "Material \"matte\" \"rgb Kd\" [0.5 0.5 0.5]\n" +
+        kPlane + "WorldEnd\n";
     const auto desc = parse_scene_string(scene, "sphere.pbrt");
     constexpr int kW = 12, kH = 12;
     const auto result = render_scene(desc, kW, kH, 256, 9, 0);
@@ -104,7 +112,8 @@ TEST(Render, SphereLightOnDiffusePlaneMatchesClosedForm)
         for (int x = 0; x < kW; ++x)
             for (int j = 0; j < 8; ++j)
                 for (int i = 0; i < 8; ++i) {
-                    const Ray ray = camera.generate(float(x) + (float(i) + 0.5f) / 8, float(y) + (float(j) + 0.5f) / 8);
+                    const Ray ray = camera.generate(float(x) + (float(i) + 0.5f) / 8,
+                                                    float(y) + (float(j) + 0.5f) / 8);
                     const float t = -ray.origin.y / ray.direction.y;
                     const Vec3 p = ray.origin + ray.direction * t;
                     const Vec3 v = c - p;
@@ -115,7 +124,8 @@ TEST(Render, SphereLightOnDiffusePlaneMatchesClosedForm)
     const auto p = result.film->stats.planes();
     const auto [mean, se] = region_mean(p, 0);
     // 4 standard errors: false-positive rate ≈ 6.3e-5 for a correct renderer.
-    EXPECT_LT(std::abs(mean - truth), 4 * se) << "mean " << mean << " truth " << truth << " se " << se;
+    EXPECT_LT(std::abs(mean - truth), 4 * se)
+        << "mean " << mean << " truth " << truth << " se " << se;
     EXPECT_LT(se, 0.01 * truth);
 }
 
@@ -123,7 +133,8 @@ TEST(Render, DiffusePlaneInUniformEmitterMatchesClosedForm)
 {
     const float L = 2.f;
     const float rho[3] = {0.2f, 0.5f, 0.8f};
-    const auto desc = parse_scene_string(furnace_scene(L, "Material \"matte\" \"rgb Kd\" [0.2 0.5 0.8]", kPlane), "furnace.pbrt");
+    const auto desc = parse_scene_string(
+        furnace_scene(L, "Material \"matte\" \"rgb Kd\" [0.2 0.5 0.8]", kPlane), "furnace.pbrt");
     const auto r = render_scene(desc, 16, 16, 64, 7, 0);
     // The stored statistics (as written to the EXR): per-pixel mean, per-sample
     // variance s², count n. The region mean's standard error is sqrt(Σ s²/n) / m.
@@ -135,7 +146,8 @@ TEST(Render, DiffusePlaneInUniformEmitterMatchesClosedForm)
         // 4 standard errors: a correct renderer fails this with probability ≈ 6.3e-5 per
         // channel (two-sided normal tail), ≈ 2e-4 for the three; the seed is fixed, so
         // the outcome is in fact deterministic.
-        EXPECT_LT(std::abs(mean - truth), 4 * se) << "channel " << c << " mean " << mean << " truth " << truth;
+        EXPECT_LT(std::abs(mean - truth), 4 * se)
+            << "channel " << c << " mean " << mean << " truth " << truth;
         EXPECT_LT(se, 0.01 * truth);  // and the test has power: 1% resolution
     }
 }
@@ -150,7 +162,8 @@ TEST(Render, WhiteFurnaceFixtureMatchesClosedForm)
     // of the repository: a missing file is a failure, never a skip.
     const std::string dir = std::string(STATMC_RENDER_FIXTURES_DIR) + "/white-furnace/";
     for (const char* name : {"scene.pbrt", "box.ply", "albedo.exr"})
-        ASSERT_TRUE(std::filesystem::is_regular_file(dir + name)) << "renderer test fixture missing: " << dir + name;
+        ASSERT_TRUE(std::filesystem::is_regular_file(dir + name))
+            << "renderer test fixture missing: " << dir + name;
     const auto desc = parse_scene_file(dir + "scene.pbrt");
     EXPECT_TRUE(desc.warnings.empty()) << desc.warnings.front();
     ASSERT_EQ(desc.shapes.size(), 2u);  // the box, the sphere
@@ -207,8 +220,8 @@ TEST(Render, WhiteFurnaceFixtureMatchesClosedForm)
             // the truth.
             EXPECT_GT(se, 0.0);
             EXPECT_LT(std::abs(mean - truth), 4 * se)
-                << (g == 0 ? "sphere" : "walls") << " channel " << c << ": mean " << mean << " truth " << truth
-                << " se " << se;
+                << (g == 0 ? "sphere" : "walls") << " channel " << c << ": mean " << mean
+                << " truth " << truth << " se " << se;
             EXPECT_LT(se, 0.01 * truth) << (g == 0 ? "sphere" : "walls") << " channel " << c;
         }
 }
@@ -222,7 +235,8 @@ TEST(Render, VarianceLayersAreCalibrated)
     // (a correct renderer fails with probability ≈ 1e-4; the seed is fixed).
     const float L = 2.f;
     const float rho[3] = {0.2f, 0.5f, 0.8f};
-    const auto desc = parse_scene_string(furnace_scene(L, "Material \"matte\" \"rgb Kd\" [0.2 0.5 0.8]", kPlane), "furnace.pbrt");
+    const auto desc = parse_scene_string(
+        furnace_scene(L, "Material \"matte\" \"rgb Kd\" [0.2 0.5 0.8]", kPlane), "furnace.pbrt");
     const auto r = render_scene(desc, 16, 16, 64, 11, 0);
     const statmc::StatisticsPlanes p = r.film->stats.planes();
     const std::size_t m = std::size_t(p.width) * p.height;
@@ -231,7 +245,8 @@ TEST(Render, VarianceLayersAreCalibrated)
         for (std::size_t i = 0; i < m; ++i) {
             ASSERT_EQ(p.count[i], 64.f);
             ASSERT_GT(p.variance[c * m + i], 0.f);
-            z.push_back((p.mean[c * m + i] - rho[c] * L) / std::sqrt(p.variance[c * m + i] / p.count[i]));
+            z.push_back((p.mean[c * m + i] - rho[c] * L) /
+                        std::sqrt(p.variance[c * m + i] / p.count[i]));
         }
     double mean = 0, var = 0;
     for (double v : z)
@@ -248,8 +263,10 @@ TEST(Render, VarianceLayersAreCalibrated)
 TEST(Render, BitwiseIdenticalForAnyThreadCountAndSeedDependent)
 {
     const std::string shared = statmc::render::test::shared_dir();
-    const auto desc = shared.empty() ? parse_scene_string(furnace_scene(1.f, "Material \"matte\"", kPlane), "f.pbrt")
-                                     : parse_scene_file(shared + "/scenes/cornell-box/scene.pbrt");
+    const auto desc =
+        shared.empty()
+            ? parse_scene_string(furnace_scene(1.f, "Material \"matte\"", kPlane), "f.pbrt")
+            : parse_scene_file(shared + "/scenes/cornell-box/scene.pbrt");
     auto pixels = [&](std::uint64_t seed, int threads) {
         const auto r = render_scene(desc, 24, 20, 12, seed, threads);
         OutputInfo info;
@@ -315,8 +332,8 @@ TEST(Render, CornellBoxAgreesWithTungstenReference)
                 theirs /= double(ref_size) * ref_size;
                 const double se = std::sqrt(var) / n;
                 EXPECT_LT(std::abs(ours - theirs), 0.03 * theirs + 4 * se)
-                    << "region (" << rx << ", " << ry << ") channel " << c << ": ours " << ours << " Tungsten "
-                    << theirs << " (se " << se << ")";
+                    << "region (" << rx << ", " << ry << ") channel " << c << ": ours " << ours
+                    << " Tungsten " << theirs << " (se " << se << ")";
             }
 }
 
@@ -389,11 +406,12 @@ TEST(Render, MaxdepthFollowsPbrt)
         const auto r = render_scene(desc, 8, 8, 16, 4, 0);
         return region_mean(r.film->stats.planes(), 1).first;
     };
-    const std::string furnace = furnace_scene(2.f, "Material \"matte\" \"rgb Kd\" [0.5 0.5 0.5]", kPlane);
+    const std::string furnace =
+        furnace_scene(2.f, "Material \"matte\" \"rgb Kd\" [0.5 0.5 0.5]", kPlane);
     EXPECT_EQ(mean_of(furnace, 0), 0.0);
     EXPECT_NEAR(mean_of(furnace, 1), 1.0, 0.05);
     const std::string mirror = furnace_scene(2.f, "Material \"mirror\" \"rgb Kr\" [1 1 1]", kPlane);
-    EXPECT_EQ(mean_of(mirror, 0), 0.0);       // the mirror itself does not emit
+    EXPECT_EQ(mean_of(mirror, 0), 0.0);               // the mirror itself does not emit
     EXPECT_FLOAT_EQ(float(mean_of(mirror, 1)), 2.f);  // the emitter seen through it
 }
 
@@ -403,10 +421,11 @@ TEST(Render, AreaLightsAreOneSidedUnlessTwoSided)
     // pbrt, unless the light says "bool twosided" true; ReverseOrientation has no say
     // when normals are given (the triangle normal follows N), but flips it otherwise.
     auto seen = [](const std::string& light, const std::string& shape) {
-        const std::string text = "LookAt 0 0 -3  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 10\n"
-                                 "Integrator \"path\" \"integer maxdepth\" 1\nWorldBegin\n"
-                                 "AreaLightSource \"diffuse\" \"rgb L\" [1 1 1] " + light + "\n" + shape +
-                                 "WorldEnd\n";
+        const std::string text =
+            "LookAt 0 0 -3  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 10\n"
+            "Integrator \"path\" \"integer maxdepth\" 1\nWorldBegin\n"
+            "AreaLightSource \"diffuse\" \"rgb L\" [1 1 1] " +
+            light + "\n" + shape + "WorldEnd\n";
         const auto desc = parse_scene_string(text, "l.pbrt");
         const auto r = render_scene(desc, 4, 4, 4, 1, 0);
         return region_mean(r.film->stats.planes(), 0).first;

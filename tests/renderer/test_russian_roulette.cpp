@@ -6,9 +6,9 @@
 #include <limits>
 #include <vector>
 
+#include "renderer_test_support.h"
 #include "statmc/render/camera.h"
 #include "statmc/render/integrator.h"
-#include "renderer_test_support.h"
 #include "statmc/render/russian_roulette.h"
 #include "statmc/render/scene.h"
 #include "statmc/render/scene_parser.h"
@@ -50,8 +50,8 @@ TEST(RussianRoulette, AcrrSurvivalFollowsTheApproximateContribution)
 
 TEST(RussianRoulette, AcrrRefusesUnusableEstimates)
 {
-    EXPECT_FALSE(acrr_survival(0.5f, 0.4f, 0.f));    // L̂_0 = 0: no division by zero
-    EXPECT_FALSE(acrr_survival(0.5f, 0.4f, -1.f));   // non-positive
+    EXPECT_FALSE(acrr_survival(0.5f, 0.4f, 0.f));   // L̂_0 = 0: no division by zero
+    EXPECT_FALSE(acrr_survival(0.5f, 0.4f, -1.f));  // non-positive
     EXPECT_FALSE(acrr_survival(0.5f, 0.4f, kNaN));
     EXPECT_FALSE(acrr_survival(0.5f, 0.4f, kInf));
     EXPECT_FALSE(acrr_survival(0.5f, kNaN, 1.f));
@@ -76,12 +76,13 @@ TEST(RussianRoulette, UnusableEstimatesRenderExactlyAsClassic)
     const PathIntegrator plain(scene, classic), steered(scene, acrr);
     const BounceLayout layout{5, 0};
     auto differing = [&](const std::vector<float>& values) {
-        return statmc::render::test::differing_samples(plain, steered, camera, {values.data(), &layout}, 3);
+        return statmc::render::test::differing_samples(plain, steered, camera,
+                                                       {values.data(), &layout}, 3);
     };
     EXPECT_EQ(differing({kNaN, kNaN, kNaN, kNaN, kNaN}), 0);
     EXPECT_EQ(differing({0.f, 1.f, 1.f, 1.f, 1.f}), 0);
     EXPECT_EQ(differing({-1.f, 1.f, 1.f, 1.f, 1.f}), 0);
-    EXPECT_EQ(differing({1.f, kNaN, kNaN, kNaN, kNaN}), 0);  // every decision falls back
+    EXPECT_EQ(differing({1.f, kNaN, kNaN, kNaN, kNaN}), 0);   // every decision falls back
     EXPECT_GT(differing({1.f, 0.5f, 0.4f, 0.3f, 0.2f}), 10);  // ACRR does decide otherwise
 }
 
@@ -96,7 +97,9 @@ TEST(RussianRoulette, FirstIterationHasNoEstimatesAndIsClassic)
     steered.roulette.mode = RouletteMode::Acrr;
     steered.mis.mode = MisMode::Selective;
     auto means = [&](int spp, const IntegratorSettings& s) {
-        return statmc::render::test::render_scene(desc, 16, 16, spp, 9, 0, s).film->stats.planes().mean;
+        return statmc::render::test::render_scene(desc, 16, 16, spp, 9, 0, s)
+            .film->stats.planes()
+            .mean;
     };
     EXPECT_EQ(means(4, classic), means(4, steered));
     EXPECT_NE(means(8, classic), means(8, steered));

@@ -2,9 +2,9 @@
 // means of independent renders (different seeds) agree in Welch's test.
 //
 // Bounds. Each render has 1024 spp (Cornell: iterations 4, 4, 8, ..., 512, so ACRR steers
-// 8 of 9 iterations) or 2048 spp (Veach MIS); a region averages ≥ 64 pixels, so its mean is normal to a very good
-// approximation and z = (m_a − m_b) / sqrt(se_a² + se_b²) (se from the variance layers) is
-// standard normal. The bound |z| < 4.5 has a two-sided tail of 6.8e-6 per region and
+// 8 of 9 iterations) or 2048 spp (Veach MIS); a region averages ≥ 64 pixels, so its mean is normal
+// to a very good approximation and z = (m_a − m_b) / sqrt(se_a² + se_b²) (se from the variance
+// layers) is standard normal. The bound |z| < 4.5 has a two-sided tail of 6.8e-6 per region and
 // channel; over the 48 (Cornell) or 54 (Veach MIS) comparisons of a test the union bound
 // gives a false-positive rate ≤ 3.7e-4. Seeds are fixed, so the outcome is in fact
 // deterministic. Power: the whole-image standard error of the difference must be below
@@ -15,12 +15,12 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <utility>
 #include <sstream>
+#include <utility>
 
+#include "renderer_test_support.h"
 #include "statmc/render/camera.h"
 #include "statmc/render/render_loop.h"
-#include "renderer_test_support.h"
 #include "statmc/render/scene.h"
 #include "statmc/render/scene_parser.h"
 
@@ -65,8 +65,8 @@ Comparison welch_regions(const Film& a, const Film& b, int rw, int rh)
                 if (!(std::abs(z) < c.max_abs_z)) {
                     c.max_abs_z = std::abs(z);
                     std::ostringstream s;
-                    s << "region (" << x0 << ", " << y0 << ") channel " << ch << ": " << ma << " vs " << mb
-                      << ", z = " << z;
+                    s << "region (" << x0 << ", " << y0 << ") channel " << ch << ": " << ma
+                      << " vs " << mb << ", z = " << z;
                     c.worst = s.str();
                 }
             }
@@ -80,9 +80,10 @@ Comparison welch_regions(const Film& a, const Film& b, int rw, int rh)
 /// Renders `desc` with `a` and with `b` (independent seeds) and expects every region to
 /// agree (|z| < kZBound) with a whole-image relative standard error below `max_rel_se`.
 /// Returns the two renders for the test's own checks.
-std::pair<Rendered, Rendered> expect_agreement(const std::string& scene, int w, int h, int spp, int rw, int rh,
-                                               const IntegratorSettings& a, const IntegratorSettings& b,
-                                               double max_rel_se, const char* what)
+std::pair<Rendered, Rendered> expect_agreement(const std::string& scene, int w, int h, int spp,
+                                               int rw, int rh, const IntegratorSettings& a,
+                                               const IntegratorSettings& b, double max_rel_se,
+                                               const char* what)
 {
     const auto desc = parse_scene_file(scene);
     Rendered ra = statmc::render::test::render_scene(desc, w, h, spp, 21, 0, a);
@@ -91,8 +92,8 @@ std::pair<Rendered, Rendered> expect_agreement(const std::string& scene, int w, 
     EXPECT_EQ(c.regions, 3 * (w / rw) * (h / rh));
     EXPECT_LT(c.max_abs_z, kZBound) << c.worst;
     EXPECT_LT(c.relative_se, max_rel_se);
-    std::printf("%s: max |z| %.2f over %d, relative se %.4f, rays %.3g vs %.3g\n", what, c.max_abs_z, c.regions,
-                c.relative_se, double(rb.rays), double(ra.rays));
+    std::printf("%s: max |z| %.2f over %d, relative se %.4f, rays %.3g vs %.3g\n", what,
+                c.max_abs_z, c.regions, c.relative_se, double(rb.rays), double(ra.rays));
     return {std::move(ra), std::move(rb)};
 }
 
@@ -107,8 +108,8 @@ TEST(Unbiased, AcrrAgreesWithClassicRoulette)
     IntegratorSettings acrr;
     acrr.roulette.mode = RouletteMode::Acrr;
     acrr.roulette.start_bounce = 0;  // as in the seed's C.2: roulette from the first hit
-    const auto [a, b] = expect_agreement(shared + "/scenes/cornell-box/scene.pbrt", 32, 32, 1024, 8, 8, classic, acrr,
-                                         0.01, "ACRR vs classic");
+    const auto [a, b] = expect_agreement(shared + "/scenes/cornell-box/scene.pbrt", 32, 32, 1024, 8,
+                                         8, classic, acrr, 0.01, "ACRR vs classic");
     // ACRR did steer: it traces a clearly different number of rays (deterministic).
     EXPECT_GT(std::abs(double(b.rays) / double(a.rays) - 1), 0.05) << a.rays << " vs " << b.rays;
 }
@@ -122,17 +123,19 @@ TEST(Unbiased, SelectiveMisAgreesWithStandardMis)
     IntegratorSettings selective;
     selective.mis.mode = MisMode::Selective;
     // Glossy highlights of small lights are noisy: here the power bound is 3%.
-    const auto [a, b] = expect_agreement(shared + "/scenes/veach-mis/scene.pbrt", 48, 27, 2048, 8, 9, standard,
-                                         selective, 0.03, "SMIS vs standard");
+    const auto [a, b] = expect_agreement(shared + "/scenes/veach-mis/scene.pbrt", 48, 27, 2048, 8,
+                                         9, standard, selective, 0.03, "SMIS vs standard");
     // SMIS did skip a technique at the first hit of a good share of the pixels (what the
     // last iteration's estimates decide; BSDF sampling, mostly, which loses to the
     // lights' cone sampling on the plates).
     const Film& f = *b.film;
-    const BounceEstimates est = f.bounces->denoise({}, RenderSettings{}.bounce_filter);  // as the render denoised them
+    const BounceEstimates est =
+        f.bounces->denoise({}, RenderSettings{}.bounce_filter);  // as the render denoised them
     int skipped = 0;
     for (std::size_t i = 0; i < std::size_t(f.width) * f.height; ++i) {
         const PixelEstimates p = est.pixel(i);
-        const TechniqueChoice t = choose_techniques(p.light_wins(0), p.bsdf_wins(0), selective.mis.threshold);
+        const TechniqueChoice t =
+            choose_techniques(p.light_wins(0), p.bsdf_wins(0), selective.mis.threshold);
         skipped += !(t.light && t.bsdf);
     }
     EXPECT_GT(skipped, f.width * f.height / 10) << skipped << " of " << f.width * f.height;

@@ -5,9 +5,9 @@
 #include <limits>
 #include <vector>
 
+#include "renderer_test_support.h"
 #include "statmc/render/camera.h"
 #include "statmc/render/integrator.h"
-#include "renderer_test_support.h"
 #include "statmc/render/scene.h"
 #include "statmc/render/scene_parser.h"
 #include "statmc/render/selective_mis.h"
@@ -70,12 +70,13 @@ TEST(SelectiveMis, UnusableWinEstimatesRenderExactlyAsStandardMis)
             values.push_back(light_wins);
             values.push_back(bsdf_wins);
         }
-        return statmc::render::test::differing_samples(plain, steered, camera, {values.data(), &layout}, 5);
+        return statmc::render::test::differing_samples(plain, steered, camera,
+                                                       {values.data(), &layout}, 5);
     };
     EXPECT_EQ(differing(kNaN, kNaN), 0);
-    EXPECT_EQ(differing(0.f, 0.f), 0);     // nothing won yet
+    EXPECT_EQ(differing(0.f, 0.f), 0);  // nothing won yet
     EXPECT_EQ(differing(-1.f, 2.f), 0);
-    EXPECT_EQ(differing(0.5f, 0.5f), 0);   // both win: standard MIS
-    EXPECT_GT(differing(1.f, 0.f), 25);    // BSDF skipped: light weight 1
-    EXPECT_GT(differing(0.f, 1.f), 25);    // light skipped: no shadow rays
+    EXPECT_EQ(differing(0.5f, 0.5f), 0);  // both win: standard MIS
+    EXPECT_GT(differing(1.f, 0.f), 25);   // BSDF skipped: light weight 1
+    EXPECT_GT(differing(0.f, 1.f), 25);   // light skipped: no shadow rays
 }

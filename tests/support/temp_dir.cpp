@@ -14,7 +14,8 @@ TempDir::TempDir()
 {
     std::random_device rd;
     for (int attempt = 0; attempt < 100; ++attempt) {
-        const fs::path candidate = fs::temp_directory_path() /
+        const fs::path candidate =
+            fs::temp_directory_path() /
             ("statmc-test-" + std::to_string(::getpid()) + "-" + std::to_string(rd()));
         if (fs::create_directory(candidate)) {
             path_ = candidate;

@@ -6,9 +6,9 @@
 #include <random>
 #include <stdexcept>
 
-#include <gtest/gtest.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imagecache.h>
+#include <gtest/gtest.h>
 
 #include "statmc/core/plane.h"
 

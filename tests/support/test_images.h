@@ -39,8 +39,7 @@ std::vector<float> core_filtered(const StatisticsView& stats, TestDomain domain,
 float channel_value(const OIIO::ImageBuf& buf, const std::string& name, int x, int y);
 
 /// `buf` without the named channels; or with layer `from_layer` renamed `to_layer`.
-OIIO::ImageBuf without_channels(const OIIO::ImageBuf& buf,
-                                const std::vector<std::string>& names);
+OIIO::ImageBuf without_channels(const OIIO::ImageBuf& buf, const std::vector<std::string>& names);
 OIIO::ImageBuf renamed_channels(const OIIO::ImageBuf& buf, const std::string& from_layer,
                                 const std::string& to_layer);
 /// `buf` with its channels in reverse order.

@@ -23,7 +23,8 @@ void for_each_row(int h, Body&& body)
 /// Box sum over [x − f, x + f] × [y − f, y + f] ∩ image of a dense w × h plane. Running
 /// sums in double: terms span many decades, and a float sum that adds then subtracts a
 /// large one loses the small ones beside it.
-void box_sum(const std::vector<float>& in, std::vector<float>& out, std::vector<double>& tmp, int w, int h, int f)
+void box_sum(const std::vector<float>& in, std::vector<float>& out, std::vector<double>& tmp, int w,
+             int h, int f)
 {
     for_each_row(h, [&](int y) {
         const float* row = in.data() + std::size_t(y) * w;
@@ -89,9 +90,11 @@ void nlm(const std::array<ConstPlane, 3>& mean, const std::array<ConstPlane, 3>&
                     }
                     float d = 0;
                     for (int c = 0; c < 3; ++c) {
-                        const float vp = std::max(0.f, variance[c](x, y)), vq = std::max(0.f, variance[c](qx, qy));
+                        const float vp = std::max(0.f, variance[c](x, y)),
+                                    vq = std::max(0.f, variance[c](qx, qy));
                         const float diff = mean[c](x, y) - mean[c](qx, qy);
-                        d += (diff * diff - o.alpha * (vp + std::min(vp, vq))) / (kEpsilon + o.k * o.k * (vp + vq));
+                        d += (diff * diff - o.alpha * (vp + std::min(vp, vq))) /
+                             (kEpsilon + o.k * o.k * (vp + vq));
                     }
                     distance[i] = std::isfinite(d) ? std::min(d / 3, kFar) : kFar;
                 }
@@ -119,7 +122,8 @@ void nlm(const std::array<ConstPlane, 3>& mean, const std::array<ConstPlane, 3>&
         for (int x = 0; x < w; ++x) {
             const std::size_t i = std::size_t(y) * w + x;
             for (int c = 0; c < 3; ++c)
-                out[c](x, y) = weight_sum[i] > 0 ? float(acc[c * n + i] / weight_sum[i]) : mean[c](x, y);
+                out[c](x, y) =
+                    weight_sum[i] > 0 ? float(acc[c * n + i] / weight_sum[i]) : mean[c](x, y);
         }
     });
 }
@@ -133,7 +137,8 @@ void cross_bilateral(const std::array<ConstPlane, 3>& mean, const Guides& guides
     auto feature_distance = [](const std::array<ConstPlane, 3>& g, int x, int y, int u, int v) {
         double d = 0;
         for (const ConstPlane& p : g) {
-            const double a = std::isfinite(p(x, y)) ? p(x, y) : 0.0, b = std::isfinite(p(u, v)) ? p(u, v) : 0.0;
+            const double a = std::isfinite(p(x, y)) ? p(x, y) : 0.0,
+                         b = std::isfinite(p(u, v)) ? p(u, v) : 0.0;
             d += (a - b) * (a - b);
         }
         return d;

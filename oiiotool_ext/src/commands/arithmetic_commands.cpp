@@ -39,9 +39,8 @@ Command image_pair_command(const char* name, const char* summary, ImageOp op)
     c.summary = summary;
     c.modifiers = {subimages_modifier()};
     c.run = [op](ToolContext& ctx, const Invocation& inv) {
-        apply_to_subimages(ctx, inv, 2, [&](const auto& in) {
-            return op(*in[0], *in[1], {}, ctx.nthreads);
-        });
+        apply_to_subimages(ctx, inv, 2,
+                           [&](const auto& in) { return op(*in[0], *in[1], {}, ctx.nthreads); });
     };
     return c;
 }

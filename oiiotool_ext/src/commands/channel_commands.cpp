@@ -63,8 +63,8 @@ Command chappend_command()
             OIIO::ImageBuf joined = OIIO::ImageBufAlgo::channel_append(*in[top - 1], *in[top],
                                                                        OIIO::ROI(), ctx.nthreads);
             for (std::size_t k = top - 1; k-- > 0 && !joined.has_error();)
-                joined = OIIO::ImageBufAlgo::channel_append(*in[k], joined, OIIO::ROI(),
-                                                            ctx.nthreads);
+                joined =
+                    OIIO::ImageBufAlgo::channel_append(*in[k], joined, OIIO::ROI(), ctx.nthreads);
             return joined;
         });
     };

@@ -8,9 +8,9 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "statmc/tool/command_table.h"
+#include "statmc/tool/tool_error.h"
 #include "subimage_loop.h"
 #include "tool_context.h"
-#include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {
 
@@ -76,14 +76,13 @@ Command colorconvert_command()
     c.arg_names = {"FROM", "TO"};
     c.summary = "Convert the colour channels (the first three, and alpha) from one colour "
                 "space to another";
-    c.modifiers = {unpremult_modifier(),
-                   subimages_modifier()};
+    c.modifiers = {unpremult_modifier(), subimages_modifier()};
     c.run = [](ToolContext& ctx, const Invocation& inv) {
         OIIO::ColorConfig& config = color_config(ctx, inv.name);
         const bool unpremult = inv.modifiers.get_bool("unpremult");
         apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
-            return OIIO::ImageBufAlgo::colorconvert(*in[0], inv.args[0], inv.args[1], unpremult,
-                                                    "", "", &config, OIIO::ROI(), ctx.nthreads);
+            return OIIO::ImageBufAlgo::colorconvert(*in[0], inv.args[0], inv.args[1], unpremult, "",
+                                                    "", &config, OIIO::ROI(), ctx.nthreads);
         });
     };
     return c;
@@ -96,11 +95,11 @@ Command ociodisplay_command()
     c.arg_names = {"DISPLAY", "VIEW"};
     c.summary = "Apply an OCIO display and view (\"\" = the config's default) to the colour "
                 "channels";
-    c.modifiers = {statmc::string_parameter("from", "", "the image's colour space (default: "
-                                                        "its oiio:ColorSpace, else scene_linear)"),
+    c.modifiers = {statmc::string_parameter("from", "",
+                                            "the image's colour space (default: "
+                                            "its oiio:ColorSpace, else scene_linear)"),
                    statmc::string_parameter("looks", "", "OCIO looks to apply"),
-                   unpremult_modifier(),
-                   subimages_modifier()};
+                   unpremult_modifier(), subimages_modifier()};
     c.run = [](ToolContext& ctx, const Invocation& inv) {
         // The built-in spaces have no displays; OIIO would fail (or crash on the
         // defaults) without a config.

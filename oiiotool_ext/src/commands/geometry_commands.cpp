@@ -5,9 +5,9 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "statmc/tool/command_table.h"
+#include "statmc/tool/tool_error.h"
 #include "subimage_loop.h"
 #include "tool_context.h"
-#include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {
 
@@ -37,8 +37,8 @@ Geometry parse_geometry(const std::string& text, bool allow_percent, const std::
     if (std::sscanf(text.c_str(), "%d,%d,%d,%d%c", &xmin, &ymin, &xmax, &ymax, &tail) == 4 &&
         xmax >= xmin && ymax >= ymin) {
         g = {xmax - xmin + 1, ymax - ymin + 1, true, xmin, ymin};
-    } else if (std::sscanf(text.c_str(), "%dx%d%d%d%c", &g.width, &g.height, &g.x, &g.y,
-                           &tail) == 4 &&
+    } else if (std::sscanf(text.c_str(), "%dx%d%d%d%c", &g.width, &g.height, &g.x, &g.y, &tail) ==
+                   4 &&
                text.find_first_of("+-", text.find('x')) != std::string::npos) {
         g.has_origin = true;
     } else if (std::sscanf(text.c_str(), "%dx%d%c", &g.width, &g.height, &tail) == 2) {
@@ -121,9 +121,10 @@ Command resize_command()
     c.arg_names = {"GEOM"};
     c.summary = "Resample to a new display window size (WxH, WxH+X+Y or N%) with a filter; "
                 "the data window scales with it";
-    c.modifiers = {statmc::string_parameter("filter", "", "OIIO filter name (default: "
-                                                          "lanczos3 to shrink, blackman-harris "
-                                                          "to enlarge)")};
+    c.modifiers = {statmc::string_parameter("filter", "",
+                                            "OIIO filter name (default: "
+                                            "lanczos3 to shrink, blackman-harris "
+                                            "to enlarge)")};
     c.modifiers.push_back(subimages_modifier());
     c.check = [](const Invocation& inv) { parse_geometry(inv.args[0], true, inv.name); };
     c.run = [](ToolContext& ctx, const Invocation& inv) {
@@ -131,11 +132,9 @@ Command resize_command()
         const Geometry geometry = parse_geometry(inv.args[0], true, inv.name);
         apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
             const OIIO::ImageSpec& old = in[0]->spec();
-            const Geometry g =
-                sized_for(geometry, OIIO::get_roi_full(old), inv.args[0], inv.name);
+            const Geometry g = sized_for(geometry, OIIO::get_roi_full(old), inv.args[0], inv.name);
             OIIO::ImageBuf resized(resized_spec(old, g));
-            OIIO::ImageBufAlgo::resize(resized, *in[0], filter, 0.0f, resized.roi(),
-                                       ctx.nthreads);
+            OIIO::ImageBufAlgo::resize(resized, *in[0], filter, 0.0f, resized.roi(), ctx.nthreads);
             return resized;
         });
     };

@@ -1,11 +1,11 @@
 // --help, --version, --threads and --echo: commands that touch no image.
 #include <OpenImageIO/imageio.h>
 
+#include "plugin_commands.h"
 #include "statmc/tool/command_table.h"
 #include "statmc/tool/number_parsing.h"
-#include "plugin_commands.h"
-#include "tool_context.h"
 #include "statmc/tool/tool_error.h"
+#include "tool_context.h"
 
 namespace statmc::tool {
 
@@ -17,8 +17,8 @@ int thread_argument(const Invocation& inv)
 {
     const int n = parse_int(inv.args[0], inv.name);
     if (n < 0 || n > kMaxThreads)
-        throw ToolError(inv.name + ": thread count must be in [0, " +
-                        std::to_string(kMaxThreads) + "], got " + std::to_string(n));
+        throw ToolError(inv.name + ": thread count must be in [0, " + std::to_string(kMaxThreads) +
+                        "], got " + std::to_string(n));
     return n;
 }
 

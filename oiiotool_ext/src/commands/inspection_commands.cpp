@@ -1,8 +1,8 @@
 // --info, --stats, -v and --diff: reports on images, printed as oiiotool prints them
 // (image_report.h). --info and --stats are flags, as in oiiotool: they report each input
 // read after them.
-#include "statmc/tool/command_table.h"
 #include "image_report.h"
+#include "statmc/tool/command_table.h"
 #include "tool_context.h"
 
 namespace statmc::tool {

@@ -2,13 +2,13 @@
 // between files and the stack.
 #include <optional>
 
+#include "channel_selection.h"
+#include "image_report.h"
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/storage_rules.h"
-#include "channel_selection.h"
 #include "statmc/tool/command_table.h"
-#include "image_report.h"
-#include "tool_context.h"
 #include "statmc/tool/tool_error.h"
+#include "tool_context.h"
 
 namespace statmc::tool {
 

@@ -1,8 +1,8 @@
 // -a, --subimage, --siappend: the subimages (EXR parts) of stack images.
 #include "statmc/tool/command_table.h"
+#include "statmc/tool/tool_error.h"
 #include "subimage_loop.h"
 #include "tool_context.h"
-#include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {
 

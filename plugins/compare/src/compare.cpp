@@ -39,8 +39,8 @@ float clamped(float v) { return std::clamp(std::isfinite(v) ? v : 0.f, 0.f, 1.f)
 // sRGB's encoding (IEC 61966-2-1), then clamped: the LDR image SSIM is defined on.
 float display_value(float linear)
 {
-    const float v = linear <= 0.0031308f ? 12.92f * linear
-                                         : 1.055f * std::pow(linear, 1 / 2.4f) - 0.055f;
+    const float v =
+        linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1 / 2.4f) - 0.055f;
     return clamped(v);
 }
 
@@ -65,8 +65,7 @@ std::vector<float> pixels_of(const OIIO::ImageBuf& buf)
 }
 
 // The luminance SSIM compares: through the display transform when one is given.
-std::vector<float> ldr_of(const OIIO::ImageBuf& rgb, const CompareOptions& options,
-                          int nthreads)
+std::vector<float> ldr_of(const OIIO::ImageBuf& rgb, const CompareOptions& options, int nthreads)
 {
     if (!options.display)
         return ldr_luminance(pixels_of(rgb), true);

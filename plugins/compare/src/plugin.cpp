@@ -15,9 +15,11 @@ void print_table(std::ostream& out, const statmc::CompareMetrics& m, const std::
                  const std::string& reference)
 {
     out << "compare: " << image << " against " << reference << "\n";
-    const std::pair<const char*, double> rows[] = {
-        {"RMSE", m.rmse}, {"MAE", m.mae}, {"relMSE", m.relmse}, {"SSIM", m.ssim},
-        {"DSSIM", m.dssim}};
+    const std::pair<const char*, double> rows[] = {{"RMSE", m.rmse},
+                                                   {"MAE", m.mae},
+                                                   {"relMSE", m.relmse},
+                                                   {"SSIM", m.ssim},
+                                                   {"DSSIM", m.dssim}};
     for (const auto& [name, value] : rows)
         out << "  " << std::left << std::setw(8) << name << std::setprecision(6) << value << "\n";
 }
@@ -27,9 +29,9 @@ OIIO::ImageBuf run(const std::vector<const OIIO::ImageBuf*>& inputs,
 {
     statmc::CompareOptions options;
     options.relmse_epsilon = p.get_float("epsilon", options.relmse_epsilon);
-    options.display = statmc::DisplayOptions{
-        statmc::display_config(p.get_string("config"), ctx.module), p.get_string("display"),
-        p.get_string("view")};
+    options.display =
+        statmc::DisplayOptions{statmc::display_config(p.get_string("config"), ctx.module),
+                               p.get_string("display"), p.get_string("view")};
     statmc::CompareMetrics metrics;
     OIIO::ImageBuf error;
     if (!statmc::compare(metrics, error, *inputs[0], *inputs[1], options, ctx.nthreads))
@@ -59,8 +61,9 @@ void register_compare(statmc::PluginRegistry& registry)
     op.parameters = {
         statmc::float_parameter("epsilon", 0.01, "epsilon of relMSE").above(0),
         statmc::string_parameter("errorimage", "", "also write the absolute error image here"),
-        statmc::string_parameter("view", "", "OCIO view SSIM sees the images through "
-                                             "(default: the display's, sRGB in statmc's config)"),
+        statmc::string_parameter("view", "",
+                                 "OCIO view SSIM sees the images through "
+                                 "(default: the display's, sRGB in statmc's config)"),
         statmc::string_parameter("display", "", "OCIO display (default: the config's)"),
         statmc::string_parameter("config", "", "OCIO config (default: $OCIO, else statmc's own)"),
     };

@@ -58,7 +58,6 @@ void check_input(const OIIO::ImageBuf& src)
         throw std::invalid_argument("volume images are not supported");
 }
 
-
 TestDomain choose_domain(const OIIO::ImageSpec& spec, const StatisticsChannels& ch,
                          TestDomainChoice choice)
 {
@@ -68,13 +67,13 @@ TestDomain choose_domain(const OIIO::ImageSpec& spec, const StatisticsChannels& 
             return TestDomain::BoxCox;
         if (!ch.has(Statistic::Variance))
             throw LayerError(layers::missing_layer_message(
-                spec, layers::statistic_layer(ch.aov, Statistic::Variance), ch.suffixes,
-                "layer", "denoising needs it or the Box-Cox layers (boxcoxMean, "
-                         "boxcoxVariance, boxcoxM3)"));
+                spec, layers::statistic_layer(ch.aov, Statistic::Variance), ch.suffixes, "layer",
+                "denoising needs it or the Box-Cox layers (boxcoxMean, "
+                "boxcoxVariance, boxcoxM3)"));
         return TestDomain::Untransformed;
     case TestDomainChoice::BoxCox:
-        for (Statistic stat : {Statistic::BoxCoxMean, Statistic::BoxCoxVariance,
-                               Statistic::BoxCoxMoment3})
+        for (Statistic stat :
+             {Statistic::BoxCoxMean, Statistic::BoxCoxVariance, Statistic::BoxCoxMoment3})
             layers::require_statistic(spec, ch, stat);
         return TestDomain::BoxCox;
     case TestDomainChoice::Untransformed:
@@ -114,8 +113,8 @@ std::array<ConstPlane, 3> guide(const OIIO::ImageBuf& in, GuideUse use, const st
     if (use == GuideUse::Off)
         return {};
     const std::vector<int> indices = use == GuideUse::Required
-        ? layers::require_guide_layer(in.spec(), layer, colour)
-        : layers::find_guide_layer(in.spec(), layer, colour);
+                                         ? layers::require_guide_layer(in.spec(), layer, colour)
+                                         : layers::find_guide_layer(in.spec(), layer, colour);
     return indices.empty() ? std::array<ConstPlane, 3>{} : layers::guide_planes(in, indices);
 }
 
@@ -162,24 +161,27 @@ void write_channels(OIIO::ImageBuf& image, const OIIO::ImageBuf* source,
     const OIIO::ROI& out = regions.output;
     const OIIO::ROI& input = regions.input;
     const std::size_t row_bytes = std::size_t(spec.width) * image.pixel_stride();
-    OIIO::ImageBufAlgo::parallel_image(image.roi(), OIIO::paropt(layers::thread_count(nthreads)), [&](OIIO::ROI rows) {
-        for (int y = rows.ybegin; y < rows.yend; ++y) {
-            float* to = static_cast<float*>(image.pixeladdr(spec.x, y));
-            if (source)
-                std::memcpy(to, source->pixeladdr(spec.x, y), row_bytes);
-            if (y < out.ybegin || y >= out.yend)
-                continue;
-            const std::ptrdiff_t row = std::ptrdiff_t(y - input.ybegin) * input.width() - input.xbegin;
-            for (int x = out.xbegin; x < out.xend; ++x) {
-                float* pixel = to + std::size_t(x - spec.x) * spec.nchannels;
-                for (const ChannelWrite& w : writes)
-                    pixel[w.channel] = w.dense[row + x];
+    OIIO::ImageBufAlgo::parallel_image(
+        image.roi(), OIIO::paropt(layers::thread_count(nthreads)), [&](OIIO::ROI rows) {
+            for (int y = rows.ybegin; y < rows.yend; ++y) {
+                float* to = static_cast<float*>(image.pixeladdr(spec.x, y));
+                if (source)
+                    std::memcpy(to, source->pixeladdr(spec.x, y), row_bytes);
+                if (y < out.ybegin || y >= out.yend)
+                    continue;
+                const std::ptrdiff_t row =
+                    std::ptrdiff_t(y - input.ybegin) * input.width() - input.xbegin;
+                for (int x = out.xbegin; x < out.xend; ++x) {
+                    float* pixel = to + std::size_t(x - spec.x) * spec.nchannels;
+                    for (const ChannelWrite& w : writes)
+                        pixel[w.channel] = w.dense[row + x];
+                }
             }
-        }
-    });
+        });
 }
 
-std::vector<ChannelWrite> mean_writes(const StatisticsChannels& ch, const Filtered& f, const Regions& regions)
+std::vector<ChannelWrite> mean_writes(const StatisticsChannels& ch, const Filtered& f,
+                                      const Regions& regions)
 {
     const std::size_t pixels = std::size_t(regions.input.width()) * regions.input.height();
     std::vector<ChannelWrite> writes;
@@ -204,8 +206,9 @@ OIIO::ImageBuf denoised_copy(const OIIO::ImageBuf& in, const StatisticsChannels&
 OIIO::ImageBuf with_diagnostics_channels(const OIIO::ImageBuf& result, const std::string& aov,
                                          int& members, int& effective)
 {
-    const std::string names[2] = {layers::diagnostics_channel(aov, layers::kMembersChannel),
-                                  layers::diagnostics_channel(aov, layers::kEffectiveSamplesChannel)};
+    const std::string names[2] = {
+        layers::diagnostics_channel(aov, layers::kMembersChannel),
+        layers::diagnostics_channel(aov, layers::kEffectiveSamplesChannel)};
     const OIIO::ImageSpec& spec = result.spec();
     std::vector<int> order;
     std::vector<float> values(spec.nchannels, 0.f);
@@ -218,8 +221,8 @@ OIIO::ImageBuf with_diagnostics_channels(const OIIO::ImageBuf& result, const std
             values.push_back(0.f);
             new_names.push_back(name);
         }
-    OIIO::ImageBuf extended = OIIO::ImageBufAlgo::channels(result, int(order.size()), order,
-                                                           values, new_names);
+    OIIO::ImageBuf extended =
+        OIIO::ImageBufAlgo::channels(result, int(order.size()), order, values, new_names);
     if (extended.has_error())
         throw std::runtime_error("cannot add the diagnostics channels: " + extended.geterror());
     members = extended.spec().channelindex(names[0]);
@@ -249,9 +252,8 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
 
     const int x0 = regions.input.xbegin - spec.x;
     const int y0 = regions.input.ybegin - spec.y;
-    const StatisticsView window = layers::view_window(layers::statistics_view(in, ch), x0, y0,
-                                                      regions.input.width(),
-                                                      regions.input.height());
+    const StatisticsView window = layers::view_window(
+        layers::statistics_view(in, ch), x0, y0, regions.input.width(), regions.input.height());
     const Guides window_guides{layers::shifted(guides.albedo, x0, y0),
                                layers::shifted(guides.normal, x0, y0)};
     const Filtered filtered =
@@ -269,9 +271,10 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
     if (opt.diagnostics) {
         int members = -1, effective = -1;
         result = with_diagnostics_channels(result, opt.aov, members, effective);
-        write_channels(result, nullptr,
-                       {{members, filtered.members.data()}, {effective, filtered.effective_samples.data()}},
-                       regions, nthreads);
+        write_channels(
+            result, nullptr,
+            {{members, filtered.members.data()}, {effective, filtered.effective_samples.data()}},
+            regions, nthreads);
     }
     result.specmod().attribute(layers::attr::kDenoised, 1);
     dst = std::move(result);
@@ -283,7 +286,8 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
 bool denoise(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseImageOptions& opt,
              OIIO::ROI roi, int nthreads)
 {
-    return layers::errors_on(dst, "denoise", [&] { return denoise_impl(dst, src, opt, roi, nthreads); });
+    return layers::errors_on(dst, "denoise",
+                             [&] { return denoise_impl(dst, src, opt, roi, nthreads); });
 }
 
 OIIO::ImageBuf denoise(const OIIO::ImageBuf& src, const DenoiseImageOptions& opt, OIIO::ROI roi,

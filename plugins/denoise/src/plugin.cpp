@@ -40,14 +40,17 @@ std::vector<std::string> spellings(const std::vector<std::pair<std::string, T>>&
 template <class T>
 const std::string& spelling(const std::vector<std::pair<std::string, T>>& table, T value)
 {
-    return std::find_if(table.begin(), table.end(), [&](const auto& e) { return e.second == value; })->first;
+    return std::find_if(table.begin(), table.end(),
+                        [&](const auto& e) { return e.second == value; })
+        ->first;
 }
 
 // The host has checked the name against the choices already.
 template <class T>
 T chosen(const std::vector<std::pair<std::string, T>>& table, const std::string& name, T fallback)
 {
-    const auto it = std::find_if(table.begin(), table.end(), [&](const auto& e) { return e.first == name; });
+    const auto it =
+        std::find_if(table.begin(), table.end(), [&](const auto& e) { return e.first == name; });
     return it == table.end() ? fallback : it->second;
 }
 
@@ -75,8 +78,8 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.guides.albedo_layer = p.get_string("albedo_layer", opt.guides.albedo_layer);
     opt.guides.normal_layer = p.get_string("normal_layer", opt.guides.normal_layer);
     opt.test = chosen(kTests, p.get_string("test", spelling(kTests, opt.test)), opt.test);
-    opt.nonfinite = chosen(kNonfinite, p.get_string("nonfinite", spelling(kNonfinite, opt.nonfinite)),
-                           opt.nonfinite);
+    opt.nonfinite = chosen(
+        kNonfinite, p.get_string("nonfinite", spelling(kNonfinite, opt.nonfinite)), opt.nonfinite);
     opt.aov = p.get_string("aov", opt.aov);
     opt.diagnostics = p.get_bool("diagnostics", opt.diagnostics);
     return opt;
@@ -95,7 +98,8 @@ std::vector<statmc::ParameterSpec> parameters()
         float_parameter("fireflies", f.firefly_ratio,
                         "firefly guard (Box-Cox test only): no pixel averages a neighbour "
                         "whose sample variance exceeds this many times its own noise level "
-                        "(halos of highlights, fireflies); 0 = the paper's filter").at_least(0),
+                        "(halos of highlights, fireflies); 0 = the paper's filter")
+            .at_least(0),
         list_parameter("guides", {"albedo", "normal"}, {"auto", "none"}, "auto",
                        "guide layers: a list is required to be present, auto uses those "
                        "present, none none"),
@@ -106,7 +110,8 @@ std::vector<statmc::ParameterSpec> parameters()
         choice_parameter("test", spellings(kTests), spelling(kTests, kDefaults.test),
                          "test domain: auto = boxcox when the Box-Cox layers are present, "
                          "else untransformed"),
-        choice_parameter("nonfinite", spellings(kNonfinite), spelling(kNonfinite, kDefaults.nonfinite),
+        choice_parameter("nonfinite", spellings(kNonfinite),
+                         spelling(kNonfinite, kDefaults.nonfinite),
                          "NaN/Inf in the statistics: error refuses the image, zero counts "
                          "them as 0"),
         string_parameter("aov", kDefaults.aov,
@@ -132,7 +137,8 @@ void register_denoise(statmc::PluginRegistry& registry)
                 const statmc::RunContext& ctx) {
         return statmc::denoise(*inputs[0], options_from(p), {}, ctx.nthreads);
     };
-    op.run_in_place = [](OIIO::ImageBuf& image, const ParameterValues& p, const statmc::RunContext& ctx) {
+    op.run_in_place = [](OIIO::ImageBuf& image, const ParameterValues& p,
+                         const statmc::RunContext& ctx) {
         return statmc::denoise(image, image, options_from(p), {}, ctx.nthreads);
     };
     registry.add(std::move(op));

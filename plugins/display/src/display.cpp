@@ -64,17 +64,17 @@ std::pair<std::string, std::string> display_view(const OCIO::ConstConfigRcPtr& c
                                                  const DisplayOptions& options,
                                                  const std::string& path)
 {
-    const std::string display = options.display.empty() ? cfg->getDefaultDisplay()
-                                                         : options.display;
+    const std::string display =
+        options.display.empty() ? cfg->getDefaultDisplay() : options.display;
     if (!listed(displays_of(cfg), display))
         throw std::invalid_argument("display '" + display + "' is not in OCIO config " + path +
                                     " (displays: " + displays_of(cfg) + ")");
-    const std::string view = options.view.empty() ? cfg->getDefaultView(display.c_str())
-                                                  : options.view;
+    const std::string view =
+        options.view.empty() ? cfg->getDefaultView(display.c_str()) : options.view;
     if (!listed(views_of(cfg, display), view))
         throw std::invalid_argument("view '" + view + "' of display '" + display +
-                                    "' is not in OCIO config " + path + " (views: " +
-                                    views_of(cfg, display) + ")");
+                                    "' is not in OCIO config " + path +
+                                    " (views: " + views_of(cfg, display) + ")");
     return {display, view};
 }
 
@@ -90,8 +90,7 @@ OIIO::ImageBuf rgba_of(const OIIO::ImageBuf& src, int nthreads)
     if (const int a = src.spec().channelindex("A"); a >= 0)
         order.push_back(a);
     OIIO::ImageBuf rgba;
-    if (!OIIO::ImageBufAlgo::channels(rgba, src, int(order.size()), order, {}, {}, false,
-                                      nthreads))
+    if (!OIIO::ImageBufAlgo::channels(rgba, src, int(order.size()), order, {}, {}, false, nthreads))
         throw std::invalid_argument(rgba.geterror());
     if (rgba.spec().format != OIIO::TypeFloat)
         rgba = rgba.copy(OIIO::TypeFloat);
@@ -101,21 +100,18 @@ OIIO::ImageBuf rgba_of(const OIIO::ImageBuf& src, int nthreads)
 void apply_rows(OIIO::ImageBuf& rgba, const OCIO::ConstCPUProcessorRcPtr& cpu, int nthreads)
 {
     const int nch = rgba.spec().nchannels;
-    OIIO::ImageBufAlgo::parallel_image(
-        rgba.roi(), OIIO::paropt(nthreads), [&](OIIO::ROI r) {
-            for (int y = r.ybegin; y < r.yend; ++y) {
-                auto* row = static_cast<float*>(rgba.pixeladdr(r.xbegin, y));
-                // Alpha (the 4th channel) is skipped by the stride: only R,G,B change.
-                OCIO::PackedImageDesc desc(row, r.width(), 1, 3, OCIO::BIT_DEPTH_F32,
-                                           sizeof(float), nch * sizeof(float),
-                                           OCIO::AutoStride);
-                cpu->apply(desc);
-            }
-        });
+    OIIO::ImageBufAlgo::parallel_image(rgba.roi(), OIIO::paropt(nthreads), [&](OIIO::ROI r) {
+        for (int y = r.ybegin; y < r.yend; ++y) {
+            auto* row = static_cast<float*>(rgba.pixeladdr(r.xbegin, y));
+            // Alpha (the 4th channel) is skipped by the stride: only R,G,B change.
+            OCIO::PackedImageDesc desc(row, r.width(), 1, 3, OCIO::BIT_DEPTH_F32, sizeof(float),
+                                       nch * sizeof(float), OCIO::AutoStride);
+            cpu->apply(desc);
+        }
+    });
 }
 
-OIIO::ImageBuf display_image(const OIIO::ImageBuf& src, const DisplayOptions& options,
-                             int nthreads)
+OIIO::ImageBuf display_image(const OIIO::ImageBuf& src, const DisplayOptions& options, int nthreads)
 {
     if (!src.initialized())
         throw std::invalid_argument("uninitialized input image");
@@ -128,8 +124,7 @@ OIIO::ImageBuf display_image(const OIIO::ImageBuf& src, const DisplayOptions& op
                                 OCIO::TRANSFORM_DIR_FORWARD)
                   ->getDefaultCPUProcessor();
     } catch (const OCIO::Exception& e) {
-        throw std::invalid_argument("display '" + display + "', view '" + view + "': " +
-                                    e.what());
+        throw std::invalid_argument("display '" + display + "', view '" + view + "': " + e.what());
     }
     OIIO::ImageBuf rgba = rgba_of(src, nthreads);
     apply_rows(rgba, cpu, nthreads);
@@ -161,8 +156,8 @@ bool display(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DisplayOption
 
 OIIO::ImageBuf display(const OIIO::ImageBuf& src, const DisplayOptions& options, int nthreads)
 {
-    return layers::returned_image("display",
-                                  [&](OIIO::ImageBuf& dst) { return display(dst, src, options, nthreads); });
+    return layers::returned_image(
+        "display", [&](OIIO::ImageBuf& dst) { return display(dst, src, options, nthreads); });
 }
 
 }  // namespace statmc

@@ -16,11 +16,12 @@ void register_display(statmc::PluginRegistry& registry)
     op.parameters = {
         statmc::string_parameter("display", "", "OCIO display (default: the config's)"),
         statmc::string_parameter("view", "", "OCIO view (default: the display's)"),
-        statmc::string_parameter("config", "", "OCIO config file (default: $OCIO, else "
-                                               "statmc's own)"),
+        statmc::string_parameter("config", "",
+                                 "OCIO config file (default: $OCIO, else "
+                                 "statmc's own)"),
     };
-    op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs,
-                const statmc::ParameterValues& p, const statmc::RunContext& ctx) {
+    op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs, const statmc::ParameterValues& p,
+                const statmc::RunContext& ctx) {
         statmc::DisplayOptions options;
         options.config = statmc::display_config(p.get_string("config"), ctx.module);
         options.display = p.get_string("display");

@@ -44,8 +44,9 @@ void check_format_version(const Parts& parts, std::size_t k)
     const int va = parts[k]->spec().get_int_attribute(attr::kFormatVersion, 0);
     const int vb = parts[0]->spec().get_int_attribute(attr::kFormatVersion, 0);
     if (va != vb)
-        throw std::invalid_argument(OIIO::Strutil::fmt::format(
-            "{} and {} differ in statmc:formatVersion: {} vs {}", label(parts, k), label(parts, 0), va, vb));
+        throw std::invalid_argument(
+            OIIO::Strutil::fmt::format("{} and {} differ in statmc:formatVersion: {} vs {}",
+                                       label(parts, k), label(parts, 0), va, vb));
 }
 
 // A view whose absent Box-Cox planes stand in with the untransformed ones, so that core's
@@ -143,8 +144,8 @@ OIIO::ImageBuf merge_parts(const Parts& parts, int nthreads)
             throw std::invalid_argument(label(parts, k) + ": " + e.what());
         }
     }
-    StatisticsPlanes merged = views[0].channels == 1 ? merge_views<1>(views, nthreads)
-                                                     : merge_views<3>(views, nthreads);
+    StatisticsPlanes merged =
+        views[0].channels == 1 ? merge_views<1>(views, nthreads) : merge_views<3>(views, nthreads);
     if (!box_cox)
         merged.bc_mean.clear(), merged.bc_variance.clear(), merged.bc_moment3.clear();
 
@@ -175,7 +176,8 @@ bool merge(OIIO::ImageBuf& dst, const Parts& parts, int nthreads)
 
 OIIO::ImageBuf merge(const Parts& parts, int nthreads)
 {
-    return layers::returned_image("merge", [&](OIIO::ImageBuf& dst) { return merge(dst, parts, nthreads); });
+    return layers::returned_image("merge",
+                                  [&](OIIO::ImageBuf& dst) { return merge(dst, parts, nthreads); });
 }
 
 }  // namespace statmc

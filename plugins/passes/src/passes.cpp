@@ -137,9 +137,8 @@ bool passes_impl(OIIO::ImageBuf& dst, const Renders& renders, OIIO::ROI roi, int
             others.push_back(name);
     if (!others.empty()) {
         OIIO::ImageBuf appended;
-        if (!OIIO::ImageBufAlgo::channel_append(appended, result,
-                                                mean_of_other_channels(floats, others, region),
-                                                {}, nthreads))
+        if (!OIIO::ImageBufAlgo::channel_append(
+                appended, result, mean_of_other_channels(floats, others, region), {}, nthreads))
             throw std::runtime_error(appended.geterror());
         result = std::move(appended);
     }
@@ -153,7 +152,8 @@ bool passes_impl(OIIO::ImageBuf& dst, const Renders& renders, OIIO::ROI roi, int
 bool passes(OIIO::ImageBuf& dst, const std::vector<const OIIO::ImageBuf*>& renders, OIIO::ROI roi,
             int nthreads)
 {
-    return layers::errors_on(dst, "passes", [&] { return passes_impl(dst, renders, roi, nthreads); });
+    return layers::errors_on(dst, "passes",
+                             [&] { return passes_impl(dst, renders, roi, nthreads); });
 }
 
 OIIO::ImageBuf passes(const std::vector<const OIIO::ImageBuf*>& renders, OIIO::ROI roi,

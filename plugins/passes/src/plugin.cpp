@@ -17,9 +17,7 @@ void register_passes(statmc::PluginRegistry& registry)
               "window and channel names.";
     statmc::take_variadic_inputs(op, 2, "renders");
     op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs, const statmc::ParameterValues&,
-                const statmc::RunContext& ctx) {
-        return statmc::passes(inputs, {}, ctx.nthreads);
-    };
+                const statmc::RunContext& ctx) { return statmc::passes(inputs, {}, ctx.nthreads); };
     registry.add(std::move(op));
 }
 

@@ -38,12 +38,18 @@ ParameterSpec make(std::string name, ParameterType type, std::string default_val
 const char* type_name(ParameterType type)
 {
     switch (type) {
-    case ParameterType::Int: return "int";
-    case ParameterType::Float: return "float";
-    case ParameterType::Bool: return "bool";
-    case ParameterType::String: return "string";
-    case ParameterType::Choice: return "choice";
-    case ParameterType::List: return "list";
+    case ParameterType::Int:
+        return "int";
+    case ParameterType::Float:
+        return "float";
+    case ParameterType::Bool:
+        return "bool";
+    case ParameterType::String:
+        return "string";
+    case ParameterType::Choice:
+        return "choice";
+    case ParameterType::List:
+        return "list";
     }
     return "value";
 }
@@ -86,12 +92,18 @@ std::string ParameterRange::violation(const std::string& name, double value) con
 std::string ParameterSpec::value_syntax() const
 {
     switch (type) {
-    case ParameterType::Int: return "int";
-    case ParameterType::Float: return "float";
-    case ParameterType::Bool: return "bool";
-    case ParameterType::String: return "name";
-    case ParameterType::Choice: return join(choices, "|");
-    case ParameterType::List: return join(choices, ",") + "|" + join(keywords, "|");
+    case ParameterType::Int:
+        return "int";
+    case ParameterType::Float:
+        return "float";
+    case ParameterType::Bool:
+        return "bool";
+    case ParameterType::String:
+        return "name";
+    case ParameterType::Choice:
+        return join(choices, "|");
+    case ParameterType::List:
+        return join(choices, ",") + "|" + join(keywords, "|");
     }
     return "value";
 }
@@ -140,15 +152,14 @@ ParameterSpec bool_parameter(std::string name, bool default_value, std::string h
 
 ParameterSpec string_parameter(std::string name, std::string default_value, std::string help)
 {
-    return make(std::move(name), ParameterType::String, std::move(default_value),
-                std::move(help));
+    return make(std::move(name), ParameterType::String, std::move(default_value), std::move(help));
 }
 
 ParameterSpec choice_parameter(std::string name, std::vector<std::string> choices,
                                std::string default_value, std::string help)
 {
-    ParameterSpec spec = make(std::move(name), ParameterType::Choice, std::move(default_value),
-                              std::move(help));
+    ParameterSpec spec =
+        make(std::move(name), ParameterType::Choice, std::move(default_value), std::move(help));
     spec.choices = std::move(choices);
     return spec;
 }
@@ -157,8 +168,8 @@ ParameterSpec list_parameter(std::string name, std::vector<std::string> choices,
                              std::vector<std::string> keywords, std::string default_value,
                              std::string help)
 {
-    ParameterSpec spec = make(std::move(name), ParameterType::List, std::move(default_value),
-                              std::move(help));
+    ParameterSpec spec =
+        make(std::move(name), ParameterType::List, std::move(default_value), std::move(help));
     spec.choices = std::move(choices);
     spec.keywords = std::move(keywords);
     return spec;

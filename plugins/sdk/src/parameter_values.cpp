@@ -17,8 +17,7 @@ double ParameterValues::get_float(const std::string& name, double fallback) cons
     return get<double>(name, fallback);
 }
 
-std::string ParameterValues::get_string(const std::string& name,
-                                        const std::string& fallback) const
+std::string ParameterValues::get_string(const std::string& name, const std::string& fallback) const
 {
     return get<std::string>(name, fallback);
 }

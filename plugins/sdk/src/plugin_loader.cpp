@@ -50,8 +50,8 @@ PluginRegistry staged_registration(void* handle, const std::string& path)
     if (!mismatch.empty())
         throw PluginError(path + ": built differently from this statmc: " + mismatch +
                           " (rebuild the plugin against this statmc)");
-    const auto register_plugin = reinterpret_cast<RegisterFunction>(
-        entry_point(handle, path, "statmc_register_plugin"));
+    const auto register_plugin =
+        reinterpret_cast<RegisterFunction>(entry_point(handle, path, "statmc_register_plugin"));
     PluginRegistry staged;
     staged.set_current_module(path);
     try {

@@ -20,8 +20,8 @@ void register_testscale(statmc::PluginRegistry& registry)
         statmc::float_parameter("factor", 2.0, "the scale").between(0.01, 100),
         statmc::bool_parameter("reciprocal", false, "divide by the factor instead"),
     };
-    op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs,
-                const statmc::ParameterValues& p, const statmc::RunContext& ctx) {
+    op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs, const statmc::ParameterValues& p,
+                const statmc::RunContext& ctx) {
         const double factor = p.get_float("factor", 2.0);
         const float scale = float(p.get_bool("reciprocal") ? 1 / factor : factor);
         return OIIO::ImageBufAlgo::mul(*inputs[0], scale, {}, ctx.nthreads);
@@ -37,7 +37,8 @@ void register_testscale(statmc::PluginRegistry& registry)
     statmc::OperatorSpec bad;
     bad.name = "testthrow";
     bad.summary = "Throw instead of returning an image (a test plugin)";
-    bad.parameters = {statmc::bool_parameter("not_std", false, "throw an int, not a std::exception")};
+    bad.parameters = {
+        statmc::bool_parameter("not_std", false, "throw an int, not a std::exception")};
     bad.run = [fail](const std::vector<const OIIO::ImageBuf*>&, const statmc::ParameterValues& p,
                      const statmc::RunContext&) -> OIIO::ImageBuf {
         fail(p);

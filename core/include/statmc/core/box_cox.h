@@ -25,8 +25,8 @@ inline bool sample_is_usable(const float* sample, int channels)
     for (int c = 0; c < channels; ++c)
         if (!std::isfinite(sample[c]))
             return false;
-    const double y = channels >= 3 ? luminance<double>(sample[0], sample[1], sample[2])
-                                   : double(sample[0]);
+    const double y =
+        channels >= 3 ? luminance<double>(sample[0], sample[1], sample[2]) : double(sample[0]);
     return y >= -1e-5;
 }
 

@@ -37,8 +37,8 @@ struct CentralMoments {
         }
         const Real delta = other.mean - mean;
         const Real delta_n = delta / n;
-        m3 += other.m3 + delta * delta_n * delta_n * na * nb * (na - nb)
-              + 3 * delta_n * (na * other.m2 - nb * m2);
+        m3 += other.m3 + delta * delta_n * delta_n * na * nb * (na - nb) +
+              3 * delta_n * (na * other.m2 - nb * m2);
         m2 += other.m2 + delta * delta_n * na * nb;
         mean += delta_n * nb;
     }

@@ -1,6 +1,6 @@
-// Image files in and out, for every host (the statmc tool, the renderer). Reads are complete and immediate, so a truncated file fails at
-// -i; writes go to a temporary file in the target directory and are renamed into place,
-// so a failed write never leaves a partial or stray file.
+// Image files in and out, for every host (the statmc tool, the renderer). Reads are complete and
+// immediate, so a truncated file fails at -i; writes go to a temporary file in the target directory
+// and are renamed into place, so a failed write never leaves a partial or stray file.
 #pragma once
 
 #include <string>

@@ -12,7 +12,8 @@ namespace statmc::layers {
 
 /// Throws LayerError unless `a` and `b` have the same resolution and data window;
 /// `these` names the pair in the message, e.g. "render 1 (b.exr) and render 0 (a.exr)".
-void require_same_frame(const OIIO::ImageSpec& a, const OIIO::ImageSpec& b, const std::string& these);
+void require_same_frame(const OIIO::ImageSpec& a, const OIIO::ImageSpec& b,
+                        const std::string& these);
 
 /// "render 2 (b.exr)": input `k` named by `noun`, with its file name when it has one.
 std::string input_label(std::string_view noun, std::size_t k, const OIIO::ImageBuf* input);
@@ -20,6 +21,7 @@ std::string input_label(std::string_view noun, std::size_t k, const OIIO::ImageB
 /// Throws LayerError unless every input has the frame (require_same_frame) and the channel
 /// names (in any order) of input 0; the message names the channels only one side has.
 /// The inputs must be initialized.
-void require_matching_inputs(const std::vector<const OIIO::ImageBuf*>& inputs, std::string_view noun);
+void require_matching_inputs(const std::vector<const OIIO::ImageBuf*>& inputs,
+                             std::string_view noun);
 
 }  // namespace statmc::layers

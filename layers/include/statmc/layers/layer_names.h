@@ -21,8 +21,8 @@ inline constexpr const char* kVariance = "statmc:variance";            // "sampl
 inline constexpr const char* kSpp = "statmc:spp";                      // int
 inline constexpr const char* kSeed = "statmc:seed";                    // int
 inline constexpr const char* kDenoised = "statmc:denoised";            // int 1
-inline constexpr const char* kRenderTime = "statmc:renderTime";        // float seconds (statmc-render)
-inline constexpr const char* kScene = "statmc:scene";                  // string: the scene file (statmc-render)
+inline constexpr const char* kRenderTime = "statmc:renderTime";  // float seconds (statmc-render)
+inline constexpr const char* kScene = "statmc:scene";  // string: the scene file (statmc-render)
 }  // namespace attr
 
 /// Values of attr::kVariance: the per-sample variance s² (default) or the variance of the

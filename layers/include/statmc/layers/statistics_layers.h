@@ -23,7 +23,7 @@ struct StatisticsChannels {
     std::vector<std::string> suffixes;  ///< R,G,B or Y
     int count = -1;                     ///< sampleCount.Y
     std::vector<int> mean, variance, bc_mean, bc_variance, bc_moment3;
-    bool variance_of_mean = false;      ///< statmc:variance = "mean"
+    bool variance_of_mean = false;  ///< statmc:variance = "mean"
 
     int channels() const { return int(suffixes.size()); }
     bool has(Statistic stat) const { return !indices(stat).empty(); }
@@ -57,9 +57,9 @@ StatisticsView read_statistics(const OIIO::ImageBuf& buf, std::string_view aov =
 
 /// What a writer records beside the planes.
 struct StatisticsMetadata {
-    std::string aov;            ///< "" writes the beauty
-    std::optional<int> spp;     ///< statmc:spp
-    std::optional<int> seed;    ///< statmc:seed
+    std::string aov;          ///< "" writes the beauty
+    std::optional<int> spp;   ///< statmc:spp
+    std::optional<int> seed;  ///< statmc:seed
 };
 
 /// A new float image (data window at the origin) holding `stats` under the contract's
@@ -85,8 +85,7 @@ struct AovStatistics {
 /// Throws LayerError for an invalid or repeated AOV name, another resolution, or a count
 /// that differs from the beauty's.
 OIIO::ImageBuf make_statistics_image(const StatisticsView& stats,
-                                     const StatisticsMetadata& metadata,
-                                     const GuidePlanes& guides,
+                                     const StatisticsMetadata& metadata, const GuidePlanes& guides,
                                      const std::vector<AovStatistics>& aovs);
 
 }  // namespace statmc::layers

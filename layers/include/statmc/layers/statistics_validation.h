@@ -16,8 +16,8 @@ namespace statmc::layers {
 /// One kind of problem in one channel: the first offending pixel (image coordinates, row
 /// by row) and how many pixels have it.
 struct StatisticsProblem {
-    std::string channel;   ///< e.g. "variance.G"
-    std::string what;      ///< e.g. "negative value -0.3", "n = 0", "NaN"
+    std::string channel;  ///< e.g. "variance.G"
+    std::string what;     ///< e.g. "negative value -0.3", "n = 0", "NaN"
     int x = 0, y = 0;
     std::size_t pixels = 0;
 

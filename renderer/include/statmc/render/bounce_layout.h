@@ -34,7 +34,10 @@ struct PixelEstimates {
     bool has_luminance() const { return values && layout->luminance_bounces > 0; }
     bool has_wins() const { return values && layout->mis_bounces > 0; }
     /// L̂_j, the last tracked estimate standing in for deeper vertices (§7).
-    float luminance(int j) const { return values[layout->luminance(std::min(j, layout->luminance_bounces - 1))]; }
+    float luminance(int j) const
+    {
+        return values[layout->luminance(std::min(j, layout->luminance_bounces - 1))];
+    }
     float light_wins(int b) const { return values[layout->light_wins(b)]; }
     float bsdf_wins(int b) const { return values[layout->bsdf_wins(b)]; }
 };

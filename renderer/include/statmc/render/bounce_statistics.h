@@ -63,7 +63,8 @@ public:
     static StatisticsView quantity_view(const std::vector<StatisticsPlanes>& groups, int q);
 
     /// Denoises every quantity, one filter call per group, Box-Cox test (§3).
-    BounceEstimates denoise(const Guides& guides, const DenoiseOptions& options, int threads = 0) const;
+    BounceEstimates denoise(const Guides& guides, const DenoiseOptions& options,
+                            int threads = 0) const;
 
 private:
     int width_, height_;

@@ -65,7 +65,10 @@ struct IntegratorSettings {
 
 class PathIntegrator {
 public:
-    PathIntegrator(const Scene& scene, IntegratorSettings settings) : scene_(scene), settings_(settings) {}
+    PathIntegrator(const Scene& scene, IntegratorSettings settings)
+        : scene_(scene), settings_(settings)
+    {
+    }
 
     /// The radiance arriving along `ray` (one Monte Carlo sample). `estimates` (of the
     /// pixel, from earlier iterations) steer ACRR and SMIS when the settings ask for them;

@@ -53,7 +53,7 @@ public:
 
 private:
     std::vector<Emitter> emitters_;
-    std::vector<float> cdf_;    ///< normalized, cdf_.back() == 1
+    std::vector<float> cdf_;  ///< normalized, cdf_.back() == 1
     std::vector<float> prob_;
 };
 

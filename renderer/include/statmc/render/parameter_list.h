@@ -23,8 +23,8 @@ struct Parameter {
     std::string type, name;
     std::vector<double> numbers;
     std::vector<std::string> strings;
-    int line = 0;      ///< where the "type name" declaration is
-    bool used = false; ///< looked up (or deliberately ignored) by the directive
+    int line = 0;       ///< where the "type name" declaration is
+    bool used = false;  ///< looked up (or deliberately ignored) by the directive
 };
 
 class ParameterList {
@@ -36,8 +36,8 @@ public:
     /// is not a quoted string, and leaves `pos` after them; `line` is the directive's.
     /// A malformed declaration, an unknown type, values of the wrong kind or a missing
     /// ']' is a SceneError naming file:line.
-    static ParameterList parse(const std::vector<Token>& tokens, std::size_t& pos, const std::string& file,
-                               int line);
+    static ParameterList parse(const std::vector<Token>& tokens, std::size_t& pos,
+                               const std::string& file, int line);
 
     // Single values, marked used: nullopt when there is no parameter of that type and
     // name; a SceneError at the parameter's line when it has other than one value.

@@ -34,7 +34,7 @@ struct RenderSettings {
     int width = 0, height = 0;
     std::vector<int> schedule;  ///< samples per pixel of each iteration
     std::uint64_t seed = 0;
-    int threads = 0;            ///< 0: all cores
+    int threads = 0;  ///< 0: all cores
     IntegratorSettings integrator;
     /// How the per-bounce statistics are denoised: the paper's filter, without the firefly
     /// guard, as ACRR and SMIS were measured (docs/sampling.md).
@@ -45,7 +45,8 @@ struct RenderSettings {
 /// What one progressive iteration cost.
 struct IterationStats {
     int spp = 0;
-    double denoise_seconds = 0;  ///< denoising the estimates it steered by, before rendering (0 without)
+    double denoise_seconds =
+        0;  ///< denoising the estimates it steered by, before rendering (0 without)
 };
 
 struct RenderStats {
@@ -64,8 +65,8 @@ using IterationCallback = std::function<void(int iteration, const Film&, const I
 /// every pixel has samples), then the render stops. `after_iteration` runs after each
 /// iteration (the hook for per-iteration denoising). The film's layout must be
 /// bounce_layout_for(settings.integrator) or a superset of it (record_all).
-RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings, Film& film,
-                   const std::atomic<bool>* cancel = nullptr,
+RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings,
+                   Film& film, const std::atomic<bool>* cancel = nullptr,
                    const IterationCallback& after_iteration = {});
 
 }  // namespace statmc::render

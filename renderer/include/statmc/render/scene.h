@@ -9,8 +9,8 @@
 
 #include <tbb/enumerable_thread_specific.h>
 
-#include "statmc/render/lights.h"
 #include "statmc/render/camera.h"
+#include "statmc/render/lights.h"
 #include "statmc/render/material.h"
 #include "statmc/render/scene_description.h"
 
@@ -20,12 +20,12 @@ namespace statmc::render {
 struct SurfaceHit {
     float t = 0;
     Vec3 p;
-    Vec3 ng;  ///< unit geometric normal, on the side of the shading normal (pbrt's rule)
-    Vec3 ns;  ///< unit shading normal
+    Vec3 ng;             ///< unit geometric normal, on the side of the shading normal (pbrt's rule)
+    Vec3 ns;             ///< unit shading normal
     Vec3 dpdu;           ///< surface tangent along u (zero when the uvs are degenerate)
     float u = 0, v = 0;  ///< texture coordinates
     int material = 0;
-    int emitter = -1;    ///< index into lights(), or −1
+    int emitter = -1;  ///< index into lights(), or −1
 };
 
 class Scene {

@@ -29,8 +29,8 @@ struct ShapeDesc {
     enum class Kind { Mesh, Sphere };
     Kind kind = Kind::Mesh;
     std::shared_ptr<const TriangleMesh> mesh;
-    Vec3 center;          ///< sphere
-    float radius = 1;     ///< sphere
+    Vec3 center;                ///< sphere
+    float radius = 1;           ///< sphere
     bool flip_normals = false;  ///< sphere: emit inward
     int material = 0;
     std::optional<Rgb> emission;  ///< AreaLightSource "diffuse" L
@@ -48,8 +48,8 @@ struct CameraDesc {
 struct SceneDescription {
     std::string file;
     CameraDesc camera;
-    int spp = 16;       ///< Sampler "integer pixelsamples"
-    int maxdepth = 5;   ///< Integrator "integer maxdepth" (pbrt-v3's default 5)
+    int spp = 16;                     ///< Sampler "integer pixelsamples"
+    int maxdepth = 5;                 ///< Integrator "integer maxdepth" (pbrt-v3's default 5)
     std::vector<Material> materials;  ///< [0] is the default matte
     std::vector<ShapeDesc> shapes;
     std::vector<std::string> warnings;  ///< "file:line: warning: ..."

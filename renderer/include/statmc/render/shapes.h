@@ -27,6 +27,7 @@ using PlyLoader = std::function<std::shared_ptr<const TriangleMesh>(const std::s
 /// Errors (unsupported shape, bad values, a singular transform) are SceneErrors at
 /// file:line.
 ShapeDesc read_shape(const std::string& type, ParameterList& ps, const Transform& object_to_world,
-                     bool reverse_orientation, const PlyLoader& load_ply, std::vector<std::string>& warnings);
+                     bool reverse_orientation, const PlyLoader& load_ply,
+                     std::vector<std::string>& warnings);
 
 }  // namespace statmc::render

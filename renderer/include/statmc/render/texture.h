@@ -14,7 +14,8 @@ public:
     /// Reads `path` through OIIO. 8-bit formats (TGA, PNG, JPEG...) are sRGB-encoded and
     /// decoded to linear when `gamma` says so, as pbrt-v3 does by default for .tga/.png.
     /// Throws std::runtime_error naming the file when it cannot be read.
-    static std::shared_ptr<const ImageTexture> load(const std::string& path, bool gamma, float scale);
+    static std::shared_ptr<const ImageTexture> load(const std::string& path, bool gamma,
+                                                    float scale);
     /// A texture from pixels (rows top to bottom, RGB interleaved), for tests.
     ImageTexture(int width, int height, std::vector<float> rgb);
 

@@ -11,7 +11,8 @@
 namespace statmc::render {
 
 struct Transform {
-    std::array<std::array<double, 4>, 4> m{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
+    std::array<std::array<double, 4>, 4> m{
+        {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
 
     static Transform identity() { return {}; }
     /// pbrt's `Transform [16 numbers]`: the file lists the matrix column by column.

@@ -53,7 +53,9 @@ struct Frame {
         const float sign = std::copysign(1.f, n.z);
         const float a = -1.f / (sign + n.z);
         const float b = n.x * n.y * a;
-        return {{1.f + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}, n};
+        return {{1.f + sign * n.x * n.x * a, sign * b, -sign * n.x},
+                {b, sign + n.y * n.y * a, -n.y},
+                n};
     }
     /// The frame around `n` whose s axis is `tangent` made orthogonal to n (pbrt's
     /// shading frame, s along dp/du, so that anisotropic roughness follows the texture

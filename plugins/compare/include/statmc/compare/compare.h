@@ -37,7 +37,6 @@ struct CompareOptions {
 ///
 /// Returns false after `error.errorfmt(...)` naming the problem; never throws.
 bool compare(CompareMetrics& metrics, OIIO::ImageBuf& error, const OIIO::ImageBuf& image,
-             const OIIO::ImageBuf& reference, const CompareOptions& options = {},
-             int nthreads = 0);
+             const OIIO::ImageBuf& reference, const CompareOptions& options = {}, int nthreads = 0);
 
 }  // namespace statmc

@@ -29,7 +29,6 @@ bool display(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DisplayOption
              int nthreads = 0);
 
 /// The return-value form: check `has_error()` on the result.
-OIIO::ImageBuf display(const OIIO::ImageBuf& src, const DisplayOptions& options,
-                       int nthreads = 0);
+OIIO::ImageBuf display(const OIIO::ImageBuf& src, const DisplayOptions& options, int nthreads = 0);
 
 }  // namespace statmc

@@ -23,8 +23,7 @@ namespace statmc {
 ///
 /// Returns false after `dst.errorfmt(...)` naming the offending parts (by index and
 /// ImageBuf name, i.e. file); never throws.
-bool merge(OIIO::ImageBuf& dst, const std::vector<const OIIO::ImageBuf*>& parts,
-           int nthreads = 0);
+bool merge(OIIO::ImageBuf& dst, const std::vector<const OIIO::ImageBuf*>& parts, int nthreads = 0);
 
 /// The return-value form: check `has_error()` on the result.
 OIIO::ImageBuf merge(const std::vector<const OIIO::ImageBuf*>& parts, int nthreads = 0);

@@ -28,14 +28,14 @@ struct RunContext {
 
 /// Inputs bottom of the stack first. Returns the image to push; on failure the result
 /// carries the message (`result.errorfmt(...)`, seen by `has_error()`). Must not throw.
-using RunFunction = std::function<OIIO::ImageBuf(const std::vector<const OIIO::ImageBuf*>& inputs,
-                                                 const ParameterValues& parameters,
-                                                 const RunContext& context)>;
+using RunFunction =
+    std::function<OIIO::ImageBuf(const std::vector<const OIIO::ImageBuf*>& inputs,
+                                 const ParameterValues& parameters, const RunContext& context)>;
 
 /// The in-place form for one-input operators: the host hands over the image it popped,
 /// which becomes the result. Returns false with the message on the image. Must not throw.
-using RunInPlaceFunction = std::function<bool(OIIO::ImageBuf& image, const ParameterValues& parameters,
-                                              const RunContext& context)>;
+using RunInPlaceFunction = std::function<bool(
+    OIIO::ImageBuf& image, const ParameterValues& parameters, const RunContext& context)>;
 
 /// Cross-parameter checks beyond type and range, run before any image is read: "" when
 /// fine, else a message naming the parameter.
@@ -46,15 +46,15 @@ struct OperatorSpec {
     std::string summary;  ///< one line
     std::string help;     ///< a paragraph for --help OP
     std::vector<ParameterSpec> parameters;
-    int inputs = 1;                      ///< images popped, or kVariadicInputs
-    int min_inputs = 1;                  ///< kVariadicInputs only
-    std::string input_noun = "images";   ///< "renders": for "needs at least 2 renders"
-    CheckFunction check;                 ///< optional
+    int inputs = 1;                     ///< images popped, or kVariadicInputs
+    int min_inputs = 1;                 ///< kVariadicInputs only
+    std::string input_noun = "images";  ///< "renders": for "needs at least 2 renders"
+    CheckFunction check;                ///< optional
     RunFunction run;
     /// Optional, one-input operators only: when set, the host runs this instead of `run`
     /// on an image it owns, sparing the operator a copy of its input.
     RunInPlaceFunction run_in_place;
-    std::string module;                  ///< set by the loader: the file it came from
+    std::string module;  ///< set by the loader: the file it came from
 };
 
 /// Makes `op` pop a run of images: the value of its `n` parameter (added here) when given,

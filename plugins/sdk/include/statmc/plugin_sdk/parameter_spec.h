@@ -12,7 +12,7 @@ namespace statmc {
 enum class ParameterType {
     Int,
     Float,
-    Bool,    ///< 1/0, true/false, yes/no, on/off
+    Bool,  ///< 1/0, true/false, yes/no, on/off
     String,
     Choice,  ///< one of `choices`
     List,    ///< comma-separated items from `choices`, or one of `keywords` alone

@@ -24,16 +24,16 @@ inline constexpr int kPluginInterfaceVersion = 2;
 
 /// The one export line of a plugin: STATMC_EXPORT_PLUGIN(register_my_operators), where
 /// `void register_my_operators(statmc::PluginRegistry&)` adds the module's operators.
-#define STATMC_EXPORT_PLUGIN(register_function)                                    \
-    STATMC_PLUGIN_VISIBLE int statmc_plugin_interface_version()                    \
-    {                                                                              \
-        return statmc::kPluginInterfaceVersion;                                    \
-    }                                                                              \
-    STATMC_PLUGIN_VISIBLE statmc::BuildIdentity statmc_plugin_build_identity()     \
-    {                                                                              \
-        return statmc::this_build_identity();                                      \
-    }                                                                              \
-    STATMC_PLUGIN_VISIBLE void statmc_register_plugin(statmc::PluginRegistry& reg) \
-    {                                                                              \
-        register_function(reg);                                                    \
+#define STATMC_EXPORT_PLUGIN(register_function)                                                    \
+    STATMC_PLUGIN_VISIBLE int statmc_plugin_interface_version()                                    \
+    {                                                                                              \
+        return statmc::kPluginInterfaceVersion;                                                    \
+    }                                                                                              \
+    STATMC_PLUGIN_VISIBLE statmc::BuildIdentity statmc_plugin_build_identity()                     \
+    {                                                                                              \
+        return statmc::this_build_identity();                                                      \
+    }                                                                                              \
+    STATMC_PLUGIN_VISIBLE void statmc_register_plugin(statmc::PluginRegistry& reg)                 \
+    {                                                                                              \
+        register_function(reg);                                                                    \
     }
