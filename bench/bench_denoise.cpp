@@ -7,6 +7,7 @@
 #include <OpenImageIO/imagebuf.h>
 
 #include "bench_frame.h"
+#include "bench_timing.h"
 #include "statmc/core/estimator_image.h"
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/statistics_layers.h"
@@ -88,36 +89,11 @@ void BM_StageCopy(benchmark::State& state)
 }
 
 // Args: threads (0 = all cores), guides (0/1).
-BENCHMARK(BM_DenoiseOperator)
-    ->Args({0, 0})
-    ->Args({0, 1})
-    ->Args({1, 0})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Repetitions(5)
-    ->ReportAggregatesOnly();
-BENCHMARK(BM_DenoiseOperatorInPlace)
-    ->Args({0, 0})
-    ->Args({0, 1})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Repetitions(5)
-    ->ReportAggregatesOnly();
-BENCHMARK(BM_StageValidate)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Repetitions(5)
-    ->ReportAggregatesOnly();
-BENCHMARK(BM_StageEstimators)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Repetitions(5)
-    ->ReportAggregatesOnly();
-BENCHMARK(BM_StageCopy)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Repetitions(5)
-    ->ReportAggregatesOnly();
+BENCHMARK(BM_DenoiseOperator)->Args({0, 0})->Args({0, 1})->Args({1, 0})->Apply(median_of_5);
+BENCHMARK(BM_DenoiseOperatorInPlace)->Args({0, 0})->Args({0, 1})->Apply(median_of_5);
+BENCHMARK(BM_StageValidate)->Apply(median_of_5);
+BENCHMARK(BM_StageEstimators)->Apply(median_of_5);
+BENCHMARK(BM_StageCopy)->Apply(median_of_5);
 
 }  // namespace
 

@@ -10,6 +10,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_frame.h"
+#include "bench_timing.h"
 #include "statmc/core/filter.h"
 
 namespace {
@@ -126,69 +127,16 @@ void BM_FilterReference(benchmark::State& s) { run(s, false, SimdLevel::Scalar, 
 void BM_FilterReferenceGuides(benchmark::State& s) { run(s, true, SimdLevel::Scalar, true); }
 
 // Arg = threads (0 = all cores). Medians over 5 repetitions (3 for the slow paths).
-BENCHMARK(BM_Filter)
-    ->Arg(0)
-    ->Arg(1)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Repetitions(5)
-    ->ReportAggregatesOnly();
-BENCHMARK(BM_FilterGuides)
-    ->Arg(0)
-    ->Arg(1)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Repetitions(5)
-    ->ReportAggregatesOnly();
-BENCHMARK(BM_FilterNoGuard)
-    ->Arg(0)
-    ->Arg(1)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Repetitions(5)
-    ->ReportAggregatesOnly();
+BENCHMARK(BM_Filter)->Arg(0)->Arg(1)->Apply(median_of_5);
+BENCHMARK(BM_FilterGuides)->Arg(0)->Arg(1)->Apply(median_of_5);
+BENCHMARK(BM_FilterNoGuard)->Arg(0)->Arg(1)->Apply(median_of_5);
 // Args: threads, guides (0/1).
-BENCHMARK(BM_FilterFireflies)
-    ->Args({0, 0})
-    ->Args({0, 1})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Repetitions(5)
-    ->ReportAggregatesOnly();
-BENCHMARK(BM_FilterFixedCost)
-    ->Args({0, 0})
-    ->Args({0, 1})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Repetitions(5)
-    ->ReportAggregatesOnly();
-BENCHMARK(BM_FilterAvx2Kernel)
-    ->Args({0, 0})
-    ->Args({0, 1})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Repetitions(5)
-    ->ReportAggregatesOnly();
-BENCHMARK(BM_FilterScalarKernel)
-    ->Arg(0)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Repetitions(3)
-    ->ReportAggregatesOnly();
-BENCHMARK(BM_FilterReference)
-    ->Arg(1)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Iterations(1)
-    ->Repetitions(3)
-    ->ReportAggregatesOnly();
-BENCHMARK(BM_FilterReferenceGuides)
-    ->Arg(1)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Iterations(1)
-    ->Repetitions(3)
-    ->ReportAggregatesOnly();
+BENCHMARK(BM_FilterFireflies)->Args({0, 0})->Args({0, 1})->Apply(median_of_5);
+BENCHMARK(BM_FilterFixedCost)->Args({0, 0})->Args({0, 1})->Apply(median_of_5);
+BENCHMARK(BM_FilterAvx2Kernel)->Args({0, 0})->Args({0, 1})->Apply(median_of_5);
+BENCHMARK(BM_FilterScalarKernel)->Arg(0)->Apply(median_of_3);
+BENCHMARK(BM_FilterReference)->Arg(1)->Apply(median_of_3_single);
+BENCHMARK(BM_FilterReferenceGuides)->Arg(1)->Apply(median_of_3_single);
 
 }  // namespace
 

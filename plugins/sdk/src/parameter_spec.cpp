@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include <OpenImageIO/strutil.h>
+
 namespace statmc {
 
 namespace {
@@ -12,14 +14,6 @@ std::string number_text(double value)
     std::ostringstream os;
     os << value;
     return os.str();
-}
-
-std::string join(const std::vector<std::string>& items, const char* separator)
-{
-    std::string text;
-    for (const std::string& item : items)
-        text += (text.empty() ? "" : separator) + item;
-    return text;
 }
 
 ParameterSpec make(std::string name, ParameterType type, std::string default_value,
@@ -91,21 +85,17 @@ std::string ParameterRange::violation(const std::string& name, double value) con
 
 std::string ParameterSpec::value_syntax() const
 {
+    using OIIO::Strutil::join;
     switch (type) {
-    case ParameterType::Int:
-        return "int";
-    case ParameterType::Float:
-        return "float";
-    case ParameterType::Bool:
-        return "bool";
     case ParameterType::String:
         return "name";
     case ParameterType::Choice:
         return join(choices, "|");
     case ParameterType::List:
         return join(choices, ",") + "|" + join(keywords, "|");
+    default:
+        return type_name(type);  // int, float, bool
     }
-    return "value";
 }
 
 ParameterSpec& ParameterSpec::between(double lo, double hi)
