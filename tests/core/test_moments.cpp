@@ -14,7 +14,7 @@ namespace statmc {
 namespace {
 
 struct BruteForce {
-    double n = 0, mean = 0, m2 = 0, m3 = 0;
+    double n = 0, mean = 0, m2 = 0, m3 = 0, m4 = 0;
 };
 
 BruteForce two_pass(const std::vector<double>& xs)
@@ -27,6 +27,7 @@ BruteForce two_pass(const std::vector<double>& xs)
     for (double x : xs) {
         b.m2 += (x - b.mean) * (x - b.mean);
         b.m3 += (x - b.mean) * (x - b.mean) * (x - b.mean);
+        b.m4 += (x - b.mean) * (x - b.mean) * (x - b.mean) * (x - b.mean);
     }
     return b;
 }
@@ -46,6 +47,7 @@ void expect_moments_near(const CentralMoments<double>& m, const BruteForce& b, d
     EXPECT_NEAR(m.mean, b.mean, 1e-12 * scale);
     EXPECT_NEAR(m.m2, b.m2, 1e-10 * b.n * scale * scale);
     EXPECT_NEAR(m.m3, b.m3, 1e-9 * b.n * scale * scale * scale);
+    EXPECT_NEAR(m.m4, b.m4, 1e-9 * b.n * scale * scale * scale * scale);
 }
 
 std::vector<double> draw(const char* kind, int n, std::mt19937_64& rng)

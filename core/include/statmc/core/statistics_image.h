@@ -53,7 +53,8 @@ public:
     }
 
     StatisticsPlanes planes() const;
-    /// Rebuilds accumulators from stored planes (M2 = s²(n − 1), M3 = n·m3).
+    /// Rebuilds accumulators from stored planes (M2 = s²(n − 1), M3 = n·m3). The planes
+    /// hold no fourth moments and no untransformed M3, so those come back as 0.
     static StatisticsImage from_view(const StatisticsView& view);
     /// The exact merge of views of one frame (same resolution, C channels, Box-Cox planes),
     /// each pixel folded in view order: the same result for any `nthreads` (0 = all cores).
