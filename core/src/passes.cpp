@@ -31,9 +31,11 @@ StatisticsPlanes statistics_from_passes(const std::vector<std::vector<ConstPlane
     out.count.assign(n, float(k));
     out.mean.assign(n * channels, 0.f);
     out.variance.assign(n * channels, 0.f);
+    out.moment3.assign(n * channels, 0.f);
+    out.moment4.assign(n * channels, 0.f);
 
     // The K samples of one pixel, read and sanitised once, then summed in two passes
-    // (mean, then squared deviations) so the variance has no cancellation.
+    // (mean, then powers of the deviations) so the moments have no cancellation.
     std::vector<float> samples(std::size_t(k) * channels);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
@@ -50,13 +52,17 @@ StatisticsPlanes statistics_from_passes(const std::vector<std::vector<ConstPlane
                 for (int r = 0; r < k; ++r)
                     sum += samples[std::size_t(r) * channels + c];
                 const double mean = sum / k;
-                double sum_sq = 0;
+                double m2 = 0, m3 = 0, m4 = 0;
                 for (int r = 0; r < k; ++r) {
                     const double d = samples[std::size_t(r) * channels + c] - mean;
-                    sum_sq += d * d;
+                    m2 += d * d;
+                    m3 += d * d * d;
+                    m4 += d * d * d * d;
                 }
                 out.mean[c * n + i] = float(mean);
-                out.variance[c * n + i] = float(sum_sq / (k - 1));
+                out.variance[c * n + i] = float(m2 / (k - 1));
+                out.moment3[c * n + i] = float(m3 / k);
+                out.moment4[c * n + i] = float(m4 / k);
             }
         }
     return out;

@@ -26,6 +26,9 @@ StatisticsView StatisticsPlanes::view() const
         v.bc_mean[c] = plane(bc_mean, c);
         v.bc_variance[c] = plane(bc_variance, c);
         v.bc_moment3[c] = plane(bc_moment3, c);
+        v.moment3[c] = plane(moment3, c);
+        v.moment4[c] = plane(moment4, c);
+        v.bc_moment4[c] = plane(bc_moment4, c);
     }
     return v;
 }
@@ -39,21 +42,25 @@ StatisticsPlanes StatisticsImage<C>::planes() const
     p.channels = C;
     const std::size_t n = pixels_.size();
     p.count.resize(n);
-    for (auto* plane : {&p.mean, &p.variance, &p.bc_mean, &p.bc_variance, &p.bc_moment3})
+    for (auto* plane : {&p.mean, &p.variance, &p.bc_mean, &p.bc_variance, &p.bc_moment3, &p.moment3,
+                        &p.moment4, &p.bc_moment4})
         plane->resize(n * C);
     for (std::size_t i = 0; i < n; ++i) {
         const Pixel& px = pixels_[i];
         p.count[i] = float(px.n);
         // s² is undefined below two samples; 0 is stored and the count tells the reader.
         const double to_variance = px.n > 1 ? 1.0 / (px.n - 1) : 0.0;
-        const double to_moment3 = px.n > 0 ? 1.0 / px.n : 0.0;
+        const double per_sample = px.n > 0 ? 1.0 / px.n : 0.0;
         for (int c = 0; c < C; ++c) {
             const std::size_t k = c * n + i;
             p.mean[k] = float(px.raw[c].mean);
             p.variance[k] = float(px.raw[c].m2 * to_variance);
             p.bc_mean[k] = float(px.box_cox[c].mean);
             p.bc_variance[k] = float(px.box_cox[c].m2 * to_variance);
-            p.bc_moment3[k] = float(px.box_cox[c].m3 * to_moment3);
+            p.bc_moment3[k] = float(px.box_cox[c].m3 * per_sample);
+            p.moment3[k] = float(px.raw[c].m3 * per_sample);
+            p.moment4[k] = float(px.raw[c].m4 * per_sample);
+            p.bc_moment4[k] = float(px.box_cox[c].m4 * per_sample);
         }
     }
     return p;
@@ -70,10 +77,11 @@ void require_mergeable(const StatisticsView& view, const char* caller)
         throw std::invalid_argument(std::string(caller) + ": Box-Cox planes are missing");
 }
 
-// The accumulator a stored pixel stands for (M2 = s²(n − 1), M3 = n·m3).
+// The accumulator a stored pixel stands for (M2 = s²(n − 1), Mk = n·mk).
 template <int C>
 PixelMoments<C, double> pixel_of(const StatisticsView& view, int x, int y)
 {
+    const bool moments = view.has_moments(), bc_moment4 = view.has_box_cox_moment4();
     PixelMoments<C, double> px;
     px.n = view.count(x, y);
     const double to_mean_variance = view.variance_of_mean ? px.n : 1.0;
@@ -84,6 +92,12 @@ PixelMoments<C, double> pixel_of(const StatisticsView& view, int x, int y)
         px.box_cox[c].mean = view.bc_mean[c](x, y);
         px.box_cox[c].m2 = view.bc_variance[c](x, y) * m2_scale;
         px.box_cox[c].m3 = view.bc_moment3[c](x, y) * px.n;
+        if (moments) {
+            px.raw[c].m3 = view.moment3[c](x, y) * px.n;
+            px.raw[c].m4 = view.moment4[c](x, y) * px.n;
+        }
+        if (bc_moment4)
+            px.box_cox[c].m4 = view.bc_moment4[c](x, y) * px.n;
     }
     return px;
 }

@@ -6,9 +6,10 @@ namespace statmc::layers {
 
 const std::vector<Statistic>& all_statistics()
 {
-    static const std::vector<Statistic> all = {Statistic::Mean, Statistic::Variance,
-                                               Statistic::BoxCoxMean, Statistic::BoxCoxVariance,
-                                               Statistic::BoxCoxMoment3};
+    static const std::vector<Statistic> all = {Statistic::Mean,          Statistic::Variance,
+                                               Statistic::BoxCoxMean,    Statistic::BoxCoxVariance,
+                                               Statistic::BoxCoxMoment3, Statistic::Moment3,
+                                               Statistic::Moment4,       Statistic::BoxCoxMoment4};
     return all;
 }
 
@@ -25,6 +26,12 @@ const char* statistic_name(Statistic stat)
         return "boxcoxVariance";
     case Statistic::BoxCoxMoment3:
         return "boxcoxM3";
+    case Statistic::Moment3:
+        return "M3";
+    case Statistic::Moment4:
+        return "M4";
+    case Statistic::BoxCoxMoment4:
+        return "boxcoxM4";
     }
     return "?";
 }

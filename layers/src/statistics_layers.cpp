@@ -26,7 +26,7 @@ void check_format_version(const OIIO::ImageSpec& spec)
     const int version = p->get_int(-1);
     if (version < 1 || version > kFormatVersion)
         throw LayerError(std::string(attr::kFormatVersion) + " is " + p->get_string() +
-                         "; this build reads version " + std::to_string(kFormatVersion));
+                         "; this build reads versions 1 to " + std::to_string(kFormatVersion));
 }
 
 void check_box_cox_lambda(const OIIO::ImageSpec& spec)
@@ -81,6 +81,22 @@ void find_box_cox(const OIIO::ImageSpec& spec, StatisticsChannels& ch)
                 missing_layer_message(spec, statistic_layer(ch.aov, stat), ch.suffixes));
 }
 
+// The higher moments (format version 2): M3 and M4 come together, since merging either
+// needs the other. They extend the variance, and boxcoxM4 the Box-Cox set: without those
+// they are not read (StatisticsView::has_moments), and the missing layer is reported by
+// whoever needs it.
+void find_higher_moments(const OIIO::ImageSpec& spec, StatisticsChannels& ch)
+{
+    for (Statistic stat : {Statistic::Moment3, Statistic::Moment4, Statistic::BoxCoxMoment4})
+        ch.indices(stat) = optional_layer(spec, statistic_layer(ch.aov, stat), ch.suffixes);
+    if (ch.has(Statistic::Moment3) != ch.has(Statistic::Moment4)) {
+        const Statistic absent =
+            ch.has(Statistic::Moment3) ? Statistic::Moment4 : Statistic::Moment3;
+        throw LayerError("incomplete higher moments: " +
+                         missing_layer_message(spec, statistic_layer(ch.aov, absent), ch.suffixes));
+    }
+}
+
 ConstPlane plane_or_null(const OIIO::ImageBuf& buf, const std::vector<int>& indices, int c)
 {
     return indices.empty() ? ConstPlane{} : channel_plane(buf, indices[c]);
@@ -114,6 +130,12 @@ void layout_statistics(Channels& out, const StatisticsView& stats, const std::st
         add(Statistic::BoxCoxVariance, stats.bc_variance);
         add(Statistic::BoxCoxMoment3, stats.bc_moment3);
     }
+    if (stats.has_moments()) {
+        add(Statistic::Moment3, stats.moment3);
+        add(Statistic::Moment4, stats.moment4);
+    }
+    if (stats.has_box_cox_moment4())
+        add(Statistic::BoxCoxMoment4, stats.bc_moment4);
 }
 
 // An extra AOV must be nameable, distinct, of the frame and share the beauty's counts.
@@ -200,6 +222,12 @@ const std::vector<int>& StatisticsChannels::indices(Statistic stat) const
         return bc_variance;
     case Statistic::BoxCoxMoment3:
         return bc_moment3;
+    case Statistic::Moment3:
+        return moment3;
+    case Statistic::Moment4:
+        return moment4;
+    case Statistic::BoxCoxMoment4:
+        return bc_moment4;
     }
     return mean;
 }
@@ -226,6 +254,7 @@ StatisticsChannels find_statistics(const OIIO::ImageSpec& spec, std::string_view
         throw LayerError(missing_layer_message(spec, kSampleCountLayer, scalar_suffixes()));
     ch.variance = optional_layer(spec, statistic_layer(aov, Statistic::Variance), ch.suffixes);
     find_box_cox(spec, ch);
+    find_higher_moments(spec, ch);
     ch.variance_of_mean = read_variance_of_mean(spec);
     return ch;
 }
@@ -252,6 +281,9 @@ StatisticsView statistics_view(const OIIO::ImageBuf& buf, const StatisticsChanne
         view.bc_mean[c] = plane_or_null(buf, ch.bc_mean, c);
         view.bc_variance[c] = plane_or_null(buf, ch.bc_variance, c);
         view.bc_moment3[c] = plane_or_null(buf, ch.bc_moment3, c);
+        view.moment3[c] = plane_or_null(buf, ch.moment3, c);
+        view.moment4[c] = plane_or_null(buf, ch.moment4, c);
+        view.bc_moment4[c] = plane_or_null(buf, ch.bc_moment4, c);
     }
     return view;
 }

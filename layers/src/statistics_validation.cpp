@@ -170,11 +170,69 @@ std::vector<Check> checks_for(Statistic stat)
     switch (stat) {
     case Statistic::Variance:
     case Statistic::BoxCoxVariance:
+    case Statistic::Moment4:
+    case Statistic::BoxCoxMoment4:
         return {Check::Negative};
     case Statistic::BoxCoxMean:
         return {Check::BelowBoxCoxMinimum};
     default:
         return {};
+    }
+}
+
+// M4/n ≥ (M2/n)² holds for any set of values (the mean of the squared squares is at least
+// the square of their mean), so a stored fourth moment below it cannot come from samples.
+// The slack absorbs float rounding of the two stored values.
+struct MomentPair {
+    ConstPlane count, variance, moment4;
+    bool variance_of_mean;
+    std::string channel;  ///< the M4 channel, named in the message
+};
+
+void check_moment_pairs(const std::vector<MomentPair>& pairs, const Region& r,
+                        std::vector<StatisticsProblem>& problems)
+{
+    const int rows = r.y1 - r.y0;
+    if (rows <= 0)
+        return;
+    for (const MomentPair& m : pairs) {
+        // m2/n from the stored variance: s²·(n − 1)/n per sample (·n for a variance of the mean).
+        auto floor_of = [&](int x, int y) {
+            const double n = m.count(x, y);
+            const double s2 = double(m.variance(x, y)) * (m.variance_of_mean ? n : 1.0);
+            const double second = n > 0 ? s2 * (n - 1) / n : 0.0;
+            return second * second;
+        };
+        // A variance or fourth moment that is itself wrong (negative, NaN) is reported by
+        // its own check.
+        auto bad = [&](int x, int y) {
+            const double m4 = m.moment4(x, y), s2 = m.variance(x, y);
+            return std::isfinite(m4) && m4 >= 0 && s2 >= 0 && std::isfinite(s2) &&
+                   m4 < (1 - 1e-5) * floor_of(x, y) - 1e-30;
+        };
+        std::vector<Found> found(rows);
+        tbb::parallel_for(tbb::blocked_range<int>(r.y0, r.y1, 16),
+                          [&](const tbb::blocked_range<int>& range) {
+                              for (int y = range.begin(); y < range.end(); ++y)
+                                  for (int x = r.x0; x < r.x1; ++x)
+                                      if (bad(x, y) && found[y - r.y0].count++ == 0)
+                                          found[y - r.y0].first_x = x;
+                          });
+        StatisticsProblem p;
+        p.channel = m.channel;
+        for (int y = r.y0; y < r.y1; ++y) {
+            const Found& f = found[y - r.y0];
+            if (f.count && p.pixels == 0) {
+                p.what = OIIO::Strutil::fmt::format(
+                    "fourth moment {} below the square of the second, {}: inconsistent moments",
+                    m.moment4(f.first_x, y), floor_of(f.first_x, y));
+                p.x = f.first_x + r.origin_x;
+                p.y = y + r.origin_y;
+            }
+            p.pixels += f.count;
+        }
+        if (p.pixels)
+            problems.push_back(std::move(p));
     }
 }
 
@@ -213,6 +271,20 @@ std::vector<StatisticsProblem> validate_statistics(const OIIO::ImageBuf& buf,
             check(channels.indices(stat)[c], channels.channel(stat, int(c)), checks_for(stat));
     std::vector<StatisticsProblem> problems;
     run(tasks, region, problems);
+    std::vector<MomentPair> pairs;
+    const ConstPlane count = channel_plane(buf, channels.count);
+    for (int c = 0; c < channels.channels(); ++c) {
+        // A fourth moment without its variance is not read (StatisticsView::has_moments).
+        if (channels.has(Statistic::Moment4) && channels.has(Statistic::Variance))
+            pairs.push_back({count, channel_plane(buf, channels.variance[c]),
+                             channel_plane(buf, channels.moment4[c]), channels.variance_of_mean,
+                             channels.channel(Statistic::Moment4, c)});
+        if (channels.has(Statistic::BoxCoxMoment4) && channels.has_box_cox())
+            pairs.push_back({count, channel_plane(buf, channels.bc_variance[c]),
+                             channel_plane(buf, channels.bc_moment4[c]), false,
+                             channels.channel(Statistic::BoxCoxMoment4, c)});
+    }
+    check_moment_pairs(pairs, region, problems);
     return problems;
 }
 

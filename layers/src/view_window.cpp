@@ -33,6 +33,9 @@ StatisticsView view_window(const StatisticsView& view, int x0, int y0, int width
         w.bc_mean[c] = shifted(view.bc_mean[c], x0, y0);
         w.bc_variance[c] = shifted(view.bc_variance[c], x0, y0);
         w.bc_moment3[c] = shifted(view.bc_moment3[c], x0, y0);
+        w.moment3[c] = shifted(view.moment3[c], x0, y0);
+        w.moment4[c] = shifted(view.moment4[c], x0, y0);
+        w.bc_moment4[c] = shifted(view.bc_moment4[c], x0, y0);
     }
     return w;
 }

@@ -96,6 +96,9 @@ StatisticsView BounceStatistics::quantity_view(const std::vector<StatisticsPlane
     v.bc_mean = {group.bc_mean[c]};
     v.bc_variance = {group.bc_variance[c]};
     v.bc_moment3 = {group.bc_moment3[c]};
+    v.moment3 = {group.moment3[c]};
+    v.moment4 = {group.moment4[c]};
+    v.bc_moment4 = {group.bc_moment4[c]};
     return v;
 }
 

@@ -17,11 +17,8 @@ OIIO::ImageBuf cli_statistics_image()
 
 OIIO::ImageBuf cli_variance_aov_image()
 {
-    StatisticsPlanes stats = noisy_statistics(kCliWidth, kCliHeight, 8, 79);
-    stats.bc_mean.clear();
-    stats.bc_variance.clear();
-    stats.bc_moment3.clear();
-    return layers::make_statistics_image(stats);
+    return layers::make_statistics_image(
+        variance_aov(noisy_statistics(kCliWidth, kCliHeight, 8, 79)));
 }
 
 OIIO::ImageBuf cli_render(int k, int width, int height)

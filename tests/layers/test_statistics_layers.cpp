@@ -45,6 +45,9 @@ void expect_same_planes(const StatisticsView& expected, const StatisticsView& go
         compare(expected.bc_mean[c], got.bc_mean[c], "bc_mean", c);
         compare(expected.bc_variance[c], got.bc_variance[c], "bc_variance", c);
         compare(expected.bc_moment3[c], got.bc_moment3[c], "bc_moment3", c);
+        compare(expected.moment3[c], got.moment3[c], "moment3", c);
+        compare(expected.moment4[c], got.moment4[c], "moment4", c);
+        compare(expected.bc_moment4[c], got.bc_moment4[c], "bc_moment4", c);
     }
     EXPECT_GT(compared, 0);
 }
@@ -74,6 +77,15 @@ TEST(StatisticsLayers, ImageHasTheContractsChannelsAndAttributes)
                                                            "boxcoxM3.R",
                                                            "boxcoxM3.G",
                                                            "boxcoxM3.B",
+                                                           "M3.R",
+                                                           "M3.G",
+                                                           "M3.B",
+                                                           "M4.R",
+                                                           "M4.G",
+                                                           "M4.B",
+                                                           "boxcoxM4.R",
+                                                           "boxcoxM4.G",
+                                                           "boxcoxM4.B",
                                                            "albedo.R",
                                                            "albedo.G",
                                                            "albedo.B",
@@ -83,7 +95,7 @@ TEST(StatisticsLayers, ImageHasTheContractsChannelsAndAttributes)
                                                            "depth.Z"}));
     EXPECT_EQ(spec.alpha_channel, -1);
     EXPECT_EQ(spec.format, OIIO::TypeDesc::FLOAT);
-    EXPECT_EQ(spec.get_int_attribute("statmc:formatVersion"), 1);
+    EXPECT_EQ(spec.get_int_attribute("statmc:formatVersion"), 2);
     EXPECT_EQ(spec.get_float_attribute("statmc:boxcoxLambda"), 0.5f);
     EXPECT_EQ(spec.get_string_attribute("statmc:variance"), "sample");
     EXPECT_EQ(spec.get_int_attribute("statmc:spp"), 64);
@@ -109,7 +121,7 @@ TEST(StatisticsLayers, FileRoundTripIsBitwiseExact)
     EXPECT_TRUE(file_spec.channelformats.empty());
     EXPECT_EQ(file_spec.tile_width, 0);  // scanline
     EXPECT_EQ(file_spec.get_string_attribute("compression"), "zip");
-    EXPECT_EQ(file_spec.get_int_attribute("statmc:formatVersion"), 1);
+    EXPECT_EQ(file_spec.get_int_attribute("statmc:formatVersion"), 2);
     EXPECT_EQ(file_spec.get_float_attribute("statmc:boxcoxLambda"), 0.5f);
     EXPECT_EQ(file_spec.get_string_attribute("statmc:variance"), "sample");
     EXPECT_EQ(file_spec.get_int_attribute("statmc:spp"), 8);
@@ -125,7 +137,7 @@ TEST(StatisticsLayers, ShuffledChannelOrderIsReadByName)
     test::TempDir dir;
     const StatisticsPlanes stats = test::noisy_statistics(kW, kH, 6, 4);
     const OIIO::ImageBuf shuffled = test::reversed_channels(make_statistics_image(stats));
-    ASSERT_EQ(shuffled.spec().channelnames.front(), "boxcoxM3.B");
+    ASSERT_EQ(shuffled.spec().channelnames.front(), "boxcoxM4.B");
     // In memory, in the reversed order...
     expect_same_planes(stats.view(), read_statistics(shuffled));
     // ...and through a file written in that order.
@@ -163,7 +175,8 @@ TEST(StatisticsLayers, ExtraAovsShareTheCountAndRoundTrip)
     EXPECT_GE(back.spec().channelindex("bounce2L.Y"), 0);
     EXPECT_GE(back.spec().channelindex("bounce2L.boxcoxM3.Y"), 0);
     EXPECT_LT(back.spec().channelindex("bounce2L.R"), 0);
-    EXPECT_EQ(back.spec().nchannels, 16 + 15 + 5);  // beauty + count, colour AOV, scalar AOV
+    // beauty + count, colour AOV, scalar AOV: 6 statistics and 3 higher moments a channel
+    EXPECT_EQ(back.spec().nchannels, 25 + 24 + 8);
     expect_same_planes(beauty.view(), read_statistics(back));
     expect_same_planes(colour.view(), read_statistics(back, "diffuse"));
     expect_same_planes(scalar, read_statistics(back, "bounce2L"));
@@ -188,10 +201,7 @@ TEST(StatisticsLayers, ExtraAovsAreChecked)
 
 TEST(StatisticsLayers, MeanAndVarianceOnlyIsAVarianceAov)
 {
-    StatisticsPlanes stats = test::noisy_statistics(kW, kH, 5, 6);
-    stats.bc_mean.clear();
-    stats.bc_variance.clear();
-    stats.bc_moment3.clear();
+    const StatisticsPlanes stats = test::variance_aov(test::noisy_statistics(kW, kH, 5, 6));
     const OIIO::ImageBuf buf = make_statistics_image(stats);
     EXPECT_EQ(buf.spec().nchannels, 7);
     EXPECT_FALSE(buf.spec().find_attribute("statmc:boxcoxLambda"));
@@ -281,10 +291,49 @@ TEST(StatisticsLayers, HeaderAttributesAreChecked)
     EXPECT_EQ(error_of(buf),
               "statmc:boxcoxLambda is 0.25; the Box-Cox statistics must use lambda 0.5");
     buf.specmod().attribute("statmc:boxcoxLambda", 0.5f);
-    buf.specmod().attribute("statmc:formatVersion", 2);
-    EXPECT_EQ(error_of(buf), "statmc:formatVersion is 2; this build reads version 1");
+    buf.specmod().attribute("statmc:formatVersion", 3);
+    EXPECT_EQ(error_of(buf), "statmc:formatVersion is 3; this build reads versions 1 to 2");
+    buf.specmod().attribute("statmc:formatVersion", 1);  // version 1 is version 2 less the moments
+    EXPECT_EQ(error_of(buf), "no error");
     buf.specmod().erase_attribute("statmc:formatVersion");
     EXPECT_EQ(error_of(buf), "no error");  // other renderers write no statmc: attributes
+}
+
+TEST(StatisticsLayers, VersionOneFilesReadWithoutTheHigherMoments)
+{
+    // A file as version 1 wrote it: no M3, M4 or boxcoxM4, formatVersion 1.
+    test::TempDir dir;
+    const StatisticsPlanes stats = test::noisy_statistics(kW, kH, 6, 21);
+    OIIO::ImageBuf v1 = test::without_channels(
+        make_statistics_image(stats),
+        {"M3.R", "M3.G", "M3.B", "M4.R", "M4.G", "M4.B", "boxcoxM4.R", "boxcoxM4.G", "boxcoxM4.B"});
+    v1.specmod().attribute("statmc:formatVersion", 1);
+    test::write_exr(v1, dir.file("v1.exr"));
+    const OIIO::ImageBuf back = test::read_exr(dir.file("v1.exr"));
+    const StatisticsChannels ch = find_statistics(back.spec());
+    EXPECT_TRUE(ch.has_box_cox());
+    EXPECT_FALSE(ch.has(Statistic::Moment4));
+    EXPECT_FALSE(ch.has(Statistic::BoxCoxMoment4));
+    const StatisticsView view = read_statistics(back);
+    EXPECT_FALSE(view.has_moments());
+    EXPECT_FALSE(view.has_box_cox_moment4());
+    StatisticsPlanes without = stats;
+    without.moment3.clear(), without.moment4.clear(), without.bc_moment4.clear();
+    expect_same_planes(without.view(), view);
+}
+
+TEST(StatisticsLayers, HigherMomentsComeWhole)
+{
+    const OIIO::ImageBuf full = make_statistics_image(test::noisy_statistics(kW, kH, 5, 22));
+    EXPECT_EQ(
+        error_of(test::without_channels(full, {"M4.R", "M4.G", "M4.B"}))
+            .rfind("incomplete higher moments: missing layer M4 (channels M4.R, M4.G, M4.B)", 0),
+        0u);
+    // Without the variance they extend, M3 and M4 are not read: the view has no moments.
+    const OIIO::ImageBuf no_variance =
+        test::without_channels(full, {"variance.R", "variance.G", "variance.B"});
+    EXPECT_FALSE(read_statistics(no_variance).has_moments());
+    EXPECT_TRUE(read_statistics(no_variance).has_box_cox_moment4());
 }
 
 TEST(StatisticsLayers, GuidesAreFoundWithEitherSuffixSet)

@@ -62,6 +62,24 @@ TEST(StatisticsValidation, ZeroCountAndNonFiniteValues)
     EXPECT_EQ(problems_of(buf, lenient).size(), 3u);
 }
 
+TEST(StatisticsValidation, FourthMomentBelowTheSquaredSecondIsInconsistent)
+{
+    // M4/n ≥ (M2/n)² for any values: at n = 4 and s² = 2 (M2/n = 1.5), M4/n must be ≥ 2.25.
+    OIIO::ImageBuf buf = valid_image();
+    test::set_channel(buf, "sampleCount.Y", 6, 3, 4.f);
+    test::set_channel(buf, "variance.G", 6, 3, 2.f);
+    test::set_channel(buf, "M4.G", 6, 3, 2.3f);  // consistent
+    test::set_channel(buf, "boxcoxVariance.R", 6, 3, 2.f);
+    test::set_channel(buf, "boxcoxM4.R", 6, 3, 2.25f);  // the bound itself
+    EXPECT_EQ(join_messages(problems_of(buf)), "");
+    test::set_channel(buf, "M4.G", 6, 3, 2.2f);
+    test::set_channel(buf, "M4.B", 1, 8, -1.f);  // negative: named once, as negative
+    EXPECT_EQ(join_messages(problems_of(buf)),
+              "M4.B: negative value -1 at pixel (1, 8) [1 pixel affected]; "
+              "M4.G: fourth moment 2.2 below the square of the second, 2.25: inconsistent "
+              "moments at pixel (6, 3) [1 pixel affected]");
+}
+
 TEST(StatisticsValidation, RoiLimitsTheCheckAndCoordinatesFollowTheDataWindow)
 {
     OIIO::ImageBuf buf = valid_image();

@@ -171,7 +171,7 @@ TEST(Merge, RefusesMismatchedChannelsAndVersions)
     EXPECT_NE(merge_error(tasks).find("part 2 (" + path("task2.exr") + ") and part 0 (" +
                                       path("task0.exr") +
                                       ") differ in "
-                                      "statmc:formatVersion: 0 vs 1"),
+                                      "statmc:formatVersion: 0 vs 2"),
               std::string::npos);
 }
 

@@ -69,13 +69,19 @@ TEST(PassesOperator, MeanVarianceAndCountAreTheHandComputedOnes)
                 EXPECT_EQ(channel_value(stats, colour[c], x, y), base(x, y, c) + step(x, c));
                 EXPECT_EQ(channel_value(stats, std::string("variance.") + colour[c], x, y),
                           step(x, c) * step(x, c));
+                // Deviations −step, 0, +step: M3/K = 0 and M4/K = 2·step⁴/3.
+                const double s4 = std::pow(double(step(x, c)), 4);
+                EXPECT_NEAR(channel_value(stats, std::string("M3.") + colour[c], x, y), 0.0,
+                            1e-6 * (1 + s4));
+                EXPECT_NEAR(channel_value(stats, std::string("M4.") + colour[c], x, y), 2 * s4 / 3,
+                            1e-5 * (1 + s4));
             }
             EXPECT_EQ(channel_value(stats, "A", x, y), 1.f);
             EXPECT_EQ(channel_value(stats, "albedo.G", x, y), 0.5f);
         }
     const OIIO::ImageSpec& spec = stats.spec();
     EXPECT_EQ(spec.get_string_attribute("statmc:variance"), "sample");
-    EXPECT_EQ(spec.get_int_attribute("statmc:formatVersion"), 1);
+    EXPECT_EQ(spec.get_int_attribute("statmc:formatVersion"), 2);
     EXPECT_EQ(spec.get_int_attribute("renderer:seed", -1), 0);  // the first render's metadata
     EXPECT_FALSE(spec.find_attribute("statmc:spp"));            // described one render only
     EXPECT_EQ(spec.channelindex("boxcoxMean.R"), -1);

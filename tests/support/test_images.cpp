@@ -47,6 +47,14 @@ StatisticsPlanes noisy_statistics(int width, int height, int spp, std::uint32_t 
     return image.planes();
 }
 
+StatisticsPlanes variance_aov(StatisticsPlanes stats)
+{
+    for (auto* plane : {&stats.bc_mean, &stats.bc_variance, &stats.bc_moment3, &stats.moment3,
+                        &stats.moment4, &stats.bc_moment4})
+        plane->clear();
+    return stats;
+}
+
 layers::GuidePlanes GuideData::planes() const
 {
     const std::size_t n = albedo.size() / 3;

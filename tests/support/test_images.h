@@ -22,6 +22,10 @@ namespace statmc::test {
 /// and spp + (x + y) % 3 samples per pixel so that degrees of freedom differ.
 StatisticsPlanes noisy_statistics(int width, int height, int spp, std::uint32_t seed);
 
+/// `stats` as another renderer's variance AOV holds it: mean, variance and count only (no
+/// Box-Cox set, no higher moments).
+StatisticsPlanes variance_aov(StatisticsPlanes stats);
+
 /// Dense guide data (albedo following the edge, normals tilting with y, depth) and its
 /// planes.
 struct GuideData {

@@ -83,9 +83,13 @@ TestDomain choose_domain(const OIIO::ImageSpec& spec, const StatisticsChannels& 
     throw std::invalid_argument("unknown test domain");
 }
 
-// Only the statistics the chosen test reads are checked and viewed.
+// Only the statistics the chosen test reads are checked and viewed (the filter reads no
+// higher moments yet).
 StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain)
 {
+    ch.moment3.clear();
+    ch.moment4.clear();
+    ch.bc_moment4.clear();
     if (domain == TestDomain::BoxCox) {
         ch.variance.clear();
     } else {

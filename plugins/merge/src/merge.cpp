@@ -14,6 +14,7 @@
 #include "statmc/layers/layer_error.h"
 #include "statmc/layers/layer_names.h"
 #include "statmc/layers/statistics_layers.h"
+#include "statmc/layers/statistics_validation.h"
 
 namespace statmc {
 
@@ -131,13 +132,21 @@ OIIO::ImageBuf merge_parts(const Parts& parts, int nthreads)
     std::vector<StatisticsView> views;
     const OIIO::ImageSpec& first = parts[0]->spec();
     const std::vector<float> zeros(std::size_t(first.width) * first.height, 0.f);
-    bool box_cox = true;
+    // A statistic is merged when every part has it; otherwise it is left out.
+    bool box_cox = true, moments = true, box_cox_moment4 = true;
     for (std::size_t k = 0; k < parts.size(); ++k) {
         floats.push_back(&layers::local_float_pixels(*parts[k], scratch[k]));
         try {
             const layers::StatisticsChannels ch = layers::find_statistics(floats[k]->spec());
             layers::require_statistic(floats[k]->spec(), ch, layers::Statistic::Variance);
+            // Merging combines every statistic, so every one must be sound.
+            if (const auto problems = layers::validate_statistics(*floats[k], ch);
+                !problems.empty())
+                throw layers::LayerError(layers::join_messages(problems));
             box_cox = box_cox && ch.has_box_cox();
+            moments = moments && ch.has(layers::Statistic::Moment4);
+            box_cox_moment4 =
+                box_cox_moment4 && ch.has_box_cox() && ch.has(layers::Statistic::BoxCoxMoment4);
             views.push_back(complete_view(layers::statistics_view(*floats[k], ch),
                                           dense_plane(zeros.data(), first.width)));
         } catch (const layers::LayerError& e) {
@@ -148,6 +157,10 @@ OIIO::ImageBuf merge_parts(const Parts& parts, int nthreads)
         views[0].channels == 1 ? merge_views<1>(views, nthreads) : merge_views<3>(views, nthreads);
     if (!box_cox)
         merged.bc_mean.clear(), merged.bc_variance.clear(), merged.bc_moment3.clear();
+    if (!moments)
+        merged.moment3.clear(), merged.moment4.clear();
+    if (!box_cox_moment4)
+        merged.bc_moment4.clear();
 
     const int w = first.width, h = first.height;
     const std::vector<float> albedo = merged_guide(floats, views, layers::kAlbedoLayer, true);

@@ -11,15 +11,17 @@
 
 namespace statmc {
 
-/// Dense float planes of statistics (count, mean, variance, Box-Cox mean, variance, M3/n),
-/// the exported form of a StatisticsImage; view() exposes them to the rest of core.
-/// Planes a source does not provide (Box-Cox for K passes) are left empty.
+/// Dense float planes of statistics (count, mean, variance, Box-Cox mean, variance, M3/n,
+/// and the higher moments M3/n, M4/n and Box-Cox M4/n), the exported form of a
+/// StatisticsImage; view() exposes them to the rest of core. Planes a source does not
+/// provide (Box-Cox for K passes) are left empty.
 struct StatisticsPlanes {
     int width = 0;
     int height = 0;
     int channels = 0;
     std::vector<float> count;
     std::vector<float> mean, variance, bc_mean, bc_variance, bc_moment3;  // channel-major
+    std::vector<float> moment3, moment4, bc_moment4;                      // channel-major
 
     StatisticsView view() const;
 };
@@ -53,8 +55,8 @@ public:
     }
 
     StatisticsPlanes planes() const;
-    /// Rebuilds accumulators from stored planes (M2 = s²(n − 1), M3 = n·m3). The planes
-    /// hold no fourth moments and no untransformed M3, so those come back as 0.
+    /// Rebuilds accumulators from stored planes (M2 = s²(n − 1), Mk = n·mk). Higher moments
+    /// the view lacks (a version-1 file) come back as 0.
     static StatisticsImage from_view(const StatisticsView& view);
     /// The exact merge of views of one frame (same resolution, C channels, Box-Cox planes),
     /// each pixel folded in view order: the same result for any `nthreads` (0 = all cores).

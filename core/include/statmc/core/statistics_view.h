@@ -11,7 +11,9 @@ namespace statmc {
 /// unless `variance_of_mean` says the untransformed `variance` planes are already divided
 /// by n (renderers' "mse" AOVs); the Box-Cox variance is always per sample. bc_moment3 is the third
 /// central moment M3/n of the Box-Cox samples. Box-Cox planes may be absent (renderers
-/// that write only a variance AOV).
+/// that write only a variance AOV). The higher moments (format version 2) are optional
+/// too: moment3/moment4 = M3/n, M4/n of the untransformed samples, bc_moment4 = M4/n of
+/// the Box-Cox ones (docs/method.md §10).
 struct StatisticsView {
     int width = 0;
     int height = 0;
@@ -23,11 +25,24 @@ struct StatisticsView {
     std::array<ConstPlane, 4> bc_mean{};
     std::array<ConstPlane, 4> bc_variance{};
     std::array<ConstPlane, 4> bc_moment3{};
+    std::array<ConstPlane, 4> moment3{};
+    std::array<ConstPlane, 4> moment4{};
+    std::array<ConstPlane, 4> bc_moment4{};
 
     bool has_box_cox() const
     {
+        return all_of(bc_mean) && all_of(bc_variance) && all_of(bc_moment3);
+    }
+    /// M3 and M4 of the untransformed samples, with the variance they extend.
+    bool has_moments() const { return all_of(variance) && all_of(moment3) && all_of(moment4); }
+    /// M4 of the Box-Cox samples, with the Box-Cox set it extends.
+    bool has_box_cox_moment4() const { return has_box_cox() && all_of(bc_moment4); }
+
+private:
+    bool all_of(const std::array<ConstPlane, 4>& planes) const
+    {
         for (int c = 0; c < channels; ++c)
-            if (!bc_mean[c] || !bc_variance[c] || !bc_moment3[c])
+            if (!planes[c])
                 return false;
         return channels > 0;
     }

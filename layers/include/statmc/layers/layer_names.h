@@ -8,8 +8,10 @@
 
 namespace statmc::layers {
 
-/// The contract version this build reads and writes.
-inline constexpr int kFormatVersion = 1;
+/// The contract version this build writes; it reads every version up to it. Version 2
+/// added the higher moments (M3, M4, boxcoxM4); a version-1 file is a version-2 file
+/// without them.
+inline constexpr int kFormatVersion = 2;
 /// The Box-Cox exponent the contract stores (core fixes it, see box_cox.h).
 inline constexpr float kBoxCoxLambda = 0.5f;
 
@@ -30,8 +32,19 @@ inline constexpr const char* kScene = "statmc:scene";  // string: the scene file
 inline constexpr const char* kVarianceOfSample = "sample";
 inline constexpr const char* kVarianceOfMean = "mean";
 
-/// The statistics stored per AOV and colour channel.
-enum class Statistic { Mean, Variance, BoxCoxMean, BoxCoxVariance, BoxCoxMoment3 };
+/// The statistics stored per AOV and colour channel. The last three (format version 2)
+/// are the higher central moments per sample: M3/n and M4/n of the untransformed samples,
+/// M4/n of the Box-Cox ones.
+enum class Statistic {
+    Mean,
+    Variance,
+    BoxCoxMean,
+    BoxCoxVariance,
+    BoxCoxMoment3,
+    Moment3,
+    Moment4,
+    BoxCoxMoment4
+};
 
 /// All statistics in storage order, for loops over layers.
 const std::vector<Statistic>& all_statistics();

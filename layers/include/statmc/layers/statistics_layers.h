@@ -23,7 +23,8 @@ struct StatisticsChannels {
     std::vector<std::string> suffixes;  ///< R,G,B or Y
     int count = -1;                     ///< sampleCount.Y
     std::vector<int> mean, variance, bc_mean, bc_variance, bc_moment3;
-    bool variance_of_mean = false;  ///< statmc:variance = "mean"
+    std::vector<int> moment3, moment4, bc_moment4;  ///< format version 2, optional
+    bool variance_of_mean = false;                  ///< statmc:variance = "mean"
 
     int channels() const { return int(suffixes.size()); }
     bool has(Statistic stat) const { return !indices(stat).empty(); }
@@ -35,8 +36,9 @@ struct StatisticsChannels {
 };
 
 /// Finds the statistics of `aov` ("" = beauty) in `spec` by channel name. The mean and the
-/// sample count are required; variance and the Box-Cox set are optional, but a layer
-/// that is only partly present, or a Box-Cox set that is incomplete, is an error.
+/// sample count are required; variance, the Box-Cox set and the higher moments are
+/// optional, but a layer that is only partly present, an incomplete Box-Cox set, or M3
+/// without M4 (or the reverse) is an error.
 /// Checks statmc:formatVersion (≤ kFormatVersion), statmc:boxcoxLambda (0.5 when
 /// present) and statmc:variance ("sample" or "mean"). Throws LayerError naming the
 /// layer or attribute.
