@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "statmc/core/variance_filter.h"
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/statistics_layers.h"
 #include "statmc/layers/view_window.h"
@@ -183,6 +184,61 @@ TEST(DenoiseOperator, RoiChangesOnlyItsPixelsAndReadsNeighboursOutsideIt)
                 ASSERT_TRUE(same_bits(got, want))
                     << names[c] << " at (" << x << ", " << y << ") inside=" << inside;
             }
+}
+
+// The core pipeline of variance denoising: Box-Cox variances filtered first, then the
+// mean filter on the view that holds them.
+std::vector<float> core_variance_filtered(const StatisticsPlanes& stats, int variance_radius)
+{
+    VarianceFilterOptions vf;
+    vf.radius = variance_radius;
+    const std::vector<float> variances = denoise_box_cox_variances(stats.view(), vf);
+    StatisticsView view = stats.view();
+    for (int c = 0; c < view.channels; ++c)
+        view.bc_variance[c] = dense_plane(variances.data() + std::size_t(c) * kW * kH, kW);
+    return test::core_filtered(view, TestDomain::BoxCox, {}, small_filter());
+}
+
+TEST(DenoiseOperator, VarianceDenoisingIsCoresPipelineAndRoiSafe)
+{
+    Frame f;
+    DenoiseImageOptions o = options();
+    o.variance_radius = 3;
+    OIIO::ImageBuf out;
+    ASSERT_TRUE(denoise(out, f.image, o)) << out.geterror();
+    const std::vector<float> expected = core_variance_filtered(f.stats, 3);
+    expect_rgb_equals(out, expected);
+    EXPECT_NE(expected, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter()))
+        << "the variances made no difference";
+    // A ROI reads the variance filter's halo too: its pixels are the full run's.
+    const OIIO::ROI roi(10, 21, 4, 15);
+    OIIO::ImageBuf part;
+    ASSERT_TRUE(denoise(part, f.image, o, roi)) << part.geterror();
+    for (int y = roi.ybegin; y < roi.yend; ++y)
+        for (int x = roi.xbegin; x < roi.xend; ++x)
+            ASSERT_TRUE(same_bits(channel_value(part, "G", x, y), channel_value(out, "G", x, y)))
+                << "(" << x << ", " << y << ")";
+}
+
+TEST(DenoiseOperator, VarianceDenoisingNeedsTheFourthMoment)
+{
+    Frame f;
+    DenoiseImageOptions o = options();
+    o.variance_radius = 3;
+    const OIIO::ImageBuf v1 =
+        test::without_channels(f.image, {"boxcoxM4.R", "boxcoxM4.G", "boxcoxM4.B"});
+    const OIIO::ImageBuf out = denoise(v1, o);
+    EXPECT_EQ(out.geterror().rfind("missing layer boxcoxM4 (channels boxcoxM4.R, boxcoxM4.G, "
+                                   "boxcoxM4.B); variance_radius needs it",
+                                   0),
+              0u)
+        << out.geterror();
+    o.test = TestDomainChoice::Untransformed;
+    EXPECT_NE(denoise(f.image, o).geterror().find("variance_radius needs the Box-Cox test"),
+              std::string::npos);
+    o.variance_radius = 101;
+    EXPECT_NE(denoise(f.image, o).geterror().find("variance_radius must be in [0, 100]"),
+              std::string::npos);
 }
 
 TEST(DenoiseOperator, RoiAtTheCornerAndDataWindowOffset)

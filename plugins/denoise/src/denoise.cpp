@@ -9,6 +9,7 @@
 
 #include "statmc/core/estimator_image.h"
 #include "statmc/core/filter.h"
+#include "statmc/core/variance_filter.h"
 #include "statmc/layers/float_pixels.h"
 #include "statmc/layers/guide_layers.h"
 #include "statmc/layers/imagebufalgo_forms.h"
@@ -83,13 +84,14 @@ TestDomain choose_domain(const OIIO::ImageSpec& spec, const StatisticsChannels& 
     throw std::invalid_argument("unknown test domain");
 }
 
-// Only the statistics the chosen test reads are checked and viewed (the filter reads no
-// higher moments yet).
-StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain)
+// Only the statistics the chosen test reads are checked and viewed: of the higher moments,
+// only boxcoxM4, and only for variance denoising.
+StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool variance_filter)
 {
     ch.moment3.clear();
     ch.moment4.clear();
-    ch.bc_moment4.clear();
+    if (!variance_filter)
+        ch.bc_moment4.clear();
     if (domain == TestDomain::BoxCox) {
         ch.variance.clear();
     } else {
@@ -98,6 +100,20 @@ StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain)
         ch.bc_moment3.clear();
     }
     return ch;
+}
+
+void require_variance_filter_input(const OIIO::ImageSpec& spec, const StatisticsChannels& ch,
+                                   TestDomain domain)
+{
+    if (domain != TestDomain::BoxCox)
+        throw std::invalid_argument(
+            "variance_radius needs the Box-Cox test (the image's Box-Cox layers, test=auto or "
+            "boxcox)");
+    if (!ch.has(Statistic::BoxCoxMoment4))
+        throw LayerError(layers::missing_layer_message(
+            spec, layers::statistic_layer(ch.aov, Statistic::BoxCoxMoment4), ch.suffixes, "layer",
+            "variance_radius needs it (statistics of format version 2, as statmc-render "
+            "writes them)"));
 }
 
 void check_statistics(const OIIO::ImageBuf& in, const StatisticsChannels& ch,
@@ -246,8 +262,12 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
 
     const StatisticsChannels all = layers::find_statistics(spec, opt.aov);
     const TestDomain domain = choose_domain(spec, all, opt.test);
-    const StatisticsChannels ch = used_channels(all, domain);
-    const Regions regions = regions_for(in, roi, opt.filter.radius);
+    const bool variance_filter = opt.variance_radius > 0;
+    if (variance_filter)
+        require_variance_filter_input(spec, all, domain);
+    const StatisticsChannels ch = used_channels(all, domain, variance_filter);
+    // The variance filter reads its own halo around the mean filter's.
+    const Regions regions = regions_for(in, roi, opt.filter.radius + opt.variance_radius);
     check_statistics(in, ch, opt, regions.input);
 
     layers::GuidePlanes guides;
@@ -256,8 +276,18 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
 
     const int x0 = regions.input.xbegin - spec.x;
     const int y0 = regions.input.ybegin - spec.y;
-    const StatisticsView window = layers::view_window(
-        layers::statistics_view(in, ch), x0, y0, regions.input.width(), regions.input.height());
+    StatisticsView window = layers::view_window(layers::statistics_view(in, ch), x0, y0,
+                                                regions.input.width(), regions.input.height());
+    std::vector<float> denoised_variances;
+    if (variance_filter) {
+        VarianceFilterOptions vf;
+        vf.radius = opt.variance_radius;
+        denoised_variances = denoise_box_cox_variances(window, vf, layers::thread_count(nthreads));
+        const std::size_t pixels = std::size_t(window.width) * window.height;
+        for (int c = 0; c < window.channels; ++c)
+            window.bc_variance[c] =
+                dense_plane(denoised_variances.data() + c * pixels, window.width);
+    }
     const Guides window_guides{layers::shifted(guides.albedo, x0, y0),
                                layers::shifted(guides.normal, x0, y0)};
     const Filtered filtered =

@@ -10,6 +10,8 @@ std::string DenoiseImageOptions::validate() const
         return "the albedo guide needs a layer name";
     if (guides.normal != GuideUse::Off && guides.normal_layer.empty())
         return "the normal guide needs a layer name";
+    if (variance_radius < 0 || variance_radius > 100)
+        return "variance_radius must be in [0, 100], got " + std::to_string(variance_radius);
     return {};
 }
 

@@ -82,6 +82,7 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
         kNonfinite, p.get_string("nonfinite", spelling(kNonfinite, opt.nonfinite)), opt.nonfinite);
     opt.aov = p.get_string("aov", opt.aov);
     opt.diagnostics = p.get_bool("diagnostics", opt.diagnostics);
+    opt.variance_radius = p.get_int("variance_radius", opt.variance_radius);
     return opt;
 }
 
@@ -117,6 +118,10 @@ std::vector<statmc::ParameterSpec> parameters()
         string_parameter("aov", kDefaults.aov,
                          "the AOV whose mean is denoised (docs/exr-layers.md), e.g. diffuse or "
                          "bounce1L; empty: the beauty R,G,B"),
+        int_parameter("variance_radius", kDefaults.variance_radius,
+                      "experimental: denoise the Box-Cox variances over this radius first "
+                      "(StatER; needs the boxcoxM4 layer); 0 = off")
+            .between(0, 100),
         bool_parameter("diagnostics", kDefaults.diagnostics,
                        "add [<aov>.]diagnostics.members and .effectiveSamples: per pixel, the "
                        "pixels averaged and the effective sample count (Σw)²/Σ(w²/n)"),

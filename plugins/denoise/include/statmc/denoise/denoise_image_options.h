@@ -45,6 +45,11 @@ struct DenoiseImageOptions {
     /// Also write the filter's per-pixel members and effective sample count
     /// (layers::diagnostics_channel; 0 outside the ROI).
     bool diagnostics = false;
+    /// 0: off (the 2024 filter). Else the Box-Cox variances are first denoised over this
+    /// radius (core/variance_filter.h, docs/method.md §10) and the mean test reads them;
+    /// needs the Box-Cox test and the boxcoxM4 layer (format version 2). Experimental:
+    /// off by default until the evaluation has measured it on rendered frames.
+    int variance_radius = 0;
 
     /// Empty when valid, else a message naming the offending parameter.
     std::string validate() const;

@@ -1,0 +1,102 @@
+#include "statmc/core/variance_filter.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <tbb/parallel_for.h>
+
+#include "statmc/core/thread_limit.h"
+#include "statmc/core/variance_interval.h"
+
+namespace statmc {
+
+namespace {
+
+void require_valid(const StatisticsView& view, const VarianceFilterOptions& o)
+{
+    if (!(o.radius >= 1 && o.radius <= 100))
+        throw std::invalid_argument("variance filter: radius must be in [1, 100]");
+    if (!(o.alpha > 0 && o.alpha < 1))
+        throw std::invalid_argument("variance filter: alpha must be in (0, 1)");
+    if (!(o.sigma_spatial > 0))
+        throw std::invalid_argument("variance filter: sigma_spatial must be > 0");
+    if (!view.count || !view.has_box_cox_moment4())
+        throw std::invalid_argument(
+            "variance filter: needs the Box-Cox statistics and their fourth moment (boxcoxM4)");
+}
+
+// Each pixel's interval on ln σ², or a NaN centre where it has none.
+struct LogIntervals {
+    std::vector<float> centre, se2;  // channel-major
+};
+
+LogIntervals intervals_of(const StatisticsView& view, double z)
+{
+    const std::size_t n = std::size_t(view.width) * view.height;
+    LogIntervals out{std::vector<float>(n * view.channels), std::vector<float>(n * view.channels)};
+    for (int c = 0; c < view.channels; ++c)
+        for (int y = 0; y < view.height; ++y)
+            for (int x = 0; x < view.width; ++x) {
+                const double count = view.count(x, y);
+                const double m2 = double(view.bc_variance[c](x, y)) * (count - 1);
+                const double m4 = double(view.bc_moment4[c](x, y)) * count;
+                const auto interval = bonett_interval(count, m2, m4, z);
+                const std::size_t k = c * n + std::size_t(y) * view.width + x;
+                out.centre[k] = interval ? float(interval->centre) : NAN;
+                const double se = interval ? interval->half_width / z : 0;
+                out.se2[k] = float(se * se);
+            }
+    return out;
+}
+
+}  // namespace
+
+std::vector<float> denoise_box_cox_variances(const StatisticsView& view,
+                                             const VarianceFilterOptions& options, int nthreads)
+{
+    require_valid(view, options);
+    const double z = normal_critical_value(options.alpha);
+    const LogIntervals log = intervals_of(view, z);
+    const int w = view.width, h = view.height, r = options.radius;
+    const std::size_t n = std::size_t(w) * h;
+    std::vector<float> out(n * view.channels);
+    const double falloff = 1.0 / (2.0 * double(options.sigma_spatial) * options.sigma_spatial);
+    run_with_threads(nthreads, [&] {
+        tbb::parallel_for(0, h, [&](int y) {
+            for (int c = 0; c < view.channels; ++c)
+                for (int x = 0; x < w; ++x) {
+                    const std::size_t i = c * n + std::size_t(y) * w + x;
+                    const double own = view.bc_variance[c](x, y);
+                    if (std::isnan(log.centre[i])) {
+                        out[i] = float(own);
+                        continue;
+                    }
+                    // The centre first, then the disk in raster order: a fixed summation
+                    // order, whichever thread runs the row.
+                    double sum = own, weight = 1;
+                    for (int dy = -r; dy <= r; ++dy) {
+                        const int yy = y + dy;
+                        if (yy < 0 || yy >= h)
+                            continue;
+                        for (int dx = -r; dx <= r; ++dx) {
+                            const int xx = x + dx, d2 = dx * dx + dy * dy;
+                            if (xx < 0 || xx >= w || d2 > r * r || d2 == 0)
+                                continue;
+                            const std::size_t j = c * n + std::size_t(yy) * w + xx;
+                            const double diff = double(log.centre[i]) - log.centre[j];
+                            // NaN (no interval) fails the comparison: such a pixel joins none.
+                            if (!(diff * diff <= z * z * (double(log.se2[i]) + log.se2[j])))
+                                continue;
+                            const double wij = std::exp(-d2 * falloff);
+                            sum += wij * view.bc_variance[c](xx, yy);
+                            weight += wij;
+                        }
+                    }
+                    out[i] = float(sum / weight);
+                }
+        });
+    });
+    return out;
+}
+
+}  // namespace statmc
