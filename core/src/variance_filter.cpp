@@ -1,5 +1,6 @@
 #include "statmc/core/variance_filter.h"
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -12,7 +13,7 @@ namespace statmc {
 
 namespace {
 
-void require_valid(const StatisticsView& view, const VarianceFilterOptions& o)
+void require_valid(const StatisticsView& view, TestDomain domain, const VarianceFilterOptions& o)
 {
     if (!(o.radius >= 1 && o.radius <= 100))
         throw std::invalid_argument("variance filter: radius must be in [1, 100]");
@@ -20,9 +21,30 @@ void require_valid(const StatisticsView& view, const VarianceFilterOptions& o)
         throw std::invalid_argument("variance filter: alpha must be in (0, 1)");
     if (!(o.sigma_spatial > 0))
         throw std::invalid_argument("variance filter: sigma_spatial must be > 0");
-    if (!view.count || !view.has_box_cox_moment4())
+    if (domain == TestDomain::BoxCox && !(view.count && view.has_box_cox_moment4()))
         throw std::invalid_argument(
             "variance filter: needs the Box-Cox statistics and their fourth moment (boxcoxM4)");
+    if (domain == TestDomain::Untransformed && !(view.count && view.has_moments()))
+        throw std::invalid_argument("variance filter: needs the variance and its moments M3, M4");
+}
+
+// The per-sample s² and M4/n planes of one domain.
+struct DomainPlanes {
+    const std::array<ConstPlane, 4>& variance;
+    const std::array<ConstPlane, 4>& moment4;
+    bool variance_of_mean;
+
+    double s2(int c, int x, int y, double n) const
+    {
+        return double(variance[c](x, y)) * (variance_of_mean ? n : 1.0);
+    }
+};
+
+DomainPlanes planes_of(const StatisticsView& view, TestDomain domain)
+{
+    if (domain == TestDomain::BoxCox)
+        return {view.bc_variance, view.bc_moment4, false};
+    return {view.variance, view.moment4, view.variance_of_mean};
 }
 
 // Each pixel's interval on ln σ², or a NaN centre where it has none.
@@ -30,7 +52,7 @@ struct LogIntervals {
     std::vector<float> centre, se2;  // channel-major
 };
 
-LogIntervals intervals_of(const StatisticsView& view, double z)
+LogIntervals intervals_of(const StatisticsView& view, const DomainPlanes& d, double z)
 {
     const std::size_t n = std::size_t(view.width) * view.height;
     LogIntervals out{std::vector<float>(n * view.channels), std::vector<float>(n * view.channels)};
@@ -38,8 +60,8 @@ LogIntervals intervals_of(const StatisticsView& view, double z)
         for (int y = 0; y < view.height; ++y)
             for (int x = 0; x < view.width; ++x) {
                 const double count = view.count(x, y);
-                const double m2 = double(view.bc_variance[c](x, y)) * (count - 1);
-                const double m4 = double(view.bc_moment4[c](x, y)) * count;
+                const double m2 = d.s2(c, x, y, count) * (count - 1);
+                const double m4 = double(d.moment4[c](x, y)) * count;
                 const auto interval = bonett_interval(count, m2, m4, z);
                 const std::size_t k = c * n + std::size_t(y) * view.width + x;
                 out.centre[k] = interval ? float(interval->centre) : NAN;
@@ -51,12 +73,13 @@ LogIntervals intervals_of(const StatisticsView& view, double z)
 
 }  // namespace
 
-std::vector<float> denoise_box_cox_variances(const StatisticsView& view,
-                                             const VarianceFilterOptions& options, int nthreads)
+std::vector<float> denoise_variances(const StatisticsView& view, TestDomain domain,
+                                     const VarianceFilterOptions& options, int nthreads)
 {
-    require_valid(view, options);
+    require_valid(view, domain, options);
+    const DomainPlanes d = planes_of(view, domain);
     const double z = normal_critical_value(options.alpha);
-    const LogIntervals log = intervals_of(view, z);
+    const LogIntervals log = intervals_of(view, d, z);
     const int w = view.width, h = view.height, r = options.radius;
     const std::size_t n = std::size_t(w) * h;
     std::vector<float> out(n * view.channels);
@@ -66,14 +89,15 @@ std::vector<float> denoise_box_cox_variances(const StatisticsView& view,
             for (int c = 0; c < view.channels; ++c)
                 for (int x = 0; x < w; ++x) {
                     const std::size_t i = c * n + std::size_t(y) * w + x;
-                    const double own = view.bc_variance[c](x, y);
-                    if (std::isnan(log.centre[i])) {
+                    const double own = d.s2(c, x, y, view.count(x, y));
+                    const bool has_interval = !std::isnan(log.centre[i]);
+                    if (!has_interval && !options.borrow_without_interval) {
                         out[i] = float(own);
                         continue;
                     }
                     // The centre first, then the disk in raster order: a fixed summation
                     // order, whichever thread runs the row.
-                    double sum = own, weight = 1;
+                    double sum = has_interval ? own : 0, weight = has_interval ? 1 : 0;
                     for (int dy = -r; dy <= r; ++dy) {
                         const int yy = y + dy;
                         if (yy < 0 || yy >= h)
@@ -85,14 +109,19 @@ std::vector<float> denoise_box_cox_variances(const StatisticsView& view,
                             const std::size_t j = c * n + std::size_t(yy) * w + xx;
                             const double diff = double(log.centre[i]) - log.centre[j];
                             // NaN (no interval) fails the comparison: such a pixel joins none.
-                            if (!(diff * diff <= z * z * (double(log.se2[i]) + log.se2[j])))
+                            // A borrowing pixel (no interval) takes any that has one.
+                            const bool member =
+                                has_interval
+                                    ? diff * diff <= z * z * (double(log.se2[i]) + log.se2[j])
+                                    : !std::isnan(log.centre[j]);
+                            if (!member)
                                 continue;
                             const double wij = std::exp(-d2 * falloff);
-                            sum += wij * view.bc_variance[c](xx, yy);
+                            sum += wij * d.s2(c, xx, yy, view.count(xx, yy));
                             weight += wij;
                         }
                     }
-                    out[i] = float(sum / weight);
+                    out[i] = weight > 0 ? float(sum / weight) : float(own);
                 }
         });
     });

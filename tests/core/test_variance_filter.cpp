@@ -77,7 +77,7 @@ TEST(VarianceFilter, BringsVarianceEstimatesCloserToTheTruthAndKeepsTheEdge)
 {
     const StatisticsPlanes stats = synthetic(1);
     const Errors raw = log_errors(stats.bc_variance);
-    const Errors filtered = log_errors(denoise_box_cox_variances(stats.view()));
+    const Errors filtered = log_errors(denoise_variances(stats.view(), TestDomain::BoxCox));
     // 8 samples give ln s² a spread of ~0.5; some 28 members of a radius-3 disk should
     // cut its square error several-fold, never raise it, and the edge must not be
     // averaged across (its error may not grow either).
@@ -89,9 +89,9 @@ TEST(VarianceFilter, BringsVarianceEstimatesCloserToTheTruthAndKeepsTheEdge)
 TEST(VarianceFilter, SameBitsForAnyThreadCount)
 {
     const StatisticsPlanes stats = synthetic(2);
-    const std::vector<float> one = denoise_box_cox_variances(stats.view(), {}, 1);
-    EXPECT_EQ(one, denoise_box_cox_variances(stats.view(), {}, 2));
-    EXPECT_EQ(one, denoise_box_cox_variances(stats.view(), {}, 0));
+    const std::vector<float> one = denoise_variances(stats.view(), TestDomain::BoxCox, {}, 1);
+    EXPECT_EQ(one, denoise_variances(stats.view(), TestDomain::BoxCox, {}, 2));
+    EXPECT_EQ(one, denoise_variances(stats.view(), TestDomain::BoxCox, {}, 0));
 }
 
 TEST(VarianceFilter, PixelsWithoutAnIntervalKeepTheirVarianceAndJoinNone)
@@ -99,13 +99,13 @@ TEST(VarianceFilter, PixelsWithoutAnIntervalKeepTheirVarianceAndJoinNone)
     StatisticsPlanes stats = synthetic(3);
     // Pixel (10, 10) has 3 samples (no Bonett interval below 4).
     stats.count[10 * kW + 10] = 3;
-    const std::vector<float> out = denoise_box_cox_variances(stats.view());
+    const std::vector<float> out = denoise_variances(stats.view(), TestDomain::BoxCox);
     EXPECT_EQ(out[10 * kW + 10], stats.bc_variance[10 * kW + 10]);
     // Its neighbour would be pulled towards it if it were a member: check against a run
     // where the pixel is made an outlier with an interval.
     StatisticsPlanes outlier = stats;
     outlier.bc_variance[10 * kW + 10] *= 1000;
-    const std::vector<float> again = denoise_box_cox_variances(outlier.view());
+    const std::vector<float> again = denoise_variances(outlier.view(), TestDomain::BoxCox);
     EXPECT_EQ(again[10 * kW + 11], out[10 * kW + 11]);
 }
 
@@ -114,9 +114,9 @@ TEST(VarianceFilter, RefusesBadOptionsAndMissingMoments)
     StatisticsPlanes stats = synthetic(4);
     VarianceFilterOptions bad;
     bad.radius = 0;
-    EXPECT_THROW(denoise_box_cox_variances(stats.view(), bad), std::invalid_argument);
+    EXPECT_THROW(denoise_variances(stats.view(), TestDomain::BoxCox, bad), std::invalid_argument);
     stats.bc_moment4.clear();
-    EXPECT_THROW(denoise_box_cox_variances(stats.view()), std::invalid_argument);
+    EXPECT_THROW(denoise_variances(stats.view(), TestDomain::BoxCox), std::invalid_argument);
 }
 
 }  // namespace

@@ -192,7 +192,7 @@ std::vector<float> core_variance_filtered(const StatisticsPlanes& stats, int var
 {
     VarianceFilterOptions vf;
     vf.radius = variance_radius;
-    const std::vector<float> variances = denoise_box_cox_variances(stats.view(), vf);
+    const std::vector<float> variances = denoise_variances(stats.view(), TestDomain::BoxCox, vf);
     StatisticsView view = stats.view();
     for (int c = 0; c < view.channels; ++c)
         view.bc_variance[c] = dense_plane(variances.data() + std::size_t(c) * kW * kH, kW);

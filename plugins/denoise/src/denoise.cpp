@@ -282,7 +282,8 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
     if (variance_filter) {
         VarianceFilterOptions vf;
         vf.radius = opt.variance_radius;
-        denoised_variances = denoise_box_cox_variances(window, vf, layers::thread_count(nthreads));
+        denoised_variances =
+            denoise_variances(window, TestDomain::BoxCox, vf, layers::thread_count(nthreads));
         const std::size_t pixels = std::size_t(window.width) * window.height;
         for (int c = 0; c < window.channels; ++c)
             window.bc_variance[c] =

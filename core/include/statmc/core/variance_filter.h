@@ -1,37 +1,40 @@
-// Variance denoising, after StatER (Sakai et al. 2025; docs/method.md §10): before the
-// mean test, each pixel's Box-Cox variance estimate is replaced by a weighted mean of the
-// estimates around it that it cannot be told apart from. A pixel whose few samples
-// happened to agree (too small an s², a dark speckle that rejects every neighbour) or
-// disagree (a firefly's s²) then takes its neighbourhood's steadier value.
+// Variance denoising, after StatER (Sakai et al. 2025; docs/method.md §10): each pixel's
+// variance estimate is replaced by a weighted mean of the estimates around it that it
+// cannot be told apart from. A pixel whose few samples happened to agree (too small an
+// s², a dark speckle that rejects every neighbour) or disagree (a firefly's s²) then takes
+// its neighbourhood's steadier value.
 #pragma once
 
 #include <vector>
 
+#include "statmc/core/estimator_image.h"
 #include "statmc/core/statistics_view.h"
 
 namespace statmc {
 
 struct VarianceFilterOptions {
-    int radius = 3;             ///< disk radius in pixels, ≥ 1
+    int radius = 3;  ///< disk radius in pixels, ≥ 1
     /// Significance of the test on ln σ², in (0, 1). Looser than the mean test's: at
     /// 0.005 a variance edge bleeds (docs/method.md §10 has the sweep).
     double alpha = 0.05;
     float sigma_spatial = 2.f;  ///< Gaussian spatial falloff in pixels, > 0
+    /// A pixel without an interval (n < 4 or s² = 0) keeps its own s² (false), or takes the
+    /// weighted mean of its neighbours' that have one (true; its own when none has).
+    bool borrow_without_interval = false;
 };
 
-/// The denoised Box-Cox per-sample variances of `view` (which needs the Box-Cox set and
-/// boxcoxM4, view.has_box_cox_moment4()): dense, channel-major, width × height per
-/// channel. Neighbour j joins pixel i in channel c when their Bonett intervals
-/// (variance_interval.h) agree:
+/// The denoised per-sample variances of `view` in `domain` (BoxCox: the Box-Cox set and
+/// boxcoxM4, view.has_box_cox_moment4(); Untransformed: variance, M3 and M4,
+/// view.has_moments()): dense, channel-major, width × height per channel. Neighbour j
+/// joins pixel i in channel c when their Bonett intervals (variance_interval.h) agree:
 ///
 ///     |ln(c_i s²_i) − ln(c_j s²_j)| ≤ z · sqrt(se_i² + se_j²),   z at 1 − α/2
 ///
 /// and the result is Σ w_ij s²_j / Σ w_ij over the members, w_ij the spatial Gaussian (the
-/// centre has weight 1). A pixel without an interval (n < 4, s² = 0) keeps its own value
-/// and joins no other. Deterministic: the same result for any `nthreads` (0 = all cores).
-/// Throws std::invalid_argument for bad options or a view without those planes.
-std::vector<float> denoise_box_cox_variances(const StatisticsView& view,
-                                             const VarianceFilterOptions& options = {},
-                                             int nthreads = 0);
+/// centre has weight 1). A pixel without an interval joins no other. Deterministic: the
+/// same result for any `nthreads` (0 = all cores). Throws std::invalid_argument for bad
+/// options or a view without those planes.
+std::vector<float> denoise_variances(const StatisticsView& view, TestDomain domain,
+                                     const VarianceFilterOptions& options = {}, int nthreads = 0);
 
 }  // namespace statmc
