@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "statmc/core/harm_guard.h"
 #include "statmc/core/variance_filter.h"
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/statistics_layers.h"
@@ -239,6 +240,38 @@ TEST(DenoiseOperator, VarianceDenoisingNeedsTheFourthMoment)
     o.variance_radius = 101;
     EXPECT_NE(denoise(f.image, o).geterror().find("variance_radius must be in [0, 100]"),
               std::string::npos);
+}
+
+TEST(DenoiseOperator, DoNoHarmIsCoresGuardAfterTheFilterAndRoiSafe)
+{
+    Frame f;
+    DenoiseImageOptions o = options();
+    o.harm_alpha = 0.05;
+    OIIO::ImageBuf out;
+    ASSERT_TRUE(denoise(out, f.image, o)) << out.geterror();
+    std::vector<float> expected =
+        test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter());
+    HarmGuardOptions guard;
+    guard.alpha = 0.05;
+    std::vector<Plane> planes;
+    for (int c = 0; c < 3; ++c)
+        planes.push_back(dense_plane(expected.data() + std::size_t(c) * kW * kH, kW));
+    EXPECT_GT(keep_within_own_interval(f.stats.view(), planes, guard), 0u)
+        << "the guard did nothing";
+    expect_rgb_equals(out, expected);
+    const OIIO::ROI roi(10, 21, 4, 15);
+    OIIO::ImageBuf part;
+    ASSERT_TRUE(denoise(part, f.image, o, roi)) << part.geterror();
+    for (int y = roi.ybegin; y < roi.yend; ++y)
+        for (int x = roi.xbegin; x < roi.xend; ++x)
+            ASSERT_TRUE(same_bits(channel_value(part, "R", x, y), channel_value(out, "R", x, y)))
+                << "(" << x << ", " << y << ")";
+    const OIIO::ImageBuf v1 =
+        test::without_channels(f.image, {"M3.R", "M3.G", "M3.B", "M4.R", "M4.G", "M4.B"});
+    EXPECT_EQ(denoise(v1, o).geterror().rfind("missing layer M4 (channels M4.R, M4.G, M4.B); "
+                                              "do_no_harm needs it",
+                                              0),
+              0u);
 }
 
 TEST(DenoiseOperator, RoiAtTheCornerAndDataWindowOffset)

@@ -9,6 +9,7 @@
 
 #include "statmc/core/estimator_image.h"
 #include "statmc/core/filter.h"
+#include "statmc/core/harm_guard.h"
 #include "statmc/core/variance_filter.h"
 #include "statmc/layers/float_pixels.h"
 #include "statmc/layers/guide_layers.h"
@@ -85,15 +86,19 @@ TestDomain choose_domain(const OIIO::ImageSpec& spec, const StatisticsChannels& 
 }
 
 // Only the statistics the chosen test reads are checked and viewed: of the higher moments,
-// only boxcoxM4, and only for variance denoising.
-StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool variance_filter)
+// boxcoxM4 for variance denoising, the untransformed ones (and variance) for the guard.
+StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool variance_filter,
+                                 bool harm_guard)
 {
-    ch.moment3.clear();
-    ch.moment4.clear();
+    if (!harm_guard) {
+        ch.moment3.clear();
+        ch.moment4.clear();
+    }
     if (!variance_filter)
         ch.bc_moment4.clear();
     if (domain == TestDomain::BoxCox) {
-        ch.variance.clear();
+        if (!harm_guard)
+            ch.variance.clear();
     } else {
         ch.bc_mean.clear();
         ch.bc_variance.clear();
@@ -114,6 +119,16 @@ void require_variance_filter_input(const OIIO::ImageSpec& spec, const Statistics
             spec, layers::statistic_layer(ch.aov, Statistic::BoxCoxMoment4), ch.suffixes, "layer",
             "variance_radius needs it (statistics of format version 2, as statmc-render "
             "writes them)"));
+}
+
+void require_harm_guard_input(const OIIO::ImageSpec& spec, const StatisticsChannels& ch)
+{
+    for (Statistic stat : {Statistic::Variance, Statistic::Moment4})
+        if (!ch.has(stat))
+            throw LayerError(layers::missing_layer_message(
+                spec, layers::statistic_layer(ch.aov, stat), ch.suffixes, "layer",
+                "do_no_harm needs it (statistics of format version 2, as statmc-render or "
+                "--passes write them)"));
 }
 
 void check_statistics(const OIIO::ImageBuf& in, const StatisticsChannels& ch,
@@ -265,9 +280,16 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
     const bool variance_filter = opt.variance_radius > 0;
     if (variance_filter)
         require_variance_filter_input(spec, all, domain);
-    const StatisticsChannels ch = used_channels(all, domain, variance_filter);
-    // The variance filter reads its own halo around the mean filter's.
-    const Regions regions = regions_for(in, roi, opt.filter.radius + opt.variance_radius);
+    const bool harm_guard = opt.harm_alpha > 0;
+    HarmGuardOptions guard;
+    if (harm_guard) {
+        guard.alpha = opt.harm_alpha;
+        require_harm_guard_input(spec, all);
+    }
+    const StatisticsChannels ch = used_channels(all, domain, variance_filter, harm_guard);
+    // The variance filters read their own halo around the mean filter's.
+    const int halo = std::max(opt.variance_radius, harm_guard ? guard.variance.radius : 0);
+    const Regions regions = regions_for(in, roi, opt.filter.radius + halo);
     check_statistics(in, ch, opt, regions.input);
 
     layers::GuidePlanes guides;
@@ -291,8 +313,15 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
     }
     const Guides window_guides{layers::shifted(guides.albedo, x0, y0),
                                layers::shifted(guides.normal, x0, y0)};
-    const Filtered filtered =
+    Filtered filtered =
         filter_region(window, domain, window_guides, opt.filter, opt.diagnostics, nthreads);
+    if (harm_guard) {
+        const std::size_t pixels = std::size_t(window.width) * window.height;
+        std::vector<Plane> planes;
+        for (int c = 0; c < window.channels; ++c)
+            planes.push_back(dense_plane(filtered.means.data() + c * pixels, window.width));
+        keep_within_own_interval(window, planes, guard, layers::thread_count(nthreads));
+    }
 
     OIIO::ImageBuf result;
     if (&dst == &src) {

@@ -12,6 +12,8 @@ std::string DenoiseImageOptions::validate() const
         return "the normal guide needs a layer name";
     if (variance_radius < 0 || variance_radius > 100)
         return "variance_radius must be in [0, 100], got " + std::to_string(variance_radius);
+    if (!(harm_alpha >= 0 && harm_alpha < 1))
+        return "do_no_harm must be 0 (off) or in (0, 1), got " + std::to_string(harm_alpha);
     return {};
 }
 

@@ -83,6 +83,7 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.aov = p.get_string("aov", opt.aov);
     opt.diagnostics = p.get_bool("diagnostics", opt.diagnostics);
     opt.variance_radius = p.get_int("variance_radius", opt.variance_radius);
+    opt.harm_alpha = p.get_float("do_no_harm", opt.harm_alpha);
     return opt;
 }
 
@@ -122,6 +123,11 @@ std::vector<statmc::ParameterSpec> parameters()
                       "experimental: denoise the Box-Cox variances over this radius first "
                       "(StatER; needs the boxcoxM4 layer); 0 = off")
             .between(0, 100),
+        float_parameter("do_no_harm", kDefaults.harm_alpha,
+                        "experimental: the do-no-harm guard's significance (e.g. 0.005): each "
+                        "output is pulled back into its own pixel's confidence interval "
+                        "(needs the M3/M4 layers); 0 = off")
+            .between(0, 0.5),
         bool_parameter("diagnostics", kDefaults.diagnostics,
                        "add [<aov>.]diagnostics.members and .effectiveSamples: per pixel, the "
                        "pixels averaged and the effective sample count (Σw)²/Σ(w²/n)"),

@@ -50,6 +50,11 @@ struct DenoiseImageOptions {
     /// needs the Box-Cox test and the boxcoxM4 layer (format version 2). Experimental:
     /// off by default until the evaluation has measured it on rendered frames.
     int variance_radius = 0;
+    /// 0: off. Else the do-no-harm guard at this significance (core/harm_guard.h,
+    /// docs/method.md §11): each output value is pulled back into its own pixel's
+    /// confidence interval; needs the untransformed variance with M3 and M4 (format
+    /// version 2). Experimental, off by default until the evaluation has measured it.
+    double harm_alpha = 0;
 
     /// Empty when valid, else a message naming the offending parameter.
     std::string validate() const;

@@ -1,0 +1,123 @@
+// The do-no-harm guard: after any filter, no pixel is left outside its own confidence
+// interval. A firefly the paper's filter spreads into a disk is cut back to within three
+// estimated standard errors of every pixel's own mean.
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "statmc/core/estimator_image.h"
+#include "statmc/core/filter.h"
+#include "statmc/core/harm_guard.h"
+#include "statmc/core/statistics_image.h"
+#include "statmc/core/variance_filter.h"
+
+namespace statmc {
+namespace {
+
+constexpr int kSize = 48, kFx = 24, kFy = 24, kSpp = 16;
+constexpr float kTruth = 0.5f, kSigma = 0.1f;  // normal samples; a firefly of 2000× the truth
+
+StatisticsPlanes flat_field_with_firefly(std::uint64_t seed)
+{
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<float> noise(kTruth, kSigma);
+    StatisticsImage<1> img(kSize, kSize);
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            for (int s = 0; s < kSpp; ++s) {
+                const float v = (x == kFx && y == kFy && s == 0) ? 2000 * kTruth : noise(rng);
+                img.add(x, y, &v);
+            }
+    return img.planes();
+}
+
+std::vector<float> papers_filter(const StatisticsPlanes& stats)
+{
+    const EstimatorImage est = estimators_from_statistics(stats.view(), TestDomain::BoxCox);
+    std::vector<float> out(est.value.size());
+    filter(est, {}, DenoiseOptions::paper(), {dense_plane(out.data(), kSize)});
+    return out;
+}
+
+// Pixels outside the firefly's 3×3 whose |out − x̄| exceeds `limit` true standard errors σ/√n.
+int departures_beyond(const std::vector<float>& out, const StatisticsPlanes& stats, double limit)
+{
+    const double se = kSigma / std::sqrt(double(kSpp));
+    int count = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            if (std::abs(x - kFx) > 1 || std::abs(y - kFy) > 1) {
+                const std::size_t i = std::size_t(y) * kSize + x;
+                count += std::abs(double(out[i]) - stats.mean[i]) > limit * se;
+            }
+    return count;
+}
+
+TEST(HarmGuard, CutsTheFireflysHaloBackToThreeStandardErrors)
+{
+    const StatisticsPlanes stats = flat_field_with_firefly(1);
+    std::vector<float> out = papers_filter(stats);
+    const int halo = departures_beyond(out, stats, 3);
+    HarmGuardOptions guard;
+    guard.alpha = 0.0026997960632601866;  // z = 3
+    keep_within_own_interval(stats.view(), {dense_plane(out.data(), kSize)}, guard);
+    // The paper's filter does spread the firefly (else this test proves nothing).
+    EXPECT_GT(halo, 100);
+    // Every pixel is within 3 of its own standard errors as the guard estimates them...
+    const std::vector<float> v =
+        denoise_variances(stats.view(), TestDomain::Untransformed, guard.variance);
+    for (std::size_t i = 0; i < out.size(); ++i)
+        ASSERT_LE(std::abs(double(out[i]) - stats.mean[i]),
+                  3 * std::sqrt(v[i] / kSpp) * (1 + 1e-6) + 1e-7)
+            << "pixel " << i % kSize << ", " << i / kSize;
+    // ...which are noisy: √ṽ/σ spreads by some ±20% here, so a clamped halo pixel ends
+    // between about 2.5 and 3.7 true standard errors (docs/method.md §11 has the count),
+    // and none beyond 4, which would take ṽ > 1.78 σ².
+    EXPECT_EQ(departures_beyond(out, stats, 4), 0) << "halo before the guard: " << halo;
+}
+
+TEST(HarmGuard, AFilterThatIsRightIsRarelyTouched)
+{
+    // Outputs equal to the truth lie outside x̄ ± z·se at about the rate α: count them over
+    // 48² pixels at α = 0.05 (expected ≈ 115) against a generous binomial band.
+    std::mt19937_64 rng(7);
+    std::normal_distribution<float> noise(kTruth, kSigma);
+    StatisticsImage<1> img(kSize, kSize);
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            for (int s = 0; s < 64; ++s) {
+                const float v = noise(rng);
+                img.add(x, y, &v);
+            }
+    const StatisticsPlanes stats = img.planes();
+    std::vector<float> truth(std::size_t(kSize) * kSize, kTruth);
+    HarmGuardOptions guard;
+    guard.alpha = 0.05;
+    const double changed =
+        double(keep_within_own_interval(stats.view(), {dense_plane(truth.data(), kSize)}, guard));
+    const double expected = 0.05 * kSize * kSize, sd = std::sqrt(expected * 0.95);
+    EXPECT_NEAR(changed, expected, 5 * sd + 0.2 * expected);
+}
+
+TEST(HarmGuard, SameBitsForAnyThreadCountAndNeedsTheMoments)
+{
+    const StatisticsPlanes stats = flat_field_with_firefly(2);
+    std::vector<float> a = papers_filter(stats), b = a;
+    keep_within_own_interval(stats.view(), {dense_plane(a.data(), kSize)}, {}, 1);
+    keep_within_own_interval(stats.view(), {dense_plane(b.data(), kSize)}, {}, 2);
+    EXPECT_EQ(a, b);
+    StatisticsPlanes v1 = stats;
+    v1.moment4.clear();
+    EXPECT_THROW(keep_within_own_interval(v1.view(), {dense_plane(a.data(), kSize)}),
+                 std::invalid_argument);
+    HarmGuardOptions bad;
+    bad.alpha = 0;
+    EXPECT_THROW(keep_within_own_interval(stats.view(), {dense_plane(a.data(), kSize)}, bad),
+                 std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace statmc
