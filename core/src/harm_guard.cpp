@@ -12,15 +12,16 @@
 
 namespace statmc {
 
-std::size_t keep_within_own_interval(const StatisticsView& stats, const std::vector<Plane>& out,
-                                     const HarmGuardOptions& options, int nthreads)
+std::size_t keep_within_own_interval(const StatisticsView& stats, const Guides& guides,
+                                     const std::vector<Plane>& out, const HarmGuardOptions& options,
+                                     int nthreads)
 {
     if (!(options.alpha > 0 && options.alpha < 1))
         throw std::invalid_argument("do-no-harm guard: alpha must be in (0, 1)");
     if (int(out.size()) < stats.channels)
         throw std::invalid_argument("do-no-harm guard: fewer output planes than channels");
     const std::vector<float> variance =
-        denoise_variances(stats, TestDomain::Untransformed, options.variance, nthreads);
+        denoise_variances(stats, TestDomain::Untransformed, guides, options.variance, nthreads);
     const double z = normal_critical_value(options.alpha);
     const std::size_t pixels = std::size_t(stats.width) * stats.height;
     std::atomic<std::size_t> changed{0};

@@ -19,8 +19,8 @@ void require_valid(const StatisticsView& view, TestDomain domain, const Variance
         throw std::invalid_argument("variance filter: radius must be in [1, 100]");
     if (!(o.alpha > 0 && o.alpha < 1))
         throw std::invalid_argument("variance filter: alpha must be in (0, 1)");
-    if (!(o.sigma_spatial > 0))
-        throw std::invalid_argument("variance filter: sigma_spatial must be > 0");
+    if (!(o.sigma_spatial > 0 && o.sigma_albedo > 0 && o.sigma_normal > 0))
+        throw std::invalid_argument("variance filter: the sigmas must be > 0");
     if (domain == TestDomain::BoxCox && !(view.count && view.has_box_cox_moment4()))
         throw std::invalid_argument(
             "variance filter: needs the Box-Cox statistics and their fourth moment (boxcoxM4)");
@@ -74,7 +74,8 @@ LogIntervals intervals_of(const StatisticsView& view, const DomainPlanes& d, dou
 }  // namespace
 
 std::vector<float> denoise_variances(const StatisticsView& view, TestDomain domain,
-                                     const VarianceFilterOptions& options, int nthreads)
+                                     const Guides& guides, const VarianceFilterOptions& options,
+                                     int nthreads)
 {
     require_valid(view, domain, options);
     const DomainPlanes d = planes_of(view, domain);
@@ -84,6 +85,25 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
     const std::size_t n = std::size_t(w) * h;
     std::vector<float> out(n * view.channels);
     const double falloff = 1.0 / (2.0 * double(options.sigma_spatial) * options.sigma_spatial);
+    const double albedo_falloff = 1.0 / (2.0 * double(options.sigma_albedo) * options.sigma_albedo);
+    const double normal_falloff = 1.0 / (2.0 * double(options.sigma_normal) * options.sigma_normal);
+    // The guides' part of w_ij: exp(−|g_i − g_j|²/(2σ²)) for each guide present.
+    auto guide_weight = [&](int x, int y, int xx, int yy) {
+        double exponent = 0;
+        auto add = [&](const std::array<ConstPlane, 3>& g, double f) {
+            double d2 = 0;
+            for (int k = 0; k < 3; ++k) {
+                const double d = double(g[k](x, y)) - g[k](xx, yy);
+                d2 += d * d;
+            }
+            exponent += d2 * f;
+        };
+        if (guides.has_albedo())
+            add(guides.albedo, albedo_falloff);
+        if (guides.has_normal())
+            add(guides.normal, normal_falloff);
+        return exponent;
+    };
     run_with_threads(nthreads, [&] {
         tbb::parallel_for(0, h, [&](int y) {
             for (int c = 0; c < view.channels; ++c)
@@ -116,7 +136,7 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
                                     : !std::isnan(log.centre[j]);
                             if (!member)
                                 continue;
-                            const double wij = std::exp(-d2 * falloff);
+                            const double wij = std::exp(-d2 * falloff - guide_weight(x, y, xx, yy));
                             sum += wij * d.s2(c, xx, yy, view.count(xx, yy));
                             weight += wij;
                         }

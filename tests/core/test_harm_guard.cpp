@@ -63,12 +63,12 @@ TEST(HarmGuard, CutsTheFireflysHaloBackToThreeStandardErrors)
     const int halo = departures_beyond(out, stats, 3);
     HarmGuardOptions guard;
     guard.alpha = 0.0026997960632601866;  // z = 3
-    keep_within_own_interval(stats.view(), {dense_plane(out.data(), kSize)}, guard);
+    keep_within_own_interval(stats.view(), {}, {dense_plane(out.data(), kSize)}, guard);
     // The paper's filter does spread the firefly (else this test proves nothing).
     EXPECT_GT(halo, 100);
     // Every pixel is within 3 of its own standard errors as the guard estimates them...
     const std::vector<float> v =
-        denoise_variances(stats.view(), TestDomain::Untransformed, guard.variance);
+        denoise_variances(stats.view(), TestDomain::Untransformed, {}, guard.variance);
     for (std::size_t i = 0; i < out.size(); ++i)
         ASSERT_LE(std::abs(double(out[i]) - stats.mean[i]),
                   3 * std::sqrt(v[i] / kSpp) * (1 + 1e-6) + 1e-7)
@@ -96,8 +96,8 @@ TEST(HarmGuard, AFilterThatIsRightIsRarelyTouched)
     std::vector<float> truth(std::size_t(kSize) * kSize, kTruth);
     HarmGuardOptions guard;
     guard.alpha = 0.05;
-    const double changed =
-        double(keep_within_own_interval(stats.view(), {dense_plane(truth.data(), kSize)}, guard));
+    const double changed = double(
+        keep_within_own_interval(stats.view(), {}, {dense_plane(truth.data(), kSize)}, guard));
     const double expected = 0.05 * kSize * kSize, sd = std::sqrt(expected * 0.95);
     EXPECT_NEAR(changed, expected, 5 * sd + 0.2 * expected);
 }
@@ -106,16 +106,16 @@ TEST(HarmGuard, SameBitsForAnyThreadCountAndNeedsTheMoments)
 {
     const StatisticsPlanes stats = flat_field_with_firefly(2);
     std::vector<float> a = papers_filter(stats), b = a;
-    keep_within_own_interval(stats.view(), {dense_plane(a.data(), kSize)}, {}, 1);
-    keep_within_own_interval(stats.view(), {dense_plane(b.data(), kSize)}, {}, 2);
+    keep_within_own_interval(stats.view(), {}, {dense_plane(a.data(), kSize)}, {}, 1);
+    keep_within_own_interval(stats.view(), {}, {dense_plane(b.data(), kSize)}, {}, 2);
     EXPECT_EQ(a, b);
     StatisticsPlanes v1 = stats;
     v1.moment4.clear();
-    EXPECT_THROW(keep_within_own_interval(v1.view(), {dense_plane(a.data(), kSize)}),
+    EXPECT_THROW(keep_within_own_interval(v1.view(), {}, {dense_plane(a.data(), kSize)}),
                  std::invalid_argument);
     HarmGuardOptions bad;
     bad.alpha = 0;
-    EXPECT_THROW(keep_within_own_interval(stats.view(), {dense_plane(a.data(), kSize)}, bad),
+    EXPECT_THROW(keep_within_own_interval(stats.view(), {}, {dense_plane(a.data(), kSize)}, bad),
                  std::invalid_argument);
 }
 

@@ -208,7 +208,8 @@ std::vector<float> core_variance_filtered(const StatisticsPlanes& stats, int var
 {
     VarianceFilterOptions vf;
     vf.radius = variance_radius;
-    const std::vector<float> variances = denoise_variances(stats.view(), TestDomain::BoxCox, vf);
+    const std::vector<float> variances =
+        denoise_variances(stats.view(), TestDomain::BoxCox, {}, vf);
     StatisticsView view = stats.view();
     for (int c = 0; c < view.channels; ++c)
         view.bc_variance[c] = dense_plane(variances.data() + std::size_t(c) * kW * kH, kW);
@@ -264,7 +265,7 @@ TEST(DenoiseOperator, DoNoHarmIsCoresGuardAfterTheFilterAndRoiSafe)
     std::vector<Plane> planes;
     for (int c = 0; c < 3; ++c)
         planes.push_back(dense_plane(expected.data() + std::size_t(c) * kW * kH, kW));
-    EXPECT_GT(keep_within_own_interval(f.stats.view(), planes, guard), 0u)
+    EXPECT_GT(keep_within_own_interval(f.stats.view(), {}, planes, guard), 0u)
         << "the guard did nothing";
     expect_rgb_equals(out, expected);
     expect_roi_matches_full(f.image, o, out);

@@ -284,6 +284,8 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
     HarmGuardOptions guard;
     if (harm_guard) {
         guard.alpha = opt.harm_alpha;
+        guard.variance.sigma_albedo = opt.filter.sigma_albedo;
+        guard.variance.sigma_normal = opt.filter.sigma_normal;
         require_harm_guard_input(spec, all);
     }
     const StatisticsChannels ch = used_channels(all, domain, variance_filter, harm_guard);
@@ -300,19 +302,21 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
     const int y0 = regions.input.ybegin - spec.y;
     StatisticsView window = layers::view_window(layers::statistics_view(in, ch), x0, y0,
                                                 regions.input.width(), regions.input.height());
+    const Guides window_guides{layers::shifted(guides.albedo, x0, y0),
+                               layers::shifted(guides.normal, x0, y0)};
     std::vector<float> denoised_variances;
     if (variance_filter) {
         VarianceFilterOptions vf;
         vf.radius = opt.variance_radius;
-        denoised_variances =
-            denoise_variances(window, TestDomain::BoxCox, vf, layers::thread_count(nthreads));
+        vf.sigma_albedo = opt.filter.sigma_albedo;
+        vf.sigma_normal = opt.filter.sigma_normal;
+        denoised_variances = denoise_variances(window, TestDomain::BoxCox, window_guides, vf,
+                                               layers::thread_count(nthreads));
         const std::size_t pixels = std::size_t(window.width) * window.height;
         for (int c = 0; c < window.channels; ++c)
             window.bc_variance[c] =
                 dense_plane(denoised_variances.data() + c * pixels, window.width);
     }
-    const Guides window_guides{layers::shifted(guides.albedo, x0, y0),
-                               layers::shifted(guides.normal, x0, y0)};
     Filtered filtered =
         filter_region(window, domain, window_guides, opt.filter, opt.diagnostics, nthreads);
     if (harm_guard) {
@@ -320,7 +324,8 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
         std::vector<Plane> planes;
         for (int c = 0; c < window.channels; ++c)
             planes.push_back(dense_plane(filtered.means.data() + c * pixels, window.width));
-        keep_within_own_interval(window, planes, guard, layers::thread_count(nthreads));
+        keep_within_own_interval(window, window_guides, planes, guard,
+                                 layers::thread_count(nthreads));
     }
 
     OIIO::ImageBuf result;

@@ -22,15 +22,16 @@ struct HarmGuardOptions {
     /// at about this rate per pixel and channel (the normal approximation of x̄). In (0, 1).
     double alpha = 0.005;
     /// How ṽ is estimated from the untransformed variance and its moments.
-    VarianceFilterOptions variance{3, 0.05, 2.f, true};
+    VarianceFilterOptions variance{3, 0.05, 2.f, 0.02f, 0.1f, true};
 };
 
 /// Clamps each channel of `out` (the filter's output over `stats`' pixels) into
-/// x̄ ± z·sqrt(ṽ/n). `stats` needs the untransformed variance with M3 and M4
-/// (stats.has_moments()); a pixel with n < 2 is left as it is. Returns the number of
-/// values it changed. Deterministic for any `nthreads` (0 = all cores). Throws
-/// std::invalid_argument for bad options or missing planes.
-std::size_t keep_within_own_interval(const StatisticsView& stats, const std::vector<Plane>& out,
+/// x̄ ± z·sqrt(ṽ/n), ṽ denoised with `guides` (as the variance filter takes them). `stats` needs the
+/// untransformed variance with M3 and M4 (stats.has_moments()); a pixel with n < 2 is left as it
+/// is. Returns the number of values it changed. Deterministic for any `nthreads` (0 = all cores).
+/// Throws std::invalid_argument for bad options or missing planes.
+std::size_t keep_within_own_interval(const StatisticsView& stats, const Guides& guides,
+                                     const std::vector<Plane>& out,
                                      const HarmGuardOptions& options = {}, int nthreads = 0);
 
 }  // namespace statmc

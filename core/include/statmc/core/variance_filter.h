@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "statmc/core/estimator_image.h"
+#include "statmc/core/filter.h"
 #include "statmc/core/statistics_view.h"
 
 namespace statmc {
@@ -17,7 +18,9 @@ struct VarianceFilterOptions {
     /// Significance of the test on ln σ², in (0, 1). Looser than the mean test's: at
     /// 0.005 a variance edge bleeds (docs/method.md §10 has the sweep).
     double alpha = 0.05;
-    float sigma_spatial = 2.f;  ///< Gaussian spatial falloff in pixels, > 0
+    float sigma_spatial = 2.f;   ///< Gaussian spatial falloff in pixels, > 0
+    float sigma_albedo = 0.02f;  ///< albedo guide falloff, > 0 (with an albedo guide)
+    float sigma_normal = 0.1f;   ///< normal guide falloff, > 0 (with a normal guide)
     /// A pixel without an interval (n < 4 or s² = 0) keeps its own s² (false), or takes the
     /// weighted mean of its neighbours' that have one (true; its own when none has).
     bool borrow_without_interval = false;
@@ -30,11 +33,13 @@ struct VarianceFilterOptions {
 ///
 ///     |ln(c_i s²_i) − ln(c_j s²_j)| ≤ z · sqrt(se_i² + se_j²),   z at 1 − α/2
 ///
-/// and the result is Σ w_ij s²_j / Σ w_ij over the members, w_ij the spatial Gaussian (the
-/// centre has weight 1). A pixel without an interval joins no other. Deterministic: the
+/// and the result is Σ w_ij s²_j / Σ w_ij over the members, w_ij the spatial Gaussian times
+/// the guides' Gaussians when `guides` has them, as in the mean filter (docs/method.md §5;
+/// the centre has weight 1). A pixel without an interval joins no other. Deterministic: the
 /// same result for any `nthreads` (0 = all cores). Throws std::invalid_argument for bad
 /// options or a view without those planes.
 std::vector<float> denoise_variances(const StatisticsView& view, TestDomain domain,
+                                     const Guides& guides = {},
                                      const VarianceFilterOptions& options = {}, int nthreads = 0);
 
 }  // namespace statmc
