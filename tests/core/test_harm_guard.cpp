@@ -11,6 +11,7 @@
 #include "statmc/core/estimator_image.h"
 #include "statmc/core/filter.h"
 #include "statmc/core/harm_guard.h"
+#include "statmc/core/radius_ladder.h"
 #include "statmc/core/statistics_image.h"
 #include "statmc/core/variance_filter.h"
 
@@ -77,6 +78,51 @@ TEST(HarmGuard, CutsTheFireflysHaloBackToThreeStandardErrors)
     // between about 2.5 and 3.7 true standard errors (docs/method.md §11 has the count),
     // and none beyond 4, which would take ṽ > 1.78 σ².
     EXPECT_EQ(departures_beyond(out, stats, 4), 0) << "halo before the guard: " << halo;
+}
+
+std::vector<float> laddered(const StatisticsPlanes& stats)
+{
+    const EstimatorImage est = estimators_from_statistics(stats.view(), TestDomain::BoxCox);
+    std::vector<float> out(est.value.size());
+    RadiusLadderOptions ladder;
+    ladder.alpha = 0.0026997960632601866;  // z = 3
+    filter_with_radius_ladder(stats.view(), est, {}, DenoiseOptions::paper(),
+                              {dense_plane(out.data(), kSize)}, ladder);
+    return out;
+}
+
+TEST(RadiusLadder, DropsTheFireflysHaloInsteadOfClampingIt)
+{
+    const StatisticsPlanes stats = flat_field_with_firefly(1);
+    const std::vector<float> out = laddered(stats);
+    EXPECT_GT(departures_beyond(papers_filter(stats), stats, 3), 100);
+    // Even a perfect filter (out = μ) leaves |μ − x̄| > 3 standard errors at 0.27% of the
+    // 48² − 9 pixels: 6.2 on average; 17 is that plus 4.5 binomial standard deviations.
+    EXPECT_LE(departures_beyond(out, stats, 3), 17);
+}
+
+TEST(RadiusLadder, StillDenoisesAFlatField)
+{
+    // Without the firefly every rung agrees, so pixels climb to large radii: the error
+    // against the truth must fall far below the noisy input's.
+    std::mt19937_64 rng(3);
+    std::normal_distribution<float> noise(kTruth, kSigma);
+    StatisticsImage<1> img(kSize, kSize);
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            for (int s = 0; s < kSpp; ++s) {
+                const float v = noise(rng);
+                img.add(x, y, &v);
+            }
+    const StatisticsPlanes stats = img.planes();
+    const std::vector<float> out = laddered(stats);
+    double noisy = 0, filtered = 0;
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        noisy += std::pow(stats.mean[i] - kTruth, 2);
+        filtered += std::pow(out[i] - kTruth, 2);
+    }
+    // Radius 20 averages hundreds of pixels; a 10× lower squared error is a loose floor.
+    EXPECT_LT(filtered, noisy / 10) << "noisy " << noisy << " filtered " << filtered;
 }
 
 TEST(HarmGuard, AFilterThatIsRightIsRarelyTouched)

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "statmc/core/harm_guard.h"
+#include "statmc/core/radius_ladder.h"
 #include "statmc/core/variance_filter.h"
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/statistics_layers.h"
@@ -274,6 +275,36 @@ TEST(DenoiseOperator, DoNoHarmIsCoresGuardAfterTheFilterAndRoiSafe)
     EXPECT_EQ(denoise(v1, o).geterror().rfind("missing layer M4 (channels M4.R, M4.G, M4.B); "
                                               "do_no_harm needs it",
                                               0),
+              0u);
+}
+
+TEST(DenoiseOperator, IciIsCoresRadiusLadderAndRoiSafe)
+{
+    Frame f;
+    DenoiseImageOptions o = options();
+    o.ici_alpha = 0.05;
+    OIIO::ImageBuf out;
+    ASSERT_TRUE(denoise(out, f.image, o)) << out.geterror();
+    const EstimatorImage est = estimators_from_statistics(f.stats.view(), TestDomain::BoxCox);
+    std::vector<float> expected(est.value.size());
+    std::vector<Plane> planes;
+    for (int c = 0; c < 3; ++c)
+        planes.push_back(dense_plane(expected.data() + std::size_t(c) * kW * kH, kW));
+    RadiusLadderOptions ladder;
+    ladder.alpha = 0.05;
+    filter_with_radius_ladder(f.stats.view(), est, {}, small_filter(), planes, ladder);
+    expect_rgb_equals(out, expected);
+    EXPECT_NE(expected, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter()))
+        << "no pixel took a smaller radius";
+    expect_roi_matches_full(f.image, o, out);
+    o.diagnostics = true;
+    EXPECT_NE(denoise(f.image, o).geterror().find("ici and diagnostics cannot be combined"),
+              std::string::npos);
+    o.diagnostics = false;
+    const OIIO::ImageBuf v1 =
+        test::without_channels(f.image, {"M3.R", "M3.G", "M3.B", "M4.R", "M4.G", "M4.B"});
+    EXPECT_EQ(denoise(v1, o).geterror().rfind(
+                  "missing layer M4 (channels M4.R, M4.G, M4.B); ici needs it", 0),
               0u);
 }
 

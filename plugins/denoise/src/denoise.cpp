@@ -10,6 +10,7 @@
 #include "statmc/core/estimator_image.h"
 #include "statmc/core/filter.h"
 #include "statmc/core/harm_guard.h"
+#include "statmc/core/radius_ladder.h"
 #include "statmc/core/variance_filter.h"
 #include "statmc/layers/float_pixels.h"
 #include "statmc/layers/guide_layers.h"
@@ -121,14 +122,16 @@ void require_variance_filter_input(const OIIO::ImageSpec& spec, const Statistics
             "writes them)"));
 }
 
-void require_harm_guard_input(const OIIO::ImageSpec& spec, const StatisticsChannels& ch)
+// The untransformed variance and its moments, which do_no_harm and ici read.
+void require_moments(const OIIO::ImageSpec& spec, const StatisticsChannels& ch, const char* option)
 {
     for (Statistic stat : {Statistic::Variance, Statistic::Moment4})
         if (!ch.has(stat))
             throw LayerError(layers::missing_layer_message(
                 spec, layers::statistic_layer(ch.aov, stat), ch.suffixes, "layer",
-                "do_no_harm needs it (statistics of format version 2, as statmc-render or "
-                "--passes write them)"));
+                std::string(option) +
+                    " needs it (statistics of format version 2, as statmc-render or --passes "
+                    "write them)"));
 }
 
 void check_statistics(const OIIO::ImageBuf& in, const StatisticsChannels& ch,
@@ -159,8 +162,10 @@ struct Filtered {
     std::vector<float> means, members, effective_samples;
 };
 
+// With `ladder`, each pixel at its ICI radius (no diagnostics then).
 Filtered filter_region(const StatisticsView& stats, TestDomain domain, const Guides& guides,
-                       const DenoiseOptions& options, bool diagnostics, int nthreads)
+                       const DenoiseOptions& options, bool diagnostics,
+                       const RadiusLadderOptions* ladder, int nthreads)
 {
     const EstimatorImage est = estimators_from_statistics(stats, domain);
     const std::size_t pixels = std::size_t(stats.width) * stats.height;
@@ -176,7 +181,11 @@ Filtered filter_region(const StatisticsView& stats, TestDomain domain, const Gui
         planes.members = dense_plane(f.members.data(), stats.width);
         planes.effective_samples = dense_plane(f.effective_samples.data(), stats.width);
     }
-    filter(est, guides, options, out, planes, layers::thread_count(nthreads));
+    if (ladder)
+        filter_with_radius_ladder(stats, est, guides, options, out, *ladder,
+                                  layers::thread_count(nthreads));
+    else
+        filter(est, guides, options, out, planes, layers::thread_count(nthreads));
     return f;
 }
 
@@ -286,11 +295,21 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
         guard.alpha = opt.harm_alpha;
         guard.variance.sigma_albedo = opt.filter.sigma_albedo;
         guard.variance.sigma_normal = opt.filter.sigma_normal;
-        require_harm_guard_input(spec, all);
+        require_moments(spec, all, "do_no_harm");
     }
-    const StatisticsChannels ch = used_channels(all, domain, variance_filter, harm_guard);
+    const bool radius_ladder = opt.ici_alpha > 0;
+    RadiusLadderOptions ladder;
+    if (radius_ladder) {
+        ladder.alpha = opt.ici_alpha;
+        ladder.variance.sigma_albedo = opt.filter.sigma_albedo;
+        ladder.variance.sigma_normal = opt.filter.sigma_normal;
+        require_moments(spec, all, "ici");
+    }
+    const StatisticsChannels ch =
+        used_channels(all, domain, variance_filter, harm_guard || radius_ladder);
     // The variance filters read their own halo around the mean filter's.
-    const int halo = std::max(opt.variance_radius, harm_guard ? guard.variance.radius : 0);
+    const int halo = std::max({opt.variance_radius, harm_guard ? guard.variance.radius : 0,
+                               radius_ladder ? ladder.variance.radius : 0});
     const Regions regions = regions_for(in, roi, opt.filter.radius + halo);
     check_statistics(in, ch, opt, regions.input);
 
@@ -317,8 +336,8 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
             window.bc_variance[c] =
                 dense_plane(denoised_variances.data() + c * pixels, window.width);
     }
-    Filtered filtered =
-        filter_region(window, domain, window_guides, opt.filter, opt.diagnostics, nthreads);
+    Filtered filtered = filter_region(window, domain, window_guides, opt.filter, opt.diagnostics,
+                                      radius_ladder ? &ladder : nullptr, nthreads);
     if (harm_guard) {
         const std::size_t pixels = std::size_t(window.width) * window.height;
         std::vector<Plane> planes;

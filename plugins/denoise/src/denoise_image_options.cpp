@@ -14,6 +14,10 @@ std::string DenoiseImageOptions::validate() const
         return "variance_radius must be in [0, 100], got " + std::to_string(variance_radius);
     if (!(harm_alpha >= 0 && harm_alpha < 1))
         return "do_no_harm must be 0 (off) or in (0, 1), got " + std::to_string(harm_alpha);
+    if (!(ici_alpha >= 0 && ici_alpha < 1))
+        return "ici must be 0 (off) or in (0, 1), got " + std::to_string(ici_alpha);
+    if (ici_alpha > 0 && diagnostics)
+        return "ici and diagnostics cannot be combined yet (the radius differs per pixel)";
     return {};
 }
 

@@ -84,6 +84,7 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.diagnostics = p.get_bool("diagnostics", opt.diagnostics);
     opt.variance_radius = p.get_int("variance_radius", opt.variance_radius);
     opt.harm_alpha = p.get_float("do_no_harm", opt.harm_alpha);
+    opt.ici_alpha = p.get_float("ici", opt.ici_alpha);
     return opt;
 }
 
@@ -127,6 +128,11 @@ std::vector<statmc::ParameterSpec> parameters()
                         "experimental: the do-no-harm guard's significance (e.g. 0.005): each "
                         "output is pulled back into its own pixel's confidence interval "
                         "(needs the M3/M4 layers); 0 = off")
+            .between(0, 0.5),
+        float_parameter("ici", kDefaults.ici_alpha,
+                        "experimental: each pixel takes its own radius from 0,1,2,3,5,8,12,20 "
+                        "(up to radius) by intersecting confidence intervals at this "
+                        "significance (e.g. 0.005; needs the M3/M4 layers); 0 = off")
             .between(0, 0.5),
         bool_parameter("diagnostics", kDefaults.diagnostics,
                        "add [<aov>.]diagnostics.members and .effectiveSamples: per pixel, the "

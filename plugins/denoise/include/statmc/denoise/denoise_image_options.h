@@ -55,6 +55,11 @@ struct DenoiseImageOptions {
     /// confidence interval; needs the untransformed variance with M3 and M4 (format
     /// version 2). Experimental, off by default until the evaluation has measured it.
     double harm_alpha = 0;
+    /// 0: off. Else each pixel takes its own radius from the ladder 0, 1, 2, 3, 5, 8, 12, 20
+    /// (up to filter.radius) by the intersection of confidence intervals at this
+    /// significance (core/radius_ladder.h, docs/method.md §11); needs the untransformed
+    /// variance with M3 and M4. Cannot be combined with diagnostics yet. Experimental.
+    double ici_alpha = 0;
 
     /// Empty when valid, else a message naming the offending parameter.
     std::string validate() const;

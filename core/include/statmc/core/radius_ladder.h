@@ -1,0 +1,37 @@
+// A per-pixel choice of the filter radius by the intersection of confidence intervals
+// (ICI, Katkovnik's rule; docs/method.md §11): a candidate for do-no-harm that, unlike a
+// clamp, drops a harmful average instead of keeping its edge. Each rung r of a ladder of
+// radii gives the pixel an estimate ŷ_r (the filter at radius r; ŷ_0 = x̄) and an interval
+// ŷ_r ± z·sqrt(ṽ / N_r), N_r the filter's effective sample count; the pixel takes the
+// largest r whose interval still overlaps those of every smaller rung, in every channel.
+#pragma once
+
+#include <vector>
+
+#include "statmc/core/denoise_options.h"
+#include "statmc/core/estimator_image.h"
+#include "statmc/core/filter.h"
+#include "statmc/core/statistics_view.h"
+#include "statmc/core/variance_filter.h"
+
+namespace statmc {
+
+struct RadiusLadderOptions {
+    /// The rungs above 0, ascending; those above the filter's radius are dropped and the
+    /// filter's radius is always the last rung.
+    std::vector<int> radii = {1, 2, 3, 5, 8, 12, 20};
+    double alpha = 0.005;  ///< of each rung's interval, in (0, 1)
+    /// How ṽ is estimated from the untransformed variance and its moments.
+    VarianceFilterOptions variance{3, 0.05, 2.f, 0.02f, 0.1f, true};
+};
+
+/// Filters `est` (built from `stats`) into `out`, each pixel at its ICI radius. `stats`
+/// needs the untransformed variance with M3 and M4 (stats.has_moments()). Pixels with
+/// n < 2 keep their value. Bitwise identical for any thread count. Throws
+/// std::invalid_argument for bad options or missing planes.
+void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage& est,
+                               const Guides& guides, const DenoiseOptions& options,
+                               const std::vector<Plane>& out,
+                               const RadiusLadderOptions& ladder = {}, int nthreads = 0);
+
+}  // namespace statmc

@@ -1,0 +1,100 @@
+#include "statmc/core/radius_ladder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "statmc/core/variance_interval.h"
+
+namespace statmc {
+
+namespace {
+
+std::vector<int> rungs(const RadiusLadderOptions& ladder, int radius)
+{
+    std::vector<int> r;
+    for (int v : ladder.radii)
+        if (v > 0 && v < radius && (r.empty() || v > r.back()))
+            r.push_back(v);
+    if (radius > 0)
+        r.push_back(radius);
+    return r;
+}
+
+}  // namespace
+
+void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage& est,
+                               const Guides& guides, const DenoiseOptions& options,
+                               const std::vector<Plane>& out, const RadiusLadderOptions& ladder,
+                               int nthreads)
+{
+    if (!(ladder.alpha > 0 && ladder.alpha < 1))
+        throw std::invalid_argument("radius ladder: alpha must be in (0, 1)");
+    if (int(out.size()) < est.channels)
+        throw std::invalid_argument("radius ladder: fewer output planes than channels");
+    if (stats.width != est.width || stats.height != est.height || stats.channels != est.channels)
+        throw std::invalid_argument("radius ladder: statistics and estimators differ in shape");
+    const std::vector<float> variance =
+        denoise_variances(stats, TestDomain::Untransformed, guides, ladder.variance, nthreads);
+    const double z = normal_critical_value(ladder.alpha);
+    const int w = est.width, h = est.height, channels = est.channels;
+    const std::size_t pixels = est.pixels();
+
+    // Rung 0: the pixel's own mean and its interval. `lo`/`hi` hold the running
+    // intersection; `open` says the pixel may still take a larger radius.
+    std::vector<double> lo(pixels * channels), hi(pixels * channels);
+    std::vector<char> open(pixels, 1);
+    auto half_width = [&](std::size_t k, double samples) {
+        return samples > 0 ? z * std::sqrt(std::max(double(variance[k]), 0.0) / samples) : 0.0;
+    };
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = std::size_t(y) * w + x;
+            const double n = est.count[i];
+            open[i] = n >= 2;
+            for (int c = 0; c < channels; ++c) {
+                const std::size_t k = c * pixels + i;
+                const double v = est.value[k];
+                out[c](x, y) = float(v);
+                lo[k] = v - half_width(k, n);
+                hi[k] = v + half_width(k, n);
+            }
+        }
+
+    std::vector<float> rung_out(pixels * channels), effective(pixels);
+    std::vector<Plane> rung_planes;
+    for (int c = 0; c < channels; ++c)
+        rung_planes.push_back(dense_plane(rung_out.data() + c * pixels, w));
+    FilterDiagnostics diagnostics;
+    diagnostics.effective_samples = dense_plane(effective.data(), w);
+    for (int radius : rungs(ladder, options.radius)) {
+        DenoiseOptions at = options;
+        at.radius = radius;
+        filter(est, guides, at, rung_planes, diagnostics, nthreads);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = std::size_t(y) * w + x;
+                if (!open[i])
+                    continue;
+                bool overlaps = true;
+                for (int c = 0; c < channels && overlaps; ++c) {
+                    const std::size_t k = c * pixels + i;
+                    const double v = rung_out[k], hw = half_width(k, effective[i]);
+                    overlaps = std::max(lo[k], v - hw) <= std::min(hi[k], v + hw);
+                }
+                if (!overlaps) {
+                    open[i] = 0;  // the previous rung stands
+                    continue;
+                }
+                for (int c = 0; c < channels; ++c) {
+                    const std::size_t k = c * pixels + i;
+                    const double v = rung_out[k], hw = half_width(k, effective[i]);
+                    lo[k] = std::max(lo[k], v - hw);
+                    hi[k] = std::min(hi[k], v + hw);
+                    out[c](x, y) = rung_out[k];
+                }
+            }
+    }
+}
+
+}  // namespace statmc
