@@ -21,18 +21,26 @@ namespace {
 constexpr int kSize = 48, kFx = 24, kFy = 24, kSpp = 16;
 constexpr float kTruth = 0.5f, kSigma = 0.1f;  // normal samples; a firefly of 2000× the truth
 
-StatisticsPlanes flat_field_with_firefly(std::uint64_t seed)
+// A flat field of `spp` normal samples per pixel; with `firefly`, pixel (kFx, kFy)'s first
+// sample is 2000× the truth.
+StatisticsPlanes flat_field(std::uint64_t seed, int spp, bool firefly)
 {
     std::mt19937_64 rng(seed);
     std::normal_distribution<float> noise(kTruth, kSigma);
     StatisticsImage<1> img(kSize, kSize);
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x)
-            for (int s = 0; s < kSpp; ++s) {
-                const float v = (x == kFx && y == kFy && s == 0) ? 2000 * kTruth : noise(rng);
+            for (int s = 0; s < spp; ++s) {
+                const bool extreme = firefly && x == kFx && y == kFy && s == 0;
+                const float v = extreme ? 2000 * kTruth : noise(rng);
                 img.add(x, y, &v);
             }
     return img.planes();
+}
+
+StatisticsPlanes flat_field_with_firefly(std::uint64_t seed)
+{
+    return flat_field(seed, kSpp, true);
 }
 
 std::vector<float> papers_filter(const StatisticsPlanes& stats)
@@ -105,16 +113,7 @@ TEST(RadiusLadder, StillDenoisesAFlatField)
 {
     // Without the firefly every rung agrees, so pixels climb to large radii: the error
     // against the truth must fall far below the noisy input's.
-    std::mt19937_64 rng(3);
-    std::normal_distribution<float> noise(kTruth, kSigma);
-    StatisticsImage<1> img(kSize, kSize);
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x)
-            for (int s = 0; s < kSpp; ++s) {
-                const float v = noise(rng);
-                img.add(x, y, &v);
-            }
-    const StatisticsPlanes stats = img.planes();
+    const StatisticsPlanes stats = flat_field(3, kSpp, false);
     const std::vector<float> out = laddered(stats);
     double noisy = 0, filtered = 0;
     for (std::size_t i = 0; i < out.size(); ++i) {
@@ -129,16 +128,7 @@ TEST(HarmGuard, AFilterThatIsRightIsRarelyTouched)
 {
     // Outputs equal to the truth lie outside x̄ ± z·se at about the rate α: count them over
     // 48² pixels at α = 0.05 (expected ≈ 115) against a generous binomial band.
-    std::mt19937_64 rng(7);
-    std::normal_distribution<float> noise(kTruth, kSigma);
-    StatisticsImage<1> img(kSize, kSize);
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x)
-            for (int s = 0; s < 64; ++s) {
-                const float v = noise(rng);
-                img.add(x, y, &v);
-            }
-    const StatisticsPlanes stats = img.planes();
+    const StatisticsPlanes stats = flat_field(7, 64, false);
     std::vector<float> truth(std::size_t(kSize) * kSize, kTruth);
     HarmGuardOptions guard;
     guard.alpha = 0.05;

@@ -122,6 +122,15 @@ void require_variance_filter_input(const OIIO::ImageSpec& spec, const Statistics
             "writes them)"));
 }
 
+// Every variance filter weighs the guides as the mean filter does.
+VarianceFilterOptions with_guide_sigmas(VarianceFilterOptions variance,
+                                        const DenoiseOptions& filter)
+{
+    variance.sigma_albedo = filter.sigma_albedo;
+    variance.sigma_normal = filter.sigma_normal;
+    return variance;
+}
+
 // The untransformed variance and its moments, which do_no_harm and ici read.
 void require_moments(const OIIO::ImageSpec& spec, const StatisticsChannels& ch, const char* option)
 {
@@ -293,16 +302,14 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
     HarmGuardOptions guard;
     if (harm_guard) {
         guard.alpha = opt.harm_alpha;
-        guard.variance.sigma_albedo = opt.filter.sigma_albedo;
-        guard.variance.sigma_normal = opt.filter.sigma_normal;
+        guard.variance = with_guide_sigmas(guard.variance, opt.filter);
         require_moments(spec, all, "do_no_harm");
     }
     const bool radius_ladder = opt.ici_alpha > 0;
     RadiusLadderOptions ladder;
     if (radius_ladder) {
         ladder.alpha = opt.ici_alpha;
-        ladder.variance.sigma_albedo = opt.filter.sigma_albedo;
-        ladder.variance.sigma_normal = opt.filter.sigma_normal;
+        ladder.variance = with_guide_sigmas(ladder.variance, opt.filter);
         require_moments(spec, all, "ici");
     }
     const StatisticsChannels ch =
@@ -325,10 +332,8 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
                                layers::shifted(guides.normal, x0, y0)};
     std::vector<float> denoised_variances;
     if (variance_filter) {
-        VarianceFilterOptions vf;
+        VarianceFilterOptions vf = with_guide_sigmas({}, opt.filter);
         vf.radius = opt.variance_radius;
-        vf.sigma_albedo = opt.filter.sigma_albedo;
-        vf.sigma_normal = opt.filter.sigma_normal;
         denoised_variances = denoise_variances(window, TestDomain::BoxCox, window_guides, vf,
                                                layers::thread_count(nthreads));
         const std::size_t pixels = std::size_t(window.width) * window.height;
