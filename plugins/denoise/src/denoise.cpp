@@ -283,6 +283,53 @@ OIIO::ImageBuf with_diagnostics_channels(const OIIO::ImageBuf& result, const std
     return extended;
 }
 
+// The experimental stages around the mean filter (variance denoising, the guard, the
+// radius ladder): which run, with what options, and the halo they read.
+struct Stages {
+    bool variance_filter = false, harm_guard = false, radius_ladder = false;
+    HarmGuardOptions guard;
+    RadiusLadderOptions ladder;
+
+    // The variance filters read their own halo around the mean filter's.
+    int halo(const DenoiseImageOptions& opt) const
+    {
+        return std::max({opt.variance_radius, harm_guard ? guard.variance.radius : 0,
+                         radius_ladder ? ladder.variance.radius : 0});
+    }
+};
+
+Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, TestDomain domain,
+                  const DenoiseImageOptions& opt)
+{
+    Stages s;
+    s.variance_filter = opt.variance_radius > 0;
+    if (s.variance_filter)
+        require_variance_filter_input(spec, all, domain);
+    s.harm_guard = opt.harm_alpha > 0;
+    if (s.harm_guard) {
+        s.guard.alpha = opt.harm_alpha;
+        s.guard.variance = with_guide_sigmas(s.guard.variance, opt.filter);
+        require_moments(spec, all, "do_no_harm");
+    }
+    s.radius_ladder = opt.ici_alpha > 0;
+    if (s.radius_ladder) {
+        s.ladder.alpha = opt.ici_alpha;
+        s.ladder.variance = with_guide_sigmas(s.ladder.variance, opt.filter);
+        require_moments(spec, all, "ici");
+    }
+    return s;
+}
+
+// Dense channel-major planes over `view`'s window, one per channel.
+std::vector<Plane> dense_planes(std::vector<float>& data, const StatisticsView& view)
+{
+    const std::size_t pixels = std::size_t(view.width) * view.height;
+    std::vector<Plane> planes;
+    for (int c = 0; c < view.channels; ++c)
+        planes.push_back(dense_plane(data.data() + c * pixels, view.width));
+    return planes;
+}
+
 bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseImageOptions& opt,
                   const OIIO::ROI& roi, int nthreads)
 {
@@ -295,28 +342,10 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
 
     const StatisticsChannels all = layers::find_statistics(spec, opt.aov);
     const TestDomain domain = choose_domain(spec, all, opt.test);
-    const bool variance_filter = opt.variance_radius > 0;
-    if (variance_filter)
-        require_variance_filter_input(spec, all, domain);
-    const bool harm_guard = opt.harm_alpha > 0;
-    HarmGuardOptions guard;
-    if (harm_guard) {
-        guard.alpha = opt.harm_alpha;
-        guard.variance = with_guide_sigmas(guard.variance, opt.filter);
-        require_moments(spec, all, "do_no_harm");
-    }
-    const bool radius_ladder = opt.ici_alpha > 0;
-    RadiusLadderOptions ladder;
-    if (radius_ladder) {
-        ladder.alpha = opt.ici_alpha;
-        ladder.variance = with_guide_sigmas(ladder.variance, opt.filter);
-        require_moments(spec, all, "ici");
-    }
-    const StatisticsChannels ch =
-        used_channels(all, domain, variance_filter, harm_guard || radius_ladder);
-    // The variance filters read their own halo around the mean filter's.
-    const int halo = std::max({opt.variance_radius, harm_guard ? guard.variance.radius : 0,
-                               radius_ladder ? ladder.variance.radius : 0});
+    const Stages stages = stages_for(spec, all, domain, opt);
+    const StatisticsChannels ch = used_channels(all, domain, stages.variance_filter,
+                                                stages.harm_guard || stages.radius_ladder);
+    const int halo = stages.halo(opt);
     const Regions regions = regions_for(in, roi, opt.filter.radius + halo);
     check_statistics(in, ch, opt, regions.input);
 
@@ -331,26 +360,19 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
     const Guides window_guides{layers::shifted(guides.albedo, x0, y0),
                                layers::shifted(guides.normal, x0, y0)};
     std::vector<float> denoised_variances;
-    if (variance_filter) {
+    if (stages.variance_filter) {
         VarianceFilterOptions vf = with_guide_sigmas({}, opt.filter);
         vf.radius = opt.variance_radius;
         denoised_variances = denoise_variances(window, TestDomain::BoxCox, window_guides, vf,
                                                layers::thread_count(nthreads));
-        const std::size_t pixels = std::size_t(window.width) * window.height;
-        for (int c = 0; c < window.channels; ++c)
-            window.bc_variance[c] =
-                dense_plane(denoised_variances.data() + c * pixels, window.width);
+        const auto planes = dense_planes(denoised_variances, window);
+        std::copy(planes.begin(), planes.end(), window.bc_variance.begin());
     }
     Filtered filtered = filter_region(window, domain, window_guides, opt.filter, opt.diagnostics,
-                                      radius_ladder ? &ladder : nullptr, nthreads);
-    if (harm_guard) {
-        const std::size_t pixels = std::size_t(window.width) * window.height;
-        std::vector<Plane> planes;
-        for (int c = 0; c < window.channels; ++c)
-            planes.push_back(dense_plane(filtered.means.data() + c * pixels, window.width));
-        keep_within_own_interval(window, window_guides, planes, guard,
-                                 layers::thread_count(nthreads));
-    }
+                                      stages.radius_ladder ? &stages.ladder : nullptr, nthreads);
+    if (stages.harm_guard)
+        keep_within_own_interval(window, window_guides, dense_planes(filtered.means, window),
+                                 stages.guard, layers::thread_count(nthreads));
 
     OIIO::ImageBuf result;
     if (&dst == &src) {
