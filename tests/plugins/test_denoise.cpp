@@ -188,6 +188,15 @@ TEST(DenoiseOperator, RoiChangesOnlyItsPixelsAndReadsNeighboursOutsideIt)
             }
 }
 
+// Dense R,G,B planes over the frame, into `data` (channel-major).
+std::vector<Plane> rgb_planes(std::vector<float>& data)
+{
+    std::vector<Plane> planes;
+    for (int c = 0; c < 3; ++c)
+        planes.push_back(dense_plane(data.data() + std::size_t(c) * kW * kH, kW));
+    return planes;
+}
+
 // A run of `o` over a ROI gives the full run's pixels inside it: the operator reads every
 // halo its stages need.
 void expect_roi_matches_full(const OIIO::ImageBuf& in, const DenoiseImageOptions& o,
@@ -263,9 +272,7 @@ TEST(DenoiseOperator, DoNoHarmIsCoresGuardAfterTheFilterAndRoiSafe)
         test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter());
     HarmGuardOptions guard;
     guard.alpha = 0.05;
-    std::vector<Plane> planes;
-    for (int c = 0; c < 3; ++c)
-        planes.push_back(dense_plane(expected.data() + std::size_t(c) * kW * kH, kW));
+    const std::vector<Plane> planes = rgb_planes(expected);
     EXPECT_GT(keep_within_own_interval(f.stats.view(), {}, planes, guard), 0u)
         << "the guard did nothing";
     expect_rgb_equals(out, expected);
@@ -287,9 +294,7 @@ TEST(DenoiseOperator, IciIsCoresRadiusLadderAndRoiSafe)
     ASSERT_TRUE(denoise(out, f.image, o)) << out.geterror();
     const EstimatorImage est = estimators_from_statistics(f.stats.view(), TestDomain::BoxCox);
     std::vector<float> expected(est.value.size());
-    std::vector<Plane> planes;
-    for (int c = 0; c < 3; ++c)
-        planes.push_back(dense_plane(expected.data() + std::size_t(c) * kW * kH, kW));
+    const std::vector<Plane> planes = rgb_planes(expected);
     RadiusLadderOptions ladder;
     ladder.alpha = 0.05;
     filter_with_radius_ladder(f.stats.view(), est, {}, small_filter(), planes, ladder);
