@@ -9,7 +9,10 @@ const std::vector<Statistic>& all_statistics()
     static const std::vector<Statistic> all = {Statistic::Mean,          Statistic::Variance,
                                                Statistic::BoxCoxMean,    Statistic::BoxCoxVariance,
                                                Statistic::BoxCoxMoment3, Statistic::Moment3,
-                                               Statistic::Moment4,       Statistic::BoxCoxMoment4};
+                                               Statistic::Moment4,       Statistic::BoxCoxMoment4,
+                                               Statistic::CovarianceU,   Statistic::CovarianceV,
+                                               Statistic::BoxCoxCovarianceU,
+                                               Statistic::BoxCoxCovarianceV};
     return all;
 }
 
@@ -32,6 +35,14 @@ const char* statistic_name(Statistic stat)
         return "M4";
     case Statistic::BoxCoxMoment4:
         return "boxcoxM4";
+    case Statistic::CovarianceU:
+        return "covU";
+    case Statistic::CovarianceV:
+        return "covV";
+    case Statistic::BoxCoxCovarianceU:
+        return "boxcoxCovU";
+    case Statistic::BoxCoxCovarianceV:
+        return "boxcoxCovV";
     }
     return "?";
 }
@@ -48,6 +59,9 @@ bool is_statistics_channel(std::string_view channel, std::string_view aov)
 {
     if (channel == kSampleCountChannel)
         return true;
+    for (const std::string& suffix : subpixel_suffixes())
+        if (channel == channel_name(kSubpixelLayer, suffix))
+            return true;
     const std::size_t dot = channel.rfind('.');
     if (dot == std::string_view::npos)
         return false;
@@ -105,6 +119,12 @@ const std::vector<std::string>& scalar_suffixes()
 const std::vector<std::string>& vector_suffixes()
 {
     static const std::vector<std::string> s = {"X", "Y", "Z"};
+    return s;
+}
+
+const std::vector<std::string>& subpixel_suffixes()
+{
+    static const std::vector<std::string> s = {"U", "V", "UU", "VV", "UV"};
     return s;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -180,52 +181,35 @@ std::vector<Check> checks_for(Statistic stat)
     }
 }
 
-// M4/n ≥ (M2/n)² holds for any set of values (the mean of the squared squares is at least
-// the square of their mean), so a stored fourth moment below it cannot come from samples.
-// The slack absorbs float rounding of the two stored values.
-struct MomentPair {
-    ConstPlane count, variance, moment4;
-    bool variance_of_mean;
-    std::string channel;  ///< the M4 channel, named in the message
+// A relation between stored statistics that any set of samples satisfies, checked per
+// pixel: `bad` says where it fails, `what` describes the failure at that pixel.
+struct Relation {
+    std::string channel;  ///< the channel named in the message
+    std::function<bool(int, int)> bad;
+    std::function<std::string(int, int)> what;
 };
 
-void check_moment_pairs(const std::vector<MomentPair>& pairs, const Region& r,
-                        std::vector<StatisticsProblem>& problems)
+void check_relations(const std::vector<Relation>& relations, const Region& r,
+                     std::vector<StatisticsProblem>& problems)
 {
     const int rows = r.y1 - r.y0;
     if (rows <= 0)
         return;
-    for (const MomentPair& m : pairs) {
-        // m2/n from the stored variance: s²·(n − 1)/n per sample (·n for a variance of the mean).
-        auto floor_of = [&](int x, int y) {
-            const double n = m.count(x, y);
-            const double s2 = double(m.variance(x, y)) * (m.variance_of_mean ? n : 1.0);
-            const double second = n > 0 ? s2 * (n - 1) / n : 0.0;
-            return second * second;
-        };
-        // A variance or fourth moment that is itself wrong (negative, NaN) is reported by
-        // its own check.
-        auto bad = [&](int x, int y) {
-            const double m4 = m.moment4(x, y), s2 = m.variance(x, y);
-            return std::isfinite(m4) && m4 >= 0 && s2 >= 0 && std::isfinite(s2) &&
-                   m4 < (1 - 1e-5) * floor_of(x, y) - 1e-30;
-        };
+    for (const Relation& rel : relations) {
         std::vector<Found> found(rows);
         tbb::parallel_for(tbb::blocked_range<int>(r.y0, r.y1, 16),
                           [&](const tbb::blocked_range<int>& range) {
                               for (int y = range.begin(); y < range.end(); ++y)
                                   for (int x = r.x0; x < r.x1; ++x)
-                                      if (bad(x, y) && found[y - r.y0].count++ == 0)
+                                      if (rel.bad(x, y) && found[y - r.y0].count++ == 0)
                                           found[y - r.y0].first_x = x;
                           });
         StatisticsProblem p;
-        p.channel = m.channel;
+        p.channel = rel.channel;
         for (int y = r.y0; y < r.y1; ++y) {
             const Found& f = found[y - r.y0];
             if (f.count && p.pixels == 0) {
-                p.what = OIIO::Strutil::fmt::format(
-                    "fourth moment {} below the square of the second, {}: inconsistent moments",
-                    m.moment4(f.first_x, y), floor_of(f.first_x, y));
+                p.what = rel.what(f.first_x, y);
                 p.x = f.first_x + r.origin_x;
                 p.y = y + r.origin_y;
             }
@@ -234,6 +218,61 @@ void check_moment_pairs(const std::vector<MomentPair>& pairs, const Region& r,
         if (p.pixels)
             problems.push_back(std::move(p));
     }
+}
+
+// m2/n from a stored variance: s²·(n − 1)/n per sample (·n for a variance of the mean).
+double second_moment(const ConstPlane& count, const ConstPlane& variance, bool of_mean, int x,
+                     int y)
+{
+    const double n = count(x, y);
+    const double s2 = double(variance(x, y)) * (of_mean ? n : 1.0);
+    return n > 0 ? s2 * (n - 1) / n : 0.0;
+}
+
+bool sound(double v) { return std::isfinite(v) && v >= 0; }
+
+// M4/n ≥ (M2/n)² holds for any set of values (the mean of the squared squares is at least
+// the square of their mean), so a stored fourth moment below it cannot come from samples.
+// The slack absorbs float rounding of the two stored values. A variance or fourth moment
+// that is itself wrong (negative, NaN) is reported by its own check.
+Relation fourth_moment_relation(ConstPlane count, ConstPlane variance, ConstPlane moment4,
+                                bool of_mean, std::string channel)
+{
+    auto floor_of = [=](int x, int y) {
+        const double m2 = second_moment(count, variance, of_mean, x, y);
+        return m2 * m2;
+    };
+    return {std::move(channel),
+            [=](int x, int y) {
+                const double m4 = moment4(x, y);
+                return sound(m4) && sound(variance(x, y)) &&
+                       m4 < (1 - 1e-5) * floor_of(x, y) - 1e-30;
+            },
+            [=](int x, int y) {
+                return OIIO::Strutil::fmt::format(
+                    "fourth moment {} below the square of the second, {}: inconsistent moments",
+                    moment4(x, y), floor_of(x, y));
+            }};
+}
+
+// Cauchy–Schwarz: a co-moment per sample is at most sqrt(m2_f · m2_u) in size.
+Relation co_moment_relation(ConstPlane count, ConstPlane variance, ConstPlane position_m2,
+                            ConstPlane co_moment, std::string channel)
+{
+    auto bound_of = [=](int x, int y) {
+        return std::sqrt(second_moment(count, variance, false, x, y) * double(position_m2(x, y)));
+    };
+    return {std::move(channel),
+            [=](int x, int y) {
+                const double c = co_moment(x, y);
+                return std::isfinite(c) && sound(variance(x, y)) && sound(position_m2(x, y)) &&
+                       std::abs(c) > (1 + 1e-4) * bound_of(x, y) + 1e-30;
+            },
+            [=](int x, int y) {
+                return OIIO::Strutil::fmt::format(
+                    "co-moment {} larger than the variances allow, {}: inconsistent moments",
+                    co_moment(x, y), bound_of(x, y));
+            }};
 }
 
 Region region_of(const OIIO::ImageBuf& buf, OIIO::ROI roi)
@@ -269,22 +308,46 @@ std::vector<StatisticsProblem> validate_statistics(const OIIO::ImageBuf& buf,
     for (Statistic stat : all_statistics())
         for (std::size_t c = 0; c < channels.indices(stat).size(); ++c)
             check(channels.indices(stat)[c], channels.channel(stat, int(c)), checks_for(stat));
+    const bool positions = channels.subpixel.size() == subpixel_suffixes().size();
+    if (positions)
+        for (int i = 0; i < int(subpixel_suffixes().size()); ++i)
+            check(channels.subpixel[i], channel_name(kSubpixelLayer, subpixel_suffixes()[i]),
+                  i == 2 || i == 3 ? std::vector<Check>{Check::Negative} : std::vector<Check>{});
     std::vector<StatisticsProblem> problems;
     run(tasks, region, problems);
-    std::vector<MomentPair> pairs;
+    std::vector<Relation> relations;
     const ConstPlane count = channel_plane(buf, channels.count);
+    auto plane = [&](const std::vector<int>& indices, int c) {
+        return channel_plane(buf, indices[c]);
+    };
     for (int c = 0; c < channels.channels(); ++c) {
         // A fourth moment without its variance is not read (StatisticsView::has_moments).
         if (channels.has(Statistic::Moment4) && channels.has(Statistic::Variance))
-            pairs.push_back({count, channel_plane(buf, channels.variance[c]),
-                             channel_plane(buf, channels.moment4[c]), channels.variance_of_mean,
-                             channels.channel(Statistic::Moment4, c)});
+            relations.push_back(fourth_moment_relation(
+                count, plane(channels.variance, c), plane(channels.moment4, c),
+                channels.variance_of_mean, channels.channel(Statistic::Moment4, c)));
         if (channels.has(Statistic::BoxCoxMoment4) && channels.has_box_cox())
-            pairs.push_back({count, channel_plane(buf, channels.bc_variance[c]),
-                             channel_plane(buf, channels.bc_moment4[c]), false,
-                             channels.channel(Statistic::BoxCoxMoment4, c)});
+            relations.push_back(fourth_moment_relation(
+                count, plane(channels.bc_variance, c), plane(channels.bc_moment4, c), false,
+                channels.channel(Statistic::BoxCoxMoment4, c)));
+        if (!positions || channels.variance_of_mean)
+            continue;
+        const struct {
+            Statistic co_moment;
+            const std::vector<int>& variance;
+            int position;
+        } pairs[] = {{Statistic::CovarianceU, channels.variance, 2},
+                     {Statistic::CovarianceV, channels.variance, 3},
+                     {Statistic::BoxCoxCovarianceU, channels.bc_variance, 2},
+                     {Statistic::BoxCoxCovarianceV, channels.bc_variance, 3}};
+        for (const auto& pair : pairs)
+            if (channels.has(pair.co_moment) && !pair.variance.empty())
+                relations.push_back(co_moment_relation(
+                    count, plane(pair.variance, c), plane(channels.subpixel, pair.position),
+                    plane(channels.indices(pair.co_moment), c),
+                    channels.channel(pair.co_moment, c)));
     }
-    check_moment_pairs(pairs, region, problems);
+    check_relations(relations, region, problems);
     return problems;
 }
 

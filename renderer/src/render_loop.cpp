@@ -135,7 +135,7 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
                             integrator.radiance(ray, sampler, guide,
                                                 film.bounces ? &record : nullptr, &pixel_estimates);
                         const float value[3] = {L.r, L.g, L.b};
-                        film.stats.add(x, y, value);
+                        film.stats.add(x, y, value, jx, jy);
                         if (film.bounces) {
                             bounce_sample(record, film.bounces->layout(), bounce_values.data());
                             film.bounces->add(x, y, bounce_values.data());

@@ -8,6 +8,7 @@
 #include <OpenImageIO/imagebufalgo_util.h>
 
 #include "statmc/core/estimator_image.h"
+#include "statmc/core/explained_variance.h"
 #include "statmc/core/filter.h"
 #include "statmc/core/harm_guard.h"
 #include "statmc/core/radius_ladder.h"
@@ -89,8 +90,17 @@ TestDomain choose_domain(const OIIO::ImageSpec& spec, const StatisticsChannels& 
 // Only the statistics the chosen test reads are checked and viewed: of the higher moments,
 // boxcoxM4 for variance denoising, the untransformed ones (and variance) for the guard.
 StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool variance_filter,
-                                 bool harm_guard)
+                                 bool harm_guard, bool explained)
 {
+    if (!explained) {
+        ch.subpixel.clear();
+        for (auto* v : {&ch.cov_u, &ch.cov_v, &ch.bc_cov_u, &ch.bc_cov_v})
+            v->clear();
+    }
+    if (domain != TestDomain::BoxCox)
+        ch.bc_cov_u.clear(), ch.bc_cov_v.clear();
+    if (domain == TestDomain::BoxCox && !harm_guard)
+        ch.cov_u.clear(), ch.cov_v.clear();
     if (!harm_guard) {
         ch.moment3.clear();
         ch.moment4.clear();
@@ -129,6 +139,22 @@ VarianceFilterOptions with_guide_sigmas(VarianceFilterOptions variance,
     variance.sigma_albedo = filter.sigma_albedo;
     variance.sigma_normal = filter.sigma_normal;
     return variance;
+}
+
+// The co-moments with the sub-pixel position of the variances the stages read.
+void require_position_moments(const OIIO::ImageSpec& spec, const StatisticsChannels& ch,
+                              TestDomain domain)
+{
+    const std::string why = "explained_variance needs it (statmc-render writes it; K passes "
+                            "and other renderers do not)";
+    if (ch.subpixel.empty())
+        throw LayerError(layers::missing_layer_message(spec, layers::kSubpixelLayer,
+                                                       layers::subpixel_suffixes(), "layer", why));
+    const Statistic needed =
+        domain == TestDomain::BoxCox ? Statistic::BoxCoxCovarianceU : Statistic::CovarianceU;
+    if (!ch.has(needed))
+        throw LayerError(layers::missing_layer_message(
+            spec, layers::statistic_layer(ch.aov, needed), ch.suffixes, "layer", why));
 }
 
 // The untransformed variance and its moments, which do_no_harm and ici read.
@@ -286,7 +312,9 @@ OIIO::ImageBuf with_diagnostics_channels(const OIIO::ImageBuf& result, const std
 // The experimental stages around the mean filter (variance denoising, the guard, the
 // radius ladder): which run, with what options, and the halo they read.
 struct Stages {
-    bool variance_filter = false, harm_guard = false, radius_ladder = false;
+    bool explained_variance = false, variance_filter = false, harm_guard = false,
+         radius_ladder = false;
+    ExplainedVarianceOptions explained;
     HarmGuardOptions guard;
     RadiusLadderOptions ladder;
 
@@ -302,6 +330,11 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
                   const DenoiseImageOptions& opt)
 {
     Stages s;
+    s.explained_variance = opt.explained_alpha > 0;
+    if (s.explained_variance) {
+        s.explained.alpha = opt.explained_alpha;
+        require_position_moments(spec, all, domain);
+    }
     s.variance_filter = opt.variance_radius > 0;
     if (s.variance_filter)
         require_variance_filter_input(spec, all, domain);
@@ -343,8 +376,9 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
     const StatisticsChannels all = layers::find_statistics(spec, opt.aov);
     const TestDomain domain = choose_domain(spec, all, opt.test);
     const Stages stages = stages_for(spec, all, domain, opt);
-    const StatisticsChannels ch = used_channels(all, domain, stages.variance_filter,
-                                                stages.harm_guard || stages.radius_ladder);
+    const StatisticsChannels ch =
+        used_channels(all, domain, stages.variance_filter,
+                      stages.harm_guard || stages.radius_ladder, stages.explained_variance);
     const int halo = stages.halo(opt);
     const Regions regions = regions_for(in, roi, opt.filter.radius + halo);
     check_statistics(in, ch, opt, regions.input);
@@ -359,6 +393,12 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
                                                 regions.input.width(), regions.input.height());
     const Guides window_guides{layers::shifted(guides.albedo, x0, y0),
                                layers::shifted(guides.normal, x0, y0)};
+    ExplainedVariance explained;
+    if (stages.explained_variance) {
+        explained = remove_explained_variance(window, stages.explained,
+                                              layers::thread_count(nthreads));
+        window = explained.applied_to(window);
+    }
     std::vector<float> denoised_variances;
     if (stages.variance_filter) {
         VarianceFilterOptions vf = with_guide_sigmas({}, opt.filter);

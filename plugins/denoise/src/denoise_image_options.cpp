@@ -16,6 +16,9 @@ std::string DenoiseImageOptions::validate() const
         return "do_no_harm must be 0 (off) or in (0, 1), got " + std::to_string(harm_alpha);
     if (!(ici_alpha >= 0 && ici_alpha < 1))
         return "ici must be 0 (off) or in (0, 1), got " + std::to_string(ici_alpha);
+    if (!(explained_alpha >= 0 && explained_alpha < 1))
+        return "explained_variance must be 0 (off) or in (0, 1), got " +
+               std::to_string(explained_alpha);
     if (ici_alpha > 0 && diagnostics)
         return "ici and diagnostics cannot be combined yet (the radius differs per pixel)";
     return {};

@@ -85,6 +85,7 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.variance_radius = p.get_int("variance_radius", opt.variance_radius);
     opt.harm_alpha = p.get_float("do_no_harm", opt.harm_alpha);
     opt.ici_alpha = p.get_float("ici", opt.ici_alpha);
+    opt.explained_alpha = p.get_float("explained_variance", opt.explained_alpha);
     return opt;
 }
 
@@ -133,6 +134,11 @@ std::vector<statmc::ParameterSpec> parameters()
                         "experimental: each pixel takes its own radius from 0,1,2,3,5,8,12,20 "
                         "(up to radius) by intersecting confidence intervals at this "
                         "significance (e.g. 0.005; needs the M3/M4 layers); 0 = off")
+            .between(0, 0.5),
+        float_parameter("explained_variance", kDefaults.explained_alpha,
+                        "experimental: first remove the part of each pixel's variance that a "
+                        "gradient across the pixel explains, where significant at this level "
+                        "(e.g. 0.05; StatER; needs the subpixel and covU/covV layers); 0 = off")
             .between(0, 0.5),
         bool_parameter("diagnostics", kDefaults.diagnostics,
                        "add [<aov>.]diagnostics.members and .effectiveSamples: per pixel, the "

@@ -60,6 +60,11 @@ struct DenoiseImageOptions {
     /// significance (core/radius_ladder.h, docs/method.md §11); needs the untransformed
     /// variance with M3 and M4. Cannot be combined with diagnostics yet. Experimental.
     double ici_alpha = 0;
+    /// 0: off. Else, before every other stage, the part of each pixel's variance that a
+    /// linear gradient across the pixel explains is removed where the regression is
+    /// significant at this level (core/explained_variance.h, docs/method.md §12); needs
+    /// the subpixel and covU/covV layers (statmc-render writes them). Experimental.
+    double explained_alpha = 0;
 
     /// Empty when valid, else a message naming the offending parameter.
     std::string validate() const;
