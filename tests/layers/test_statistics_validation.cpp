@@ -80,6 +80,28 @@ TEST(StatisticsValidation, FourthMomentBelowTheSquaredSecondIsInconsistent)
               "moments at pixel (6, 3) [1 pixel affected]");
 }
 
+TEST(StatisticsValidation, ACoMomentBeyondCauchySchwarzIsInconsistent)
+{
+    OIIO::ImageBuf buf = make_statistics_image(test::noisy_statistics(kW, kH, 4, 25, true));
+    EXPECT_TRUE(problems_of(buf).empty());
+    // |Σ(f − f̄)(u − ū)/n| ≤ sqrt(m2_f · m2_u), m2_f = s²(n − 1)/n, from the stored pixel.
+    const double n = test::channel_value(buf, "sampleCount.Y", 3, 2);
+    const double bound = std::sqrt(test::channel_value(buf, "variance.R", 3, 2) * (n - 1) / n *
+                                   test::channel_value(buf, "subpixel.UU", 3, 2));
+    test::set_channel(buf, "covU.R", 3, 2, float(0.999 * bound));
+    EXPECT_TRUE(problems_of(buf).empty()) << join_messages(problems_of(buf));
+    test::set_channel(buf, "covU.R", 3, 2, float(-1.01 * bound));
+    test::set_channel(buf, "subpixel.VV", 5, 1, -0.01f);
+    const auto problems = problems_of(buf);
+    ASSERT_EQ(problems.size(), 2u) << join_messages(problems);
+    EXPECT_EQ(problems[0].message(),
+              "subpixel.VV: negative value -0.01 at pixel (5, 1) [1 pixel affected]");
+    EXPECT_EQ(problems[1].channel, "covU.R");
+    EXPECT_EQ(problems[1].x, 3);
+    EXPECT_EQ(problems[1].y, 2);
+    EXPECT_NE(problems[1].what.find("inconsistent moments"), std::string::npos);
+}
+
 TEST(StatisticsValidation, RoiLimitsTheCheckAndCoordinatesFollowTheDataWindow)
 {
     OIIO::ImageBuf buf = valid_image();

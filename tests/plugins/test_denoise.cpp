@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "statmc/core/explained_variance.h"
 #include "statmc/core/harm_guard.h"
 #include "statmc/core/radius_ladder.h"
 #include "statmc/core/variance_filter.h"
@@ -311,6 +312,33 @@ TEST(DenoiseOperator, IciIsCoresRadiusLadderAndRoiSafe)
     EXPECT_EQ(denoise(v1, o).geterror().rfind(
                   "missing layer M4 (channels M4.R, M4.G, M4.B); ici needs it", 0),
               0u);
+}
+
+TEST(DenoiseOperator, ExplainedVarianceCorrectsTheStatisticsTheFilterReads)
+{
+    const StatisticsPlanes stats = test::noisy_statistics(kW, kH, 8, 42, true);
+    const OIIO::ImageBuf image = layers::make_statistics_image(stats);
+    DenoiseImageOptions o = options();
+    o.explained_alpha = 0.2;
+    OIIO::ImageBuf out;
+    ASSERT_TRUE(denoise(out, image, o)) << out.geterror();
+    const ExplainedVariance corrected = remove_explained_variance(stats.view(), {0.2});
+    ASSERT_GT(corrected.corrected_pixels, 0u);
+    const StatisticsView view = corrected.applied_to(stats.view());
+    const auto expected = test::core_filtered(view, TestDomain::BoxCox, {}, small_filter());
+    expect_rgb_equals(out, expected);
+    EXPECT_NE(expected, test::core_filtered(stats.view(), TestDomain::BoxCox, {}, small_filter()));
+    expect_roi_matches_full(image, o, out);
+    // K passes and version-1 files have no positions: a clear error, not a silent no-op.
+    const OIIO::ImageBuf without =
+        layers::make_statistics_image(test::noisy_statistics(kW, kH, 8, 42));
+    EXPECT_EQ(denoise(without, o)
+                  .geterror()
+                  .rfind("missing layer subpixel (channels subpixel.U, subpixel.V, subpixel.UU, "
+                         "subpixel.VV, subpixel.UV); explained_variance needs it",
+                         0),
+              0u)
+        << denoise(without, o).geterror();
 }
 
 TEST(DenoiseOperator, RoiAtTheCornerAndDataWindowOffset)

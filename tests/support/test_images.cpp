@@ -27,10 +27,11 @@ OIIO::ImageBuf with_channels(const OIIO::ImageBuf& buf, const std::vector<int>& 
 
 }  // namespace
 
-StatisticsPlanes noisy_statistics(int width, int height, int spp, std::uint32_t seed)
+StatisticsPlanes noisy_statistics(int width, int height, int spp, std::uint32_t seed,
+                                  bool positions)
 {
-    StatisticsImage<3> image(width, height);
-    std::mt19937 rng(seed);
+    StatisticsImage<3> image(width, height, positions);
+    std::mt19937 rng(seed), position_rng(seed + 1);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     const float tint[3] = {1.f, 0.7f, 0.4f};
     for (int y = 0; y < height; ++y)
@@ -41,7 +42,8 @@ StatisticsPlanes noisy_statistics(int width, int height, int spp, std::uint32_t 
                 float sample[3];
                 for (int c = 0; c < 3; ++c)
                     sample[c] = float(tint[c] * base * -std::log(1.0 - uniform(rng)));
-                image.add(x, y, sample);
+                const double u = uniform(position_rng), v = uniform(position_rng);
+                image.add(x, y, sample, u, v);
             }
         }
     return image.planes();

@@ -19,8 +19,11 @@ namespace statmc::test {
 
 /// Statistics of a noisy frame: a dark left half and a bright right half (an edge the
 /// test must keep), exponentially distributed samples (skewed, as path tracing gives),
-/// and spp + (x + y) % 3 samples per pixel so that degrees of freedom differ.
-StatisticsPlanes noisy_statistics(int width, int height, int spp, std::uint32_t seed);
+/// and spp + (x + y) % 3 samples per pixel so that degrees of freedom differ. With
+/// `positions`, each sample gets a uniform sub-pixel offset of its own stream (the values
+/// stay the same) and the position co-moments are kept.
+StatisticsPlanes noisy_statistics(int width, int height, int spp, std::uint32_t seed,
+                                  bool positions = false);
 
 /// `stats` as another renderer's variance AOV holds it: mean, variance and count only (no
 /// Box-Cox set, no higher moments).

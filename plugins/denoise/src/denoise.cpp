@@ -99,8 +99,6 @@ StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool 
     }
     if (domain != TestDomain::BoxCox)
         ch.bc_cov_u.clear(), ch.bc_cov_v.clear();
-    if (domain == TestDomain::BoxCox && !harm_guard)
-        ch.cov_u.clear(), ch.cov_v.clear();
     if (!harm_guard) {
         ch.moment3.clear();
         ch.moment4.clear();
@@ -395,8 +393,8 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
                                layers::shifted(guides.normal, x0, y0)};
     ExplainedVariance explained;
     if (stages.explained_variance) {
-        explained = remove_explained_variance(window, stages.explained,
-                                              layers::thread_count(nthreads));
+        explained =
+            remove_explained_variance(window, stages.explained, layers::thread_count(nthreads));
         window = explained.applied_to(window);
     }
     std::vector<float> denoised_variances;
