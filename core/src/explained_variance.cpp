@@ -105,8 +105,7 @@ void use_dense(std::array<ConstPlane, 4>& planes, const std::vector<float>& data
 
 }  // namespace
 
-double residual_second_moment(double m2, double cu, double cv, double suu, double svv,
-                              double suv)
+double residual_second_moment(double m2, double cu, double cv, double suu, double svv, double suv)
 {
     const double det = suu * svv - suv * suv;
     // A singular S (all samples on one line, or one position) has no plane to remove.
@@ -143,11 +142,11 @@ ExplainedVariance remove_explained_variance(const StatisticsView& view,
     ExplainedVariance out;
     run_with_threads(nthreads, [&] {
         if (all_present(view.variance, view.channels))
-            out.corrected_pixels += correct_domain(
-                view,
-                {&view.variance, &view.moment3, &view.moment4, &view.cov_u, &view.cov_v,
-                 &out.variance, &out.moment3, &out.moment4},
-                f_critical);
+            out.corrected_pixels +=
+                correct_domain(view,
+                               {&view.variance, &view.moment3, &view.moment4, &view.cov_u,
+                                &view.cov_v, &out.variance, &out.moment3, &out.moment4},
+                               f_critical);
         if (view.has_box_cox_positions())
             out.corrected_pixels += correct_domain(
                 view,

@@ -81,8 +81,8 @@ template <int C>
 void StatisticsImage<C>::position_planes(StatisticsPlanes& p) const
 {
     const std::size_t n = pixels_.size();
-    for (auto* plane : {&p.subpixel_u, &p.subpixel_v, &p.subpixel_uu, &p.subpixel_vv,
-                        &p.subpixel_uv})
+    for (auto* plane :
+         {&p.subpixel_u, &p.subpixel_v, &p.subpixel_uu, &p.subpixel_vv, &p.subpixel_uv})
         plane->resize(n);
     for (auto* plane : {&p.cov_u, &p.cov_v, &p.bc_cov_u, &p.bc_cov_v})
         plane->resize(n * C);

@@ -6,13 +6,11 @@ namespace statmc::layers {
 
 const std::vector<Statistic>& all_statistics()
 {
-    static const std::vector<Statistic> all = {Statistic::Mean,          Statistic::Variance,
-                                               Statistic::BoxCoxMean,    Statistic::BoxCoxVariance,
-                                               Statistic::BoxCoxMoment3, Statistic::Moment3,
-                                               Statistic::Moment4,       Statistic::BoxCoxMoment4,
-                                               Statistic::CovarianceU,   Statistic::CovarianceV,
-                                               Statistic::BoxCoxCovarianceU,
-                                               Statistic::BoxCoxCovarianceV};
+    static const std::vector<Statistic> all = {
+        Statistic::Mean,           Statistic::Variance,          Statistic::BoxCoxMean,
+        Statistic::BoxCoxVariance, Statistic::BoxCoxMoment3,     Statistic::Moment3,
+        Statistic::Moment4,        Statistic::BoxCoxMoment4,     Statistic::CovarianceU,
+        Statistic::CovarianceV,    Statistic::BoxCoxCovarianceU, Statistic::BoxCoxCovarianceV};
     return all;
 }
 

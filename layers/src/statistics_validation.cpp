@@ -342,10 +342,10 @@ std::vector<StatisticsProblem> validate_statistics(const OIIO::ImageBuf& buf,
                      {Statistic::BoxCoxCovarianceV, channels.bc_variance, 3}};
         for (const auto& pair : pairs)
             if (channels.has(pair.co_moment) && !pair.variance.empty())
-                relations.push_back(co_moment_relation(
-                    count, plane(pair.variance, c), plane(channels.subpixel, pair.position),
-                    plane(channels.indices(pair.co_moment), c),
-                    channels.channel(pair.co_moment, c)));
+                relations.push_back(co_moment_relation(count, plane(pair.variance, c),
+                                                       plane(channels.subpixel, pair.position),
+                                                       plane(channels.indices(pair.co_moment), c),
+                                                       channels.channel(pair.co_moment, c)));
     }
     check_relations(relations, region, problems);
     return problems;

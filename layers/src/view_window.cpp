@@ -41,8 +41,8 @@ StatisticsView view_window(const StatisticsView& view, int x0, int y0, int width
         w.bc_cov_u[c] = shifted(view.bc_cov_u[c], x0, y0);
         w.bc_cov_v[c] = shifted(view.bc_cov_v[c], x0, y0);
     }
-    for (ConstPlane* p : {&w.subpixel_u, &w.subpixel_v, &w.subpixel_uu, &w.subpixel_vv,
-                          &w.subpixel_uv})
+    for (ConstPlane* p :
+         {&w.subpixel_u, &w.subpixel_v, &w.subpixel_uu, &w.subpixel_vv, &w.subpixel_uv})
         *p = shifted(*p, x0, y0);
     return w;
 }

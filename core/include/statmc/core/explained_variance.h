@@ -39,7 +39,6 @@ ExplainedVariance remove_explained_variance(const StatisticsView& view,
 
 /// The residual sum of squares per sample, M2/n − cᵀS⁻¹c, of one pixel-channel from
 /// per-sample moments (m2 = M2/n, cu = Σ(f − f̄)(u − ū)/n, ...); −1 when S is singular.
-double residual_second_moment(double m2, double cu, double cv, double suu, double svv,
-                              double suv);
+double residual_second_moment(double m2, double cu, double cv, double suu, double svv, double suv);
 
 }  // namespace statmc

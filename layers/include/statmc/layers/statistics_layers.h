@@ -23,10 +23,10 @@ struct StatisticsChannels {
     std::vector<std::string> suffixes;  ///< R,G,B or Y
     int count = -1;                     ///< sampleCount.Y
     std::vector<int> mean, variance, bc_mean, bc_variance, bc_moment3;
-    std::vector<int> moment3, moment4, bc_moment4;  ///< format version 2, optional
+    std::vector<int> moment3, moment4, bc_moment4;      ///< format version 2, optional
     std::vector<int> cov_u, cov_v, bc_cov_u, bc_cov_v;  ///< position co-moments, optional
-    std::vector<int> subpixel;  ///< subpixel.U, V, UU, VV, UV (shared by all AOVs), optional
-    bool variance_of_mean = false;                  ///< statmc:variance = "mean"
+    std::vector<int> subpixel;      ///< subpixel.U, V, UU, VV, UV (shared by all AOVs), optional
+    bool variance_of_mean = false;  ///< statmc:variance = "mean"
 
     int channels() const { return int(suffixes.size()); }
     bool has(Statistic stat) const { return !indices(stat).empty(); }
