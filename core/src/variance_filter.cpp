@@ -19,6 +19,8 @@ void require_valid(const StatisticsView& view, TestDomain domain, const Variance
         throw std::invalid_argument("variance filter: radius must be in [1, 100]");
     if (!(o.alpha > 0 && o.alpha < 1))
         throw std::invalid_argument("variance filter: alpha must be in (0, 1)");
+    if (!(o.prior_dof >= 0 && std::isfinite(o.prior_dof)))
+        throw std::invalid_argument("variance filter: prior_dof must be finite and >= 0");
     if (!(o.sigma_spatial > 0 && o.sigma_albedo > 0 && o.sigma_normal > 0))
         throw std::invalid_argument("variance filter: the sigmas must be > 0");
     if (domain == TestDomain::BoxCox && !(view.count && view.has_box_cox_moment4()))
@@ -109,15 +111,20 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
             for (int c = 0; c < view.channels; ++c)
                 for (int x = 0; x < w; ++x) {
                     const std::size_t i = c * n + std::size_t(y) * w + x;
-                    const double own = d.s2(c, x, y, view.count(x, y));
+                    const double count = view.count(x, y);
+                    const double own = d.s2(c, x, y, count);
                     const bool has_interval = !std::isnan(log.centre[i]);
-                    if (!has_interval && !options.borrow_without_interval) {
+                    const bool moderate = options.prior_dof > 0;
+                    if (!has_interval && !options.borrow_without_interval && !moderate) {
                         out[i] = float(own);
                         continue;
                     }
                     // The centre first, then the disk in raster order: a fixed summation
-                    // order, whichever thread runs the row.
+                    // order, whichever thread runs the row. `prior` pools every neighbour
+                    // with a variance, untested, for the moderation.
+                    const bool own_usable = count >= 2 && std::isfinite(own);
                     double sum = has_interval ? own : 0, weight = has_interval ? 1 : 0;
+                    double prior_sum = own_usable ? own : 0, prior_weight = own_usable ? 1 : 0;
                     for (int dy = -r; dy <= r; ++dy) {
                         const int yy = y + dy;
                         if (yy < 0 || yy >= h)
@@ -133,15 +140,34 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
                             const bool member =
                                 has_interval
                                     ? diff * diff <= z * z * (double(log.se2[i]) + log.se2[j])
-                                    : !std::isnan(log.centre[j]);
-                            if (!member)
+                                    : options.borrow_without_interval && !std::isnan(log.centre[j]);
+                            const double count_j = view.count(xx, yy);
+                            const double s2_j = d.s2(c, xx, yy, count_j);
+                            const bool usable = moderate && count_j >= 2 && std::isfinite(s2_j);
+                            if (!member && !usable)
                                 continue;
                             const double wij = std::exp(-d2 * falloff - guide_weight(x, y, xx, yy));
-                            sum += wij * d.s2(c, xx, yy, view.count(xx, yy));
-                            weight += wij;
+                            if (member) {
+                                sum += wij * s2_j;
+                                weight += wij;
+                            }
+                            if (usable) {
+                                prior_sum += wij * s2_j;
+                                prior_weight += wij;
+                            }
                         }
                     }
-                    out[i] = weight > 0 ? float(sum / weight) : float(own);
+                    const double tested = weight > 0 ? sum / weight : own;
+                    if (!moderate || prior_weight <= 0) {
+                        out[i] = float(tested);
+                        continue;
+                    }
+                    const double prior = prior_sum / prior_weight;
+                    const double dof = std::max(count - 1, 0.0);
+                    out[i] = dof > 0 && std::isfinite(tested)
+                                 ? float((options.prior_dof * prior + dof * tested) /
+                                         (options.prior_dof + dof))
+                                 : float(prior);
                 }
         });
     });

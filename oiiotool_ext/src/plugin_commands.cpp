@@ -206,11 +206,16 @@ std::string operator_help_text(std::string_view name)
        << wrapped(op->summary) << "\n"
        << wrapped(op->help);
     if (!op->parameters.empty()) {
-        os << "\n  " << std::left << std::setw(14) << "parameter" << std::setw(8) << "type"
+        // The name column fits the longest name, so that none runs into its type.
+        std::size_t name_width = std::string("parameter").size();
+        for (const statmc::ParameterSpec& p : op->parameters)
+            name_width = std::max(name_width, p.name.size());
+        const int names = int(name_width) + 2;
+        os << "\n  " << std::left << std::setw(names) << "parameter" << std::setw(8) << "type"
            << std::setw(10) << "default" << std::setw(12) << "range"
            << "meaning\n";
         for (const statmc::ParameterSpec& p : op->parameters)
-            os << "  " << std::setw(14) << p.name << std::setw(8) << statmc::type_name(p.type)
+            os << "  " << std::setw(names) << p.name << std::setw(8) << statmc::type_name(p.type)
                << std::setw(10) << (p.default_value.empty() ? "-" : p.default_value)
                << std::setw(12) << (p.range.empty() ? "-" : p.range.text()) << p.help
                << (p.choices.empty() ? "" : " (" + p.value_syntax() + ")") << "\n";

@@ -246,8 +246,9 @@ TEST_F(CliError, MalformedParameters)
 TEST_F(CliError, UnknownModifier)
 {
     const auto in = input("in.exr", cli_statistics_image());
-    expect_failure({in, "--denoise:radius=3:sigma=2", "-o", out()},
-                   "--denoise: unknown modifier 'sigma' (modifiers: radius, alpha, sigma_s");
+    expect_failure(
+        {in, "--denoise:radius=3:sigma=2", "-o", out()},
+        "--denoise: unknown modifier 'sigma' (modifiers: method, radius, alpha, sigma_s");
     expect_failure({in, "-o:compression=zip", out()},
                    "-o: unknown modifier 'compression' (modifiers: type, datatype)");
     expect_failure({in, "--siappend:all=1", out()},

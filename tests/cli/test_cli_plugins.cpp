@@ -38,8 +38,11 @@ TEST(CliPlugins, HelpOfAnOperatorIsItsParameterTable)
     const CliResult r = run_cli({"--help", "denoise"});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     for (const char* row :
-         {"radius        int     20        [0, 1000]", "alpha         float   0.005     (0, 1)",
-          "sigma_s       float   10        > 0", "test          choice  auto      -", "denoise.so"})
+         {"radius              int     20        [0, 1000]",
+          "alpha               float   0.005     (0, 1)",
+          "sigma_s             float   10        > 0", "test                choice  auto      -",
+          "method              choice  default   -",
+          "explained_variance  float   0         [0, 0.5]", "denoise.so"})
         EXPECT_NE(r.out.find(row), std::string::npos) << row << "\n" << r.out;
     EXPECT_EQ(run_cli({"--help", "--denoise"}).out, r.out);
     const CliResult unknown = run_cli({"--help", "denoize"});
@@ -57,7 +60,7 @@ TEST(CliPlugins, ModuleOnThePluginPathRunsLikeAShippedOne)
     const CliResult list = run_cli({"--list-ops"});
     EXPECT_NE(list.out.find("--testscale"), std::string::npos) << list.out << list.err;
     const CliResult help = run_cli({"--help", "testscale"});
-    EXPECT_NE(help.out.find("factor        float   2         [0.01, 100]"), std::string::npos)
+    EXPECT_NE(help.out.find("factor      float   2         [0.01, 100]"), std::string::npos)
         << help.out;
 
     const CliResult run =

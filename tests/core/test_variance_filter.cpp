@@ -130,6 +130,65 @@ TEST(VarianceFilter, PixelsWithoutAnIntervalKeepTheirVarianceAndJoinNone)
     EXPECT_EQ(again[10 * kW + 11], out[10 * kW + 11]);
 }
 
+// Four samples of a pixel that reaches a light one time in four (else a dark 0.001·U):
+// about 0.75⁴ = 32% of the pixels saw no light and claim a variance ~10⁵ below the truth
+// p(1 − p) = 0.1875. Their Bonett intervals are confidently wrong, so the test rejects every
+// neighbour and they keep it (the dark speckles of docs/method.md §10); the moderation
+// towards the neighbourhood's variance lifts them.
+StatisticsPlanes rare_light(std::uint64_t seed)
+{
+    std::mt19937_64 rng(seed);
+    std::bernoulli_distribution hit(0.25);
+    std::uniform_real_distribution<float> dark(0.f, 0.001f);
+    StatisticsImage<1> img(kW, kH);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            for (int s = 0; s < 4; ++s) {
+                const float v = hit(rng) ? 1.f : dark(rng);
+                img.add(x, y, &v);
+            }
+    return img.planes();
+}
+
+double share_below(const std::vector<float>& variance, double bound)
+{
+    std::size_t below = 0;
+    for (float v : variance)
+        below += v < bound;
+    return double(below) / variance.size();
+}
+
+TEST(VarianceFilter, ModerationLiftsVariancesThatFewSamplesUnderestimate)
+{
+    const StatisticsPlanes stats = rare_light(5);
+    const double truth = 0.25 * 0.75, bound = truth / 100;
+    VarianceFilterOptions tested;
+    const std::vector<float> plain =
+        denoise_variances(stats.view(), TestDomain::Untransformed, {}, tested);
+    // The failure the moderation is for: expected share 0.32 (binomial sd 0.012 over 1536).
+    EXPECT_GT(share_below(plain, bound), 0.25);
+    VarianceFilterOptions moderated = tested;
+    moderated.prior_dof = 4;
+    const std::vector<float> lifted =
+        denoise_variances(stats.view(), TestDomain::Untransformed, {}, moderated);
+    // d₀ = 4 against n − 1 = 3 own degrees of freedom: at least 4/7 of the neighbourhood's
+    // mean, which a speckle-free disk of 29 pixels keeps near the truth. The chance that a
+    // disk's pooled mean falls below 1/57 of p(1 − p) is far below 1e-9.
+    EXPECT_EQ(share_below(lifted, bound), 0.0);
+    // Not a replacement: where the pixel's own estimate is sound it still counts 3/7.
+    double log_error_plain = 0, log_error_lifted = 0;
+    for (std::size_t i = 0; i < lifted.size(); ++i) {
+        log_error_plain += std::pow(std::log(plain[i] / truth), 2);
+        log_error_lifted += std::pow(std::log(lifted[i] / truth), 2);
+    }
+    EXPECT_LT(log_error_lifted, log_error_plain / 10);
+    // Deterministic for any thread count, like the tested filter.
+    EXPECT_EQ(lifted, denoise_variances(stats.view(), TestDomain::Untransformed, {}, moderated, 1));
+    moderated.prior_dof = -1;
+    EXPECT_THROW(denoise_variances(stats.view(), TestDomain::Untransformed, {}, moderated),
+                 std::invalid_argument);
+}
+
 TEST(VarianceFilter, RefusesBadOptionsAndMissingMoments)
 {
     StatisticsPlanes stats = synthetic(4);

@@ -33,9 +33,10 @@ DenoiseOptions small_filter()
     return o;
 }
 
+// The classic filter (no radius ladder), which core's filter() gives directly.
 DenoiseImageOptions options(GuideUse guides = GuideUse::Off)
 {
-    DenoiseImageOptions o;
+    DenoiseImageOptions o = DenoiseImageOptions::classic();
     o.filter = small_filter();
     o.guides.albedo = o.guides.normal = guides;
     return o;
@@ -303,6 +304,8 @@ TEST(DenoiseOperator, IciIsCoresRadiusLadderAndRoiSafe)
     EXPECT_NE(expected, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter()))
         << "no pixel took a smaller radius";
     expect_roi_matches_full(f.image, o, out);
+    // Asked for by name (optional_stages off), the ladder refuses what it cannot do.
+    o.optional_stages = false;
     o.diagnostics = true;
     EXPECT_NE(denoise(f.image, o).geterror().find("ici and diagnostics cannot be combined"),
               std::string::npos);
@@ -312,6 +315,61 @@ TEST(DenoiseOperator, IciIsCoresRadiusLadderAndRoiSafe)
     EXPECT_EQ(denoise(v1, o).geterror().rfind(
                   "missing layer M4 (channels M4.R, M4.G, M4.B); ici needs it", 0),
               0u);
+}
+
+TEST(DenoiseOperator, TheDefaultIsTheClassicFilterWithTheModeratedLadder)
+{
+    Frame f;
+    DenoiseImageOptions o;  // the default method
+    o.filter = small_filter();
+    o.guides.albedo = o.guides.normal = GuideUse::Off;
+    const OIIO::ImageBuf out = denoise(f.image, o);
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    EXPECT_EQ(out.spec().get_string_attribute("statmc:denoiseSkipped"), "");
+    const EstimatorImage est = estimators_from_statistics(f.stats.view(), TestDomain::BoxCox);
+    std::vector<float> expected(est.value.size());
+    RadiusLadderOptions ladder;
+    ladder.alpha = 0.005;
+    ladder.variance.prior_dof = 4;
+    filter_with_radius_ladder(f.stats.view(), est, {}, small_filter(), rgb_planes(expected),
+                              ladder);
+    expect_rgb_equals(out, expected);
+}
+
+TEST(DenoiseOperator, TheDefaultLeavesOutTheLadderItCannotRunAndSaysSo)
+{
+    Frame f;
+    DenoiseImageOptions o;
+    o.filter = small_filter();
+    o.guides.albedo = o.guides.normal = GuideUse::Off;
+    DenoiseImageOptions classic = options();
+    // A format-1 file: no M3/M4, so no interval for the ladder.
+    const OIIO::ImageBuf v1 =
+        test::without_channels(f.image, {"M3.R", "M3.G", "M3.B", "M4.R", "M4.G", "M4.B"});
+    const OIIO::ImageBuf out = denoise(v1, o);
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    const std::string skipped = out.spec().get_string_attribute("statmc:denoiseSkipped");
+    EXPECT_EQ(skipped.rfind("ici (needs", 0), 0u) << skipped;
+    expect_rgb_equals(out,
+                      test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, classic.filter));
+    // Diagnostics describe one radius per pixel, so the ladder steps aside for them too.
+    o.diagnostics = true;
+    const OIIO::ImageBuf with_diagnostics = denoise(f.image, o);
+    ASSERT_FALSE(with_diagnostics.has_error()) << with_diagnostics.geterror();
+    EXPECT_NE(
+        with_diagnostics.spec().get_string_attribute("statmc:denoiseSkipped").find("diagnostics"),
+        std::string::npos);
+}
+
+TEST(DenoiseOperator, MethodPaperIsThePapersFilterBitForBit)
+{
+    Frame f;
+    DenoiseImageOptions o = DenoiseImageOptions::paper();
+    o.guides.albedo = o.guides.normal = GuideUse::Off;
+    const OIIO::ImageBuf out = denoise(f.image, o);
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    expect_rgb_equals(
+        out, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, DenoiseOptions::paper()));
 }
 
 TEST(DenoiseOperator, ExplainedVarianceCorrectsTheStatisticsTheFilterReads)

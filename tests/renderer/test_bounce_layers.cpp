@@ -91,10 +91,10 @@ TEST(BounceLayers, RoundTripThroughTheExrAndStatmcDenoise)
     EXPECT_LT(back.spec().channelindex("bounce5L.Y"), 0);
 
     // statmc denoises bounce1L alone: as core's filter does with the film's guides, and
-    // everything else is left as it was. (The paper's filter, as the renderer uses for
-    // these quantities.)
+    // everything else is left as it was. (method=paper: the paper's filter bit for bit, as
+    // the renderer uses for these quantities.)
     ASSERT_EQ(run(std::string("\"") + STATMC_CLI_EXE + "\" \"" + out +
-                  "\" --denoise:aov=bounce1L:fireflies=0 -o \"" + den + "\""),
+                  "\" --denoise:aov=bounce1L:method=paper -o \"" + den + "\""),
               0);
     const OIIO::ImageBuf denoised = read(den);
     const statmc::StatisticsView q1 = BounceStatistics::quantity_view(groups, layout.luminance(1));

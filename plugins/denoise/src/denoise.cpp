@@ -315,6 +315,7 @@ struct Stages {
     ExplainedVarianceOptions explained;
     HarmGuardOptions guard;
     RadiusLadderOptions ladder;
+    std::string skipped;  ///< the optional stages left out, and why ("" when none)
 
     // The variance filters read their own halo around the mean filter's.
     int halo(const DenoiseImageOptions& opt) const
@@ -340,12 +341,24 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
     if (s.harm_guard) {
         s.guard.alpha = opt.harm_alpha;
         s.guard.variance = with_guide_sigmas(s.guard.variance, opt.filter);
+        s.guard.variance.prior_dof = opt.variance_prior_dof;
         require_moments(spec, all, "do_no_harm");
     }
     s.radius_ladder = opt.ici_alpha > 0;
+    if (s.radius_ladder && opt.optional_stages) {
+        const bool has_moments = all.has(Statistic::Variance) && all.has(Statistic::Moment4);
+        if (!has_moments || opt.diagnostics) {
+            s.radius_ladder = false;
+            s.skipped = has_moments ? "ici (the radius differs per pixel, so diagnostics cannot "
+                                      "describe it)"
+                                    : "ici (needs the variance and M4 layers of format version "
+                                      "2, as statmc-render or --passes write them)";
+        }
+    }
     if (s.radius_ladder) {
         s.ladder.alpha = opt.ici_alpha;
         s.ladder.variance = with_guide_sigmas(s.ladder.variance, opt.filter);
+        s.ladder.variance.prior_dof = opt.variance_prior_dof;
         require_moments(spec, all, "ici");
     }
     return s;
@@ -401,6 +414,7 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
     if (stages.variance_filter) {
         VarianceFilterOptions vf = with_guide_sigmas({}, opt.filter);
         vf.radius = opt.variance_radius;
+        vf.prior_dof = opt.variance_prior_dof;
         denoised_variances = denoise_variances(window, TestDomain::BoxCox, window_guides, vf,
                                                layers::thread_count(nthreads));
         const auto planes = dense_planes(denoised_variances, window);
@@ -430,6 +444,10 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
             regions, nthreads);
     }
     result.specmod().attribute(layers::attr::kDenoised, 1);
+    if (!stages.skipped.empty())
+        result.specmod().attribute(layers::attr::kDenoiseSkipped, stages.skipped);
+    else
+        result.specmod().erase_attribute(layers::attr::kDenoiseSkipped);
     dst = std::move(result);
     return true;
 }

@@ -19,9 +19,26 @@ std::string DenoiseImageOptions::validate() const
     if (!(explained_alpha >= 0 && explained_alpha < 1))
         return "explained_variance must be 0 (off) or in (0, 1), got " +
                std::to_string(explained_alpha);
-    if (ici_alpha > 0 && diagnostics)
+    if (!(variance_prior_dof >= 0 && variance_prior_dof <= 1000))
+        return "variance_dof must be in [0, 1000], got " + std::to_string(variance_prior_dof);
+    if (ici_alpha > 0 && diagnostics && !optional_stages)
         return "ici and diagnostics cannot be combined yet (the radius differs per pixel)";
     return {};
+}
+
+DenoiseImageOptions DenoiseImageOptions::classic()
+{
+    DenoiseImageOptions o;
+    o.ici_alpha = 0;
+    o.variance_prior_dof = 0;
+    return o;
+}
+
+DenoiseImageOptions DenoiseImageOptions::paper()
+{
+    DenoiseImageOptions o = classic();
+    o.filter = DenoiseOptions::paper();
+    return o;
 }
 
 }  // namespace statmc

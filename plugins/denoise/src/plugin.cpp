@@ -3,6 +3,7 @@
 // default) denoised. The parameter table is `statmc --help denoise`, generated from
 // parameters() below; every default comes from DenoiseImageOptions{}.
 #include <algorithm>
+#include <iostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,6 +23,12 @@ const std::vector<std::pair<std::string, statmc::TestDomainChoice>> kTests = {
     {"auto", statmc::TestDomainChoice::Auto},
     {"boxcox", statmc::TestDomainChoice::BoxCox},
     {"untransformed", statmc::TestDomainChoice::Untransformed},
+};
+// The presets a `method` names; their explicit parameters override them.
+const std::vector<std::pair<std::string, statmc::DenoiseImageOptions (*)()>> kMethods = {
+    {"default", [] { return statmc::DenoiseImageOptions{}; }},
+    {"classic", &statmc::DenoiseImageOptions::classic},
+    {"paper", &statmc::DenoiseImageOptions::paper},
 };
 const std::vector<std::pair<std::string, statmc::NonfinitePolicy>> kNonfinite = {
     {"error", statmc::NonfinitePolicy::Error},
@@ -65,7 +72,8 @@ statmc::GuideUse guide_use(const std::vector<std::string>& guides, const char* g
 
 statmc::DenoiseImageOptions options_from(const ParameterValues& p)
 {
-    statmc::DenoiseImageOptions opt = kDefaults;
+    statmc::DenoiseImageOptions opt =
+        chosen(kMethods, p.get_string("method", "default"), kMethods.front().second)();
     opt.filter.radius = p.get_int("radius", opt.filter.radius);
     opt.filter.alpha = p.get_float("alpha", opt.filter.alpha);
     opt.filter.sigma_spatial = float(p.get_float("sigma_s", opt.filter.sigma_spatial));
@@ -85,7 +93,11 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.variance_radius = p.get_int("variance_radius", opt.variance_radius);
     opt.harm_alpha = p.get_float("do_no_harm", opt.harm_alpha);
     opt.ici_alpha = p.get_float("ici", opt.ici_alpha);
+    // The ladder asked for by name must run: its missing layers are then an error.
+    if (p.has("ici"))
+        opt.optional_stages = false;
     opt.explained_alpha = p.get_float("explained_variance", opt.explained_alpha);
+    opt.variance_prior_dof = p.get_float("variance_dof", opt.variance_prior_dof);
     return opt;
 }
 
@@ -93,16 +105,24 @@ std::vector<statmc::ParameterSpec> parameters()
 {
     using namespace statmc;
     const DenoiseOptions& f = kDefaults.filter;
+    const DenoiseImageOptions classic = DenoiseImageOptions::classic();
     return {
+        choice_parameter("method", spellings(kMethods), "default",
+                         "default: the classic filter with each pixel at its own radius by the "
+                         "ICI ladder (docs/method.md §11; on a file without M4 the ladder is "
+                         "left out, with a note); classic: the default before it (paper + "
+                         "firefly guard); paper: Sakai et al. 2024 bit for bit. Parameters "
+                         "given override the method's"),
         int_parameter("radius", f.radius, "filter disk radius in pixels").between(0, 1000),
         float_parameter("alpha", f.alpha, "significance level of the t-test").open_between(0, 1),
         float_parameter("sigma_s", f.sigma_spatial, "spatial Gaussian falloff in pixels").above(0),
         float_parameter("sigma_albedo", f.sigma_albedo, "albedo guide falloff").above(0),
         float_parameter("sigma_normal", f.sigma_normal, "normal guide falloff").above(0),
-        float_parameter("fireflies", f.firefly_ratio,
+        float_parameter("fireflies", std::nullopt,
                         "firefly guard (Box-Cox test only): no pixel averages a neighbour "
                         "whose sample variance exceeds this many times its own noise level "
-                        "(halos of highlights, fireflies); 0 = the paper's filter")
+                        "(halos of highlights, fireflies); 0 = off. Default and classic " +
+                            number_text(f.firefly_ratio) + ", paper 0")
             .at_least(0),
         list_parameter("guides", {"albedo", "normal"}, {"auto", "none"}, "auto",
                        "guide layers: a list is required to be present, auto uses those "
@@ -130,20 +150,38 @@ std::vector<statmc::ParameterSpec> parameters()
                         "output is pulled back into its own pixel's confidence interval "
                         "(needs the M3/M4 layers); 0 = off")
             .between(0, 0.5),
-        float_parameter("ici", kDefaults.ici_alpha,
-                        "experimental: each pixel takes its own radius from 0,1,2,3,5,8,12,20 "
-                        "(up to radius) by intersecting confidence intervals at this "
-                        "significance (e.g. 0.005; needs the M3/M4 layers); 0 = off")
+        float_parameter("ici", std::nullopt,
+                        "each pixel takes its own radius from 0,1,2,3,5,8,12,20 (up to radius) "
+                        "by intersecting confidence intervals at this significance (needs the "
+                        "M3/M4 layers); 0 = off. Default " +
+                            number_text(kDefaults.ici_alpha) + ", classic and paper 0")
             .between(0, 0.5),
         float_parameter("explained_variance", kDefaults.explained_alpha,
                         "experimental: first remove the part of each pixel's variance that a "
                         "gradient across the pixel explains, where significant at this level "
                         "(e.g. 0.05; StatER; needs the subpixel and covU/covV layers); 0 = off")
             .between(0, 0.5),
+        float_parameter("variance_dof", std::nullopt,
+                        "prior degrees of freedom with which the variance filters "
+                        "(variance_radius, do_no_harm, ici) pull a pixel's variance towards its "
+                        "neighbourhood's (docs/method.md §10); 0 = off. Default " +
+                            number_text(kDefaults.variance_prior_dof) + ", classic and paper 0")
+            .between(0, 1000),
         bool_parameter("diagnostics", kDefaults.diagnostics,
                        "add [<aov>.]diagnostics.members and .effectiveSamples: per pixel, the "
                        "pixels averaged and the effective sample count (Σw)²/Σ(w²/n)"),
     };
+}
+
+// The user learns once, on stderr, that the method ran without one of its stages.
+void note_skipped_stages(const OIIO::ImageBuf& result, const statmc::RunContext& ctx)
+{
+    const std::string skipped =
+        result.spec().get_string_attribute(statmc::layers::attr::kDenoiseSkipped);
+    if (skipped.empty() || result.has_error())
+        return;
+    const std::string label = ctx.input_labels.empty() ? "" : ctx.input_labels[0] + ": ";
+    std::cerr << "--denoise: note: " << label << "left out " << skipped << "\n";
 }
 
 void register_denoise(statmc::PluginRegistry& registry)
@@ -158,11 +196,16 @@ void register_denoise(statmc::PluginRegistry& registry)
     op.check = [](const ParameterValues& p) { return options_from(p).validate(); };
     op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs, const ParameterValues& p,
                 const statmc::RunContext& ctx) {
-        return statmc::denoise(*inputs[0], options_from(p), {}, ctx.nthreads);
+        OIIO::ImageBuf result = statmc::denoise(*inputs[0], options_from(p), {}, ctx.nthreads);
+        note_skipped_stages(result, ctx);
+        return result;
     };
     op.run_in_place = [](OIIO::ImageBuf& image, const ParameterValues& p,
                          const statmc::RunContext& ctx) {
-        return statmc::denoise(image, image, options_from(p), {}, ctx.nthreads);
+        const bool ok = statmc::denoise(image, image, options_from(p), {}, ctx.nthreads);
+        if (ok)
+            note_skipped_stages(image, ctx);
+        return ok;
     };
     registry.add(std::move(op));
 }

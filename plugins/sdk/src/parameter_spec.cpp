@@ -6,15 +6,14 @@
 
 namespace statmc {
 
-namespace {
-
-// Shortest round-tripping-enough text for help and messages: 0.005, 10, 1000.
 std::string number_text(double value)
 {
     std::ostringstream os;
     os << value;
     return os.str();
 }
+
+namespace {
 
 ParameterSpec make(std::string name, ParameterType type, std::string default_value,
                    std::string help)

@@ -24,6 +24,11 @@ struct VarianceFilterOptions {
     /// A pixel without an interval (n < 4 or s² = 0) keeps its own s² (false), or takes the
     /// weighted mean of its neighbours' that have one (true; its own when none has).
     bool borrow_without_interval = false;
+    /// Prior degrees of freedom d₀ of an empirical-Bayes moderation (Smyth 2004): the result
+    /// becomes (d₀·m + (n − 1)·s̃²)/(d₀ + n − 1), m the weighted mean of every neighbour's s²
+    /// (no test), so that a pixel whose few samples happened to agree cannot claim a variance
+    /// far below its neighbourhood's (docs/method.md §10). 0 = off.
+    double prior_dof = 0;
 };
 
 /// The denoised per-sample variances of `view` in `domain` (BoxCox: the Box-Cox set and

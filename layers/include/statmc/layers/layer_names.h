@@ -23,6 +23,8 @@ inline constexpr const char* kVariance = "statmc:variance";            // "sampl
 inline constexpr const char* kSpp = "statmc:spp";                      // int
 inline constexpr const char* kSeed = "statmc:seed";                    // int
 inline constexpr const char* kDenoised = "statmc:denoised";            // int 1
+// string: the default's stages that --denoise left out, and why (docs/exr-layers.md)
+inline constexpr const char* kDenoiseSkipped = "statmc:denoiseSkipped";
 inline constexpr const char* kRenderTime = "statmc:renderTime";  // float seconds (statmc-render)
 inline constexpr const char* kScene = "statmc:scene";  // string: the scene file (statmc-render)
 }  // namespace attr

@@ -36,6 +36,10 @@ enum class NonfinitePolicy {
     Zero,   ///< core's rule: the value counts as 0 and the pixel joins no test
 };
 
+/// The default (DenoiseImageOptions{}) is the measured one (docs/method.md §11): the 2024
+/// filter with the firefly guard, each pixel at its own radius by the ICI ladder, whose
+/// intervals read moderated variances. classic() is the default before the ladder,
+/// paper() the 2024 filter bit for bit.
 struct DenoiseImageOptions {
     DenoiseOptions filter;
     GuideSelection guides;
@@ -58,13 +62,27 @@ struct DenoiseImageOptions {
     /// 0: off. Else each pixel takes its own radius from the ladder 0, 1, 2, 3, 5, 8, 12, 20
     /// (up to filter.radius) by the intersection of confidence intervals at this
     /// significance (core/radius_ladder.h, docs/method.md §11); needs the untransformed
-    /// variance with M3 and M4. Cannot be combined with diagnostics yet. Experimental.
-    double ici_alpha = 0;
+    /// variance with M3 and M4. Cannot be combined with diagnostics yet.
+    double ici_alpha = 0.005;
     /// 0: off. Else, before every other stage, the part of each pixel's variance that a
     /// linear gradient across the pixel explains is removed where the regression is
     /// significant at this level (core/explained_variance.h, docs/method.md §12); needs
     /// the subpixel and covU/covV layers (statmc-render writes them). Experimental.
     double explained_alpha = 0;
+    /// The prior degrees of freedom with which every variance filter above (variance_radius,
+    /// do_no_harm, ici) moderates a pixel's variance towards its neighbourhood's
+    /// (VarianceFilterOptions::prior_dof, docs/method.md §10); 0 = off.
+    double variance_prior_dof = 4;
+    /// true: a stage whose layers the image lacks (the ladder on a format-1 file without
+    /// M3/M4) or that the request excludes (the ladder with diagnostics) is skipped, and the
+    /// result's statmc:denoiseSkipped attribute says which and why. false: either is an
+    /// error. The presets keep it true; a stage asked for by name sets it false.
+    bool optional_stages = true;
+
+    /// The default before the radius ladder: the 2024 filter with the firefly guard.
+    static DenoiseImageOptions classic();
+    /// The 2024 filter exactly (DenoiseOptions::paper()), no further stage.
+    static DenoiseImageOptions paper();
 
     /// Empty when valid, else a message naming the offending parameter.
     std::string validate() const;

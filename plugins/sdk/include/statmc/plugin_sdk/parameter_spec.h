@@ -54,6 +54,9 @@ struct ParameterSpec {
     ParameterSpec& above(double lo);                    ///< > lo
 };
 
+/// Shortest readable text of a number for help and messages: 0.005, 10, 1000.
+std::string number_text(double value);
+
 // Builders, in the manner of Mitsuba's Properties: name, default, help.
 ParameterSpec int_parameter(std::string name, std::optional<int> default_value, std::string help);
 ParameterSpec float_parameter(std::string name, std::optional<double> default_value,
