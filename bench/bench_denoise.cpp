@@ -2,6 +2,9 @@
 // `statmc in.exr --denoise` adds to reading and writing the frame (it runs in place), and
 // the stages it spends that on besides the filter (bench_filter). 1280×720 RGB, Box-Cox statistics,
 // n = 64, r = 20; medians over 5 repetitions.
+#include <cstdint>
+#include <string>
+
 #include <benchmark/benchmark.h>
 
 #include <OpenImageIO/imagebuf.h>
@@ -30,9 +33,17 @@ const OIIO::ImageBuf& image()
     return buf;
 }
 
+// range(2): 0 the classic filter (the default before the radius ladder), 1 the default.
+DenoiseImageOptions method(std::int64_t which)
+{
+    return which ? DenoiseImageOptions{} : DenoiseImageOptions::classic();
+}
+
+const char* method_label(std::int64_t which) { return which ? "default" : "classic"; }
+
 void BM_DenoiseOperator(benchmark::State& state)
 {
-    DenoiseImageOptions opt;
+    DenoiseImageOptions opt = method(state.range(2));
     const GuideUse use = state.range(1) ? GuideUse::Required : GuideUse::Off;
     opt.guides.albedo = opt.guides.normal = use;
     const OIIO::ImageBuf& in = image();  // built before the clock starts
@@ -42,13 +53,14 @@ void BM_DenoiseOperator(benchmark::State& state)
             state.SkipWithError(out.geterror().c_str());
         benchmark::DoNotOptimize(out.localpixels());
     }
-    state.SetLabel(state.range(1) ? "albedo + normal guides" : "no guides");
+    state.SetLabel(std::string(method_label(state.range(2))) +
+                   (state.range(1) ? ", albedo + normal guides" : ", no guides"));
 }
 
 // dst = src, as statmc's command line runs it: the means are patched into the input.
 void BM_DenoiseOperatorInPlace(benchmark::State& state)
 {
-    DenoiseImageOptions opt;
+    DenoiseImageOptions opt = method(state.range(2));
     const GuideUse use = state.range(1) ? GuideUse::Required : GuideUse::Off;
     opt.guides.albedo = opt.guides.normal = use;
     const OIIO::ImageBuf& in = image();
@@ -60,7 +72,9 @@ void BM_DenoiseOperatorInPlace(benchmark::State& state)
             state.SkipWithError(buf.geterror().c_str());
         benchmark::DoNotOptimize(buf.localpixels());
     }
-    state.SetLabel(state.range(1) ? "in place, albedo + normal guides" : "in place, no guides");
+    state.SetLabel(
+        std::string(method_label(state.range(2))) +
+        (state.range(1) ? ", in place, albedo + normal guides" : ", in place, no guides"));
 }
 
 // The stages outside the filter, on all cores.
@@ -88,9 +102,20 @@ void BM_StageCopy(benchmark::State& state)
     }
 }
 
-// Args: threads (0 = all cores), guides (0/1).
-BENCHMARK(BM_DenoiseOperator)->Args({0, 0})->Args({0, 1})->Args({1, 0})->Apply(median_of_5);
-BENCHMARK(BM_DenoiseOperatorInPlace)->Args({0, 0})->Args({0, 1})->Apply(median_of_5);
+// Args: threads (0 = all cores), guides (0/1), method (0 classic, 1 default).
+BENCHMARK(BM_DenoiseOperator)
+    ->Args({0, 0, 0})
+    ->Args({0, 1, 0})
+    ->Args({1, 0, 0})
+    ->Args({0, 0, 1})
+    ->Args({0, 1, 1})
+    ->Apply(median_of_5);
+BENCHMARK(BM_DenoiseOperatorInPlace)
+    ->Args({0, 0, 0})
+    ->Args({0, 1, 0})
+    ->Args({0, 0, 1})
+    ->Args({0, 1, 1})
+    ->Apply(median_of_5);
 BENCHMARK(BM_StageValidate)->Apply(median_of_5);
 BENCHMARK(BM_StageEstimators)->Apply(median_of_5);
 BENCHMARK(BM_StageCopy)->Apply(median_of_5);

@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
-# The evaluation of docs/evaluation.md, refreshed with one command (about 10 minutes on
-# this project's 2-core machine; not part of CI). Renders a reference and noisy frames per scene with
-# statmc-render, scores every method with statmc-evaluate, and redraws the charts and the
-# report with scripts/plot_evaluation.py.
+# The evaluation of docs/evaluation.md, refreshed with one command (not part of CI: about
+# 1.5 hours on this project's 2-core machine at REF_SPP=4096, most of it the references,
+# which are cached in OUT and reused). Renders a reference and noisy frames per scene with
+# statmc-render, runs OIDN on them when pyoidn can be installed (an evaluation-only
+# dependency, in a virtual environment under the build directory), scores every method with
+# statmc-evaluate, and redraws the charts and the report with scripts/plot_evaluation.py.
 #
 #   bash scripts/evaluate.sh            # REF_SPP=4096 SPPS="4 16 64 256" SEEDS="1 2"
 #   OUT=build/eval-quick REF_SPP=1024 SPPS="4 16" bash scripts/evaluate.sh   # a quick look
+#   OIDN=0 bash scripts/evaluate.sh     # without the OIDN columns
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -18,6 +21,7 @@ scenes_dir=${SCENES:-$root/../shared/scenes}
 images=${IMAGES:-docs/images}
 report=${REPORT:-docs/evaluation.md}
 
+own_scenes=$root/bench/evaluation/scenes
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" --target statmc-render statmc statmc-evaluate
 render=$build/renderer/statmc-render
@@ -27,15 +31,32 @@ csv=$out/results.csv
 timing=$out/timing.csv
 rm -f "$csv" "$timing"
 
-# scene, resolution: Cornell is square (its Tungsten reference is 1024²); the others 16:9.
-for entry in cornell-box:256x256 veach-mis:320x180 veach-ajar:320x180; do
-  scene=${entry%%:*} res=${entry#*:}
+# OIDN through pyoidn (PyPI) in a virtual environment that sees Debian's OpenImageIO and
+# numpy. If it cannot be installed, the report says so and the OIDN columns are absent.
+externals=()
+if [ "${OIDN:-1}" = 1 ]; then
+  venv=$build/oidn-venv
+  if [ -x "$venv/bin/python" ] || { /usr/bin/python3 -m venv --system-site-packages "$venv" &&
+       "$venv/bin/pip" install -q pyoidn; }; then
+    externals=(--external oidn --external oidn-guides)
+  else
+    echo "evaluate.sh: pyoidn could not be installed; OIDN is left out" >&2
+  fi
+fi
+
+# scene:resolution:scene file. Every frame has at least 640×360 pixels; Cornell is square
+# (its Tungsten reference is 1024²); caustic-corner is this project's own stress scene.
+for entry in cornell-box:640x640:$scenes_dir/cornell-box/scene.pbrt \
+             veach-mis:640x360:$scenes_dir/veach-mis/scene.pbrt \
+             veach-ajar:640x360:$scenes_dir/veach-ajar/scene.pbrt \
+             caustic-corner:640x360:$own_scenes/caustic-corner/scene.pbrt; do
+  IFS=: read -r scene res file <<<"$entry"
   dir=$out/$scene
   mkdir -p "$dir"
-  ref=$dir/reference-$ref_spp.exr
+  ref=$dir/reference-$ref_spp-$res.exr
   if [ ! -f "$ref" ]; then
     echo "== $scene: reference, $ref_spp spp at $res"
-    "$render" "$scenes_dir/$scene/scene.pbrt" -o "$ref" --spp "$ref_spp" --resolution "$res" --seed 1000 -q
+    "$render" "$file" -o "$ref" --spp "$ref_spp" --resolution "$res" --seed 1000 -q
   fi
   if [ -f "$scenes_dir/$scene/TungstenRender.exr" ]; then
     # Cross-check of our reference against Tungsten's, resampled to our resolution.
@@ -45,19 +66,23 @@ for entry in cornell-box:256x256 veach-mis:320x180 veach-ajar:320x180; do
   noisy=()
   for spp in $spps; do
     for seed in $seeds; do
-      f=$dir/noisy-$spp-$seed.exr
-      "$render" "$scenes_dir/$scene/scene.pbrt" -o "$f" --spp "$spp" --resolution "$res" --seed "$seed" -q
+      f=$dir/noisy-$res-$spp-$seed.exr
+      [ -f "$f" ] || "$render" "$file" -o "$f" --spp "$spp" --resolution "$res" --seed "$seed" -q
       noisy+=("$f")
     done
   done
+  if [ ${#externals[@]} -gt 0 ]; then
+    echo "== $scene: OIDN"
+    "$venv/bin/python" bench/evaluation/oidn_denoise.py "${noisy[@]}"
+  fi
   echo "== $scene: scoring"
-  "$evaluate" --reference "$ref" --scene "$scene" --csv "$csv" "${noisy[@]}"
+  "$evaluate" --reference "$ref" --scene "$scene" --csv "$csv" "${externals[@]}" "${noisy[@]}"
 done
 
 # Denoise time against resolution and radius (Cornell, 16 spp).
 for res in 320x180 640x360 1280x720; do
   f=$out/timing-$res.exr
-  "$render" "$scenes_dir/cornell-box/scene.pbrt" -o "$f" --spp 16 --resolution "$res" --seed 7 -q
+  [ -f "$f" ] || "$render" "$scenes_dir/cornell-box/scene.pbrt" -o "$f" --spp 16 --resolution "$res" --seed 7 -q
   "$evaluate" --reference "$f" --scene cornell-box --csv "$timing" --radius-sweep 2,5,10,20 "$f"
 done
 

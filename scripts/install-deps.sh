@@ -6,7 +6,7 @@ packages=(
   libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev openexr
   libopencolorio-dev libembree-dev libtbb-dev libboost-math-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
-  python3-matplotlib
+  python3-matplotlib python3-numpy python3-openimageio python3-venv
 )
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq

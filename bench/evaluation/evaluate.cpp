@@ -89,11 +89,9 @@ struct Method {
     std::function<OIIO::ImageBuf(const OIIO::ImageBuf&)> run;
 };
 
-DenoiseImageOptions statmc_options(bool guides, const DenoiseOptions& filter = {})
+DenoiseImageOptions statmc_options(bool guides, DenoiseImageOptions o = DenoiseImageOptions{})
 {
-    DenoiseImageOptions o;
     o.guides.albedo = o.guides.normal = guides ? GuideUse::Required : GuideUse::Off;
-    o.filter = filter;
     return o;
 }
 
@@ -105,10 +103,21 @@ OIIO::ImageBuf run_statmc(const OIIO::ImageBuf& in, const DenoiseImageOptions& o
     return out;
 }
 
+// The classic filter (the default before the radius ladder) with one stage added, as
+// `--denoise:method=classic:<stage>` runs it: each option's effect alone.
+DenoiseImageOptions classic_with(void (*add)(DenoiseImageOptions&))
+{
+    DenoiseImageOptions o = statmc_options(true, DenoiseImageOptions::classic());
+    add(o);
+    o.optional_stages = false;
+    return o;
+}
+
 std::vector<Method> methods()
 {
-    const DenoiseImageOptions statmc = statmc_options(false), guided = statmc_options(true),
-                              paper = statmc_options(false, DenoiseOptions::paper());
+    const DenoiseImageOptions statmc = statmc_options(true), unguided = statmc_options(false),
+                              classic = statmc_options(true, DenoiseImageOptions::classic()),
+                              paper = statmc_options(false, DenoiseImageOptions::paper());
     DenoiseImageOptions moon = paper;  // Moon et al. 2013-style test
     moon.test = TestDomainChoice::Untransformed;
     moon.filter.alpha = 0.002;
@@ -121,8 +130,17 @@ std::vector<Method> methods()
     return {
         {"noisy", 0, {}},
         statmc_method("statmc", statmc),
-        statmc_method("statmc-guides", guided),
+        statmc_method("statmc-noguides", unguided),
+        statmc_method("statmc-classic", classic),
         statmc_method("statmc-paper", paper),
+        statmc_method("classic+ici",
+                      classic_with([](DenoiseImageOptions& o) { o.ici_alpha = 0.005; })),
+        statmc_method("classic+variance",
+                      classic_with([](DenoiseImageOptions& o) { o.variance_radius = 3; })),
+        statmc_method("classic+guard",
+                      classic_with([](DenoiseImageOptions& o) { o.harm_alpha = 0.005; })),
+        statmc_method("classic+explained",
+                      classic_with([](DenoiseImageOptions& o) { o.explained_alpha = 0.05; })),
         statmc_method("moon-ci", moon),
         {"nlm", nlm.search_radius,
          [nlm](const OIIO::ImageBuf& in) {
@@ -142,6 +160,16 @@ std::vector<Method> methods()
     };
 }
 
+// X.exr's result by an outside denoiser NAME, if it was run: X.NAME.exr, whose
+// statmc:denoiseSeconds attribute is its time (bench/evaluation/oidn_denoise.py writes it).
+std::string external_result(const std::string& input, const std::string& name)
+{
+    const std::string stem = input.size() > 4 && input.compare(input.size() - 4, 4, ".exr") == 0
+                                 ? input.substr(0, input.size() - 4)
+                                 : input;
+    return stem + "." + name + ".exr";
+}
+
 int attribute(const OIIO::ImageBuf& in, const char* name)
 {
     return in.spec().get_int_attribute(name, -1);
@@ -153,7 +181,7 @@ int main(int argc, char** argv)
 {
     CLI::App app{"statmc-evaluate: time and score every method on noisy statistics EXRs"};
     std::string reference_path, scene, csv_path, display_config = STATMC_DISPLAY_CONFIG;
-    std::vector<std::string> inputs;
+    std::vector<std::string> inputs, externals;
     std::vector<int> radii;
     int runs = 3;
     app.add_option("--reference", reference_path, "reference EXR (R,G,B)")->required();
@@ -163,6 +191,9 @@ int main(int argc, char** argv)
         ->check(CLI::PositiveNumber);
     app.add_option("--radius-sweep", radii, "instead: time statmc at these radii")->delimiter(',');
     app.add_option("--display-config", display_config, "OCIO config for DSSIM (Filmic view)");
+    app.add_option("--external", externals,
+                   "also score outside denoisers' results X.NAME.exr of each input X.exr, timed "
+                   "by their statmc:denoiseSeconds attribute (e.g. oidn, oidn-guides)");
     app.add_option("inputs", inputs, "noisy statistics EXRs")->required();
     CLI11_PARSE(app, argc, argv);
 
@@ -193,7 +224,7 @@ int main(int argc, char** argv)
             };
             if (!radii.empty()) {
                 for (int r : radii) {
-                    DenoiseImageOptions o = statmc_options(false);
+                    DenoiseImageOptions o = statmc_options(false);  // the default
                     o.filter.radius = r;
                     OIIO::ImageBuf out;
                     const double s = median_seconds(runs, [&] { out = run_statmc(in, o); });
@@ -209,6 +240,14 @@ int main(int argc, char** argv)
                 OIIO::ImageBuf out;
                 const double s = median_seconds(runs, [&] { out = method.run(in); });
                 row(method.name, method.radius, s, out);
+            }
+            for (const std::string& name : externals) {
+                const std::string result_path = external_result(path, name);
+                if (!std::ifstream(result_path).good())
+                    throw std::runtime_error(result_path + ": missing (--external " + name + ")");
+                const OIIO::ImageBuf result = layers::read_image_file(result_path);
+                row(name, 0, result.spec().get_float_attribute("statmc:denoiseSeconds", -1.f),
+                    result);
             }
         }
     } catch (const std::exception& e) {

@@ -58,8 +58,8 @@ LogIntervals intervals_of(const StatisticsView& view, const DomainPlanes& d, dou
 {
     const std::size_t n = std::size_t(view.width) * view.height;
     LogIntervals out{std::vector<float>(n * view.channels), std::vector<float>(n * view.channels)};
-    for (int c = 0; c < view.channels; ++c)
-        for (int y = 0; y < view.height; ++y)
+    tbb::parallel_for(0, view.height, [&](int y) {
+        for (int c = 0; c < view.channels; ++c)
             for (int x = 0; x < view.width; ++x) {
                 const double count = view.count(x, y);
                 const double m2 = d.s2(c, x, y, count) * (count - 1);
@@ -70,6 +70,7 @@ LogIntervals intervals_of(const StatisticsView& view, const DomainPlanes& d, dou
                 const double se = interval ? interval->half_width / z : 0;
                 out.se2[k] = float(se * se);
             }
+    });
     return out;
 }
 
@@ -82,15 +83,24 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
     require_valid(view, domain, options);
     const DomainPlanes d = planes_of(view, domain);
     const double z = normal_critical_value(options.alpha);
-    const LogIntervals log = intervals_of(view, d, z);
     const int w = view.width, h = view.height, r = options.radius;
+    const int channels = view.channels;
     const std::size_t n = std::size_t(w) * h;
-    std::vector<float> out(n * view.channels);
+    std::vector<float> out(n * channels);
+    LogIntervals log;
+    run_with_threads(nthreads, [&] { log = intervals_of(view, d, z); });
+    // The spatial part of w_ij by offset; the guides' part is exp(−|g_i − g_j|²/(2σ²)) per
+    // guide present. Each pair's weight is computed once for all channels.
     const double falloff = 1.0 / (2.0 * double(options.sigma_spatial) * options.sigma_spatial);
+    std::vector<double> spatial(std::size_t(2 * r + 1) * (2 * r + 1));
+    for (int dy = -r; dy <= r; ++dy)
+        for (int dx = -r; dx <= r; ++dx)
+            spatial[std::size_t(dy + r) * (2 * r + 1) + dx + r] =
+                std::exp(-double(dx * dx + dy * dy) * falloff);
     const double albedo_falloff = 1.0 / (2.0 * double(options.sigma_albedo) * options.sigma_albedo);
     const double normal_falloff = 1.0 / (2.0 * double(options.sigma_normal) * options.sigma_normal);
-    // The guides' part of w_ij: exp(−|g_i − g_j|²/(2σ²)) for each guide present.
-    auto guide_weight = [&](int x, int y, int xx, int yy) {
+    const bool guided = guides.has_albedo() || guides.has_normal();
+    auto guide_exponent = [&](int x, int y, int xx, int yy) {
         double exponent = 0;
         auto add = [&](const std::array<ConstPlane, 3>& g, double f) {
             double d2 = 0;
@@ -106,69 +116,83 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
             add(guides.normal, normal_falloff);
         return exponent;
     };
+    const bool moderate = options.prior_dof > 0;
+    constexpr int kMaxChannels = 4;
     run_with_threads(nthreads, [&] {
         tbb::parallel_for(0, h, [&](int y) {
-            for (int c = 0; c < view.channels; ++c)
-                for (int x = 0; x < w; ++x) {
-                    const std::size_t i = c * n + std::size_t(y) * w + x;
-                    const double count = view.count(x, y);
-                    const double own = d.s2(c, x, y, count);
-                    const bool has_interval = !std::isnan(log.centre[i]);
-                    const bool moderate = options.prior_dof > 0;
-                    if (!has_interval && !options.borrow_without_interval && !moderate) {
-                        out[i] = float(own);
+            for (int x = 0; x < w; ++x) {
+                const std::size_t p = std::size_t(y) * w + x;
+                const double count = view.count(x, y);
+                // Per channel: the tested sum (centre first, then the disk in raster order:
+                // a fixed summation order, whichever thread runs the row) and, for the
+                // moderation, the untested one over every neighbour with a variance.
+                double own[kMaxChannels], sum[kMaxChannels], weight[kMaxChannels];
+                double prior_sum[kMaxChannels], prior_weight[kMaxChannels];
+                bool has_interval[kMaxChannels], active = moderate;
+                for (int c = 0; c < channels; ++c) {
+                    own[c] = d.s2(c, x, y, count);
+                    has_interval[c] = !std::isnan(log.centre[c * n + p]);
+                    active |= has_interval[c] || options.borrow_without_interval;
+                    sum[c] = has_interval[c] ? own[c] : 0;
+                    weight[c] = has_interval[c] ? 1 : 0;
+                    const bool own_usable = count >= 2 && std::isfinite(own[c]);
+                    prior_sum[c] = own_usable ? own[c] : 0;
+                    prior_weight[c] = own_usable ? 1 : 0;
+                }
+                for (int dy = -r; active && dy <= r; ++dy) {
+                    const int yy = y + dy;
+                    if (yy < 0 || yy >= h)
                         continue;
-                    }
-                    // The centre first, then the disk in raster order: a fixed summation
-                    // order, whichever thread runs the row. `prior` pools every neighbour
-                    // with a variance, untested, for the moderation.
-                    const bool own_usable = count >= 2 && std::isfinite(own);
-                    double sum = has_interval ? own : 0, weight = has_interval ? 1 : 0;
-                    double prior_sum = own_usable ? own : 0, prior_weight = own_usable ? 1 : 0;
-                    for (int dy = -r; dy <= r; ++dy) {
-                        const int yy = y + dy;
-                        if (yy < 0 || yy >= h)
+                    for (int dx = -r; dx <= r; ++dx) {
+                        const int xx = x + dx, d2 = dx * dx + dy * dy;
+                        if (xx < 0 || xx >= w || d2 > r * r || d2 == 0)
                             continue;
-                        for (int dx = -r; dx <= r; ++dx) {
-                            const int xx = x + dx, d2 = dx * dx + dy * dy;
-                            if (xx < 0 || xx >= w || d2 > r * r || d2 == 0)
-                                continue;
-                            const std::size_t j = c * n + std::size_t(yy) * w + xx;
+                        const std::size_t q = std::size_t(yy) * w + xx;
+                        const double count_j = view.count(xx, yy);
+                        double wij = -1;  // computed on first use
+                        for (int c = 0; c < channels; ++c) {
+                            const std::size_t i = c * n + p, j = c * n + q;
+                            // NaN (no interval) fails the comparison: such a pixel joins
+                            // none. A borrowing pixel (no interval) takes any that has one.
                             const double diff = double(log.centre[i]) - log.centre[j];
-                            // NaN (no interval) fails the comparison: such a pixel joins none.
-                            // A borrowing pixel (no interval) takes any that has one.
                             const bool member =
-                                has_interval
+                                has_interval[c]
                                     ? diff * diff <= z * z * (double(log.se2[i]) + log.se2[j])
                                     : options.borrow_without_interval && !std::isnan(log.centre[j]);
-                            const double count_j = view.count(xx, yy);
                             const double s2_j = d.s2(c, xx, yy, count_j);
                             const bool usable = moderate && count_j >= 2 && std::isfinite(s2_j);
                             if (!member && !usable)
                                 continue;
-                            const double wij = std::exp(-d2 * falloff - guide_weight(x, y, xx, yy));
+                            if (wij < 0)
+                                wij = spatial[std::size_t(dy + r) * (2 * r + 1) + dx + r] *
+                                      (guided ? std::exp(-guide_exponent(x, y, xx, yy)) : 1.0);
                             if (member) {
-                                sum += wij * s2_j;
-                                weight += wij;
+                                sum[c] += wij * s2_j;
+                                weight[c] += wij;
                             }
                             if (usable) {
-                                prior_sum += wij * s2_j;
-                                prior_weight += wij;
+                                prior_sum[c] += wij * s2_j;
+                                prior_weight[c] += wij;
                             }
                         }
                     }
-                    const double tested = weight > 0 ? sum / weight : own;
-                    if (!moderate || prior_weight <= 0) {
-                        out[i] = float(tested);
+                }
+                for (int c = 0; c < channels; ++c) {
+                    const double tested = weight[c] > 0 ? sum[c] / weight[c] : own[c];
+                    if (!moderate || prior_weight[c] <= 0) {
+                        out[c * n + p] = float(tested);
                         continue;
                     }
-                    const double prior = prior_sum / prior_weight;
+                    // Empirical Bayes (Smyth 2004): the neighbourhood's variance as a prior
+                    // worth prior_dof degrees of freedom against the pixel's n − 1.
+                    const double prior = prior_sum[c] / prior_weight[c];
                     const double dof = std::max(count - 1, 0.0);
-                    out[i] = dof > 0 && std::isfinite(tested)
-                                 ? float((options.prior_dof * prior + dof * tested) /
-                                         (options.prior_dof + dof))
-                                 : float(prior);
+                    out[c * n + p] = dof > 0 && std::isfinite(tested)
+                                         ? float((options.prior_dof * prior + dof * tested) /
+                                                 (options.prior_dof + dof))
+                                         : float(prior);
                 }
+            }
         });
     });
     return out;
