@@ -88,15 +88,40 @@ TEST(HarmGuard, CutsTheFireflysHaloBackToThreeStandardErrors)
     EXPECT_EQ(departures_beyond(out, stats, 4), 0) << "halo before the guard: " << halo;
 }
 
-std::vector<float> laddered(const StatisticsPlanes& stats)
+RadiusLadderOptions at_z3()
+{
+    RadiusLadderOptions ladder;
+    ladder.alpha = 0.0026997960632601866;  // z = 3
+    return ladder;
+}
+
+// The denoise operator's default in core's terms: the firefly-guarded filter, the ladder
+// at α = 0.005 on variances moderated with d₀ = 4 (docs/method.md §11).
+RadiusLadderOptions the_defaults_ladder()
+{
+    RadiusLadderOptions ladder;
+    ladder.alpha = 0.005;
+    ladder.variance.prior_dof = 4;
+    return ladder;
+}
+
+std::vector<float> laddered(const StatisticsPlanes& stats,
+                            const DenoiseOptions& filter_options = DenoiseOptions::paper(),
+                            const RadiusLadderOptions& ladder = at_z3())
 {
     const EstimatorImage est = estimators_from_statistics(stats.view(), TestDomain::BoxCox);
     std::vector<float> out(est.value.size());
-    RadiusLadderOptions ladder;
-    ladder.alpha = 0.0026997960632601866;  // z = 3
-    filter_with_radius_ladder(stats.view(), est, {}, DenoiseOptions::paper(),
+    filter_with_radius_ladder(stats.view(), est, {}, filter_options,
                               {dense_plane(out.data(), kSize)}, ladder);
     return out;
+}
+
+double squared_error(const std::vector<float>& values)
+{
+    double sum = 0;
+    for (float v : values)
+        sum += std::pow(v - kTruth, 2);
+    return sum;
 }
 
 TEST(RadiusLadder, DropsTheFireflysHaloInsteadOfClampingIt)
@@ -114,13 +139,22 @@ TEST(RadiusLadder, StillDenoisesAFlatField)
     // Without the firefly every rung agrees, so pixels climb to large radii: the error
     // against the truth must fall far below the noisy input's.
     const StatisticsPlanes stats = flat_field(3, kSpp, false);
-    const std::vector<float> out = laddered(stats);
-    double noisy = 0, filtered = 0;
-    for (std::size_t i = 0; i < out.size(); ++i) {
-        noisy += std::pow(stats.mean[i] - kTruth, 2);
-        filtered += std::pow(out[i] - kTruth, 2);
-    }
+    const double noisy = squared_error(stats.mean), filtered = squared_error(laddered(stats));
     // Radius 20 averages hundreds of pixels; a 10× lower squared error is a loose floor.
+    EXPECT_LT(filtered, noisy / 10) << "noisy " << noisy << " filtered " << filtered;
+}
+
+TEST(RadiusLadder, TheDefaultLeavesNoHaloAndStillDenoises)
+{
+    // Target 5 for the default itself (α = 0.005, z = 2.81, moderated variances, the
+    // firefly guard on): no pixel outside the firefly's 3×3 moves by more than 3 standard
+    // errors beyond what chance gives a perfect filter (the bound of the test above).
+    const StatisticsPlanes stats = flat_field_with_firefly(1);
+    EXPECT_LE(departures_beyond(laddered(stats, DenoiseOptions{}, the_defaults_ladder()), stats, 3),
+              17);
+    const StatisticsPlanes flat = flat_field(3, kSpp, false);
+    const double noisy = squared_error(flat.mean),
+                 filtered = squared_error(laddered(flat, DenoiseOptions{}, the_defaults_ladder()));
     EXPECT_LT(filtered, noisy / 10) << "noisy " << noisy << " filtered " << filtered;
 }
 
