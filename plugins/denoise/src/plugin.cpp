@@ -101,6 +101,12 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     return opt;
 }
 
+// The help of a stage that the default method turns on and the others leave off.
+std::string only_in_the_default(double value)
+{
+    return " Default " + statmc::number_text(value) + ", classic and paper 0";
+}
+
 std::vector<statmc::ParameterSpec> parameters()
 {
     using namespace statmc;
@@ -153,8 +159,8 @@ std::vector<statmc::ParameterSpec> parameters()
         float_parameter("ici", std::nullopt,
                         "each pixel takes its own radius from 0,1,2,3,5,8,12,20 (up to radius) "
                         "by intersecting confidence intervals at this significance (needs the "
-                        "M3/M4 layers); 0 = off. Default " +
-                            number_text(kDefaults.ici_alpha) + ", classic and paper 0")
+                        "M3/M4 layers); 0 = off." +
+                            only_in_the_default(kDefaults.ici_alpha))
             .between(0, 0.5),
         float_parameter("explained_variance", kDefaults.explained_alpha,
                         "experimental: first remove the part of each pixel's variance that a "
@@ -164,8 +170,8 @@ std::vector<statmc::ParameterSpec> parameters()
         float_parameter("variance_dof", std::nullopt,
                         "prior degrees of freedom with which the variance filters "
                         "(variance_radius, do_no_harm, ici) pull a pixel's variance towards its "
-                        "neighbourhood's (docs/method.md §10); 0 = off. Default " +
-                            number_text(kDefaults.variance_prior_dof) + ", classic and paper 0")
+                        "neighbourhood's (docs/method.md §10); 0 = off." +
+                            only_in_the_default(kDefaults.variance_prior_dof))
             .between(0, 1000),
         bool_parameter("diagnostics", kDefaults.diagnostics,
                        "add [<aov>.]diagnostics.members and .effectiveSamples: per pixel, the "
