@@ -45,6 +45,22 @@ bool parse_resolution(const std::string& text, int& width, int& height)
     return h.ec == std::errc() && h.ptr == end && h.ptr != w.ptr + 1;
 }
 
+// An integer option's range in words: CLI11's PositiveNumber and NonNegativeNumber print the
+// largest double as their upper bound.
+CLI::Validator integer_at_least(int minimum)
+{
+    return CLI::Validator(
+        [minimum](std::string& text) -> std::string {
+            int value = 0;
+            const char* end = text.data() + text.size();
+            const auto r = std::from_chars(text.data(), end, value);
+            if (r.ec != std::errc() || r.ptr != end || value < minimum)
+                return "must be an integer >= " + std::to_string(minimum) + ", got '" + text + "'";
+            return {};
+        },
+        "INT>=" + std::to_string(minimum));
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -63,24 +79,24 @@ int main(int argc, char** argv)
     auto* spp_opt = app.add_option("--spp", spp,
                                    "total samples per pixel, in iterations of 4, 4, 8, 16, ... "
                                    "[default: the scene's Sampler pixelsamples]")
-                        ->check(CLI::PositiveNumber);
+                        ->check(integer_at_least(1));
     app.add_option("--iterations", iterations,
                    "number of progressive iterations instead of --spp (totals 4, 8, 16, ...) "
                    "[default: unset]")
-        ->check(CLI::PositiveNumber)
+        ->check(integer_at_least(1))
         ->excludes(spp_opt);
     app.add_option(
         "--resolution", resolution,
         "image size WxH; the scene's fov is kept [default: the scene's Film resolution]");
     app.add_option("--seed", seed, "random seed")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_at_least(0));
     app.add_option("--threads", threads, "worker threads, 0 = all cores")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_at_least(0));
     app.add_option("--maxdepth", maxdepth,
                    "maximum path depth [default: the scene's Integrator maxdepth]")
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_at_least(0));
     add_sampling_options(app, sampling);
     app.add_flag(
         "--bounce-layers", bounce_layers,
@@ -110,12 +126,8 @@ int main(int argc, char** argv)
         for (const std::string& w : desc.warnings)
             std::fprintf(stderr, "%s\n", w.c_str());
         int width = desc.camera.width, height = desc.camera.height;
-        if (!resolution.empty()) {
-            if (!parse_resolution(resolution, width, height))
-                throw std::runtime_error("--resolution: expected WxH, got '" + resolution + "'");
-            if (width <= 0 || height <= 0 || width > 65536 || height > 65536)
-                throw std::runtime_error("--resolution: width and height must be in 1..65536");
-        }
+        if (!resolution.empty() && !parse_resolution(resolution, width, height))
+            throw std::runtime_error("--resolution: expected WxH, got '" + resolution + "'");
         RenderSettings settings;
         settings.width = width;
         settings.height = height;
@@ -126,6 +138,9 @@ int main(int argc, char** argv)
         IntegratorSettings& integrator = settings.integrator;
         integrator.maxdepth = maxdepth >= 0 ? maxdepth : desc.maxdepth;
         sampling.apply(integrator);
+        // Before anything is allocated: the same limits for --resolution and the Film.
+        require_renderable_resolution(width, height, bounce_layout_for(integrator, bounce_layers),
+                                      resolution.empty() ? desc.film_where : "--resolution");
         settings.progress = !quiet && Progress::stderr_is_terminal();
 
         Scene scene(desc);
@@ -180,6 +195,10 @@ int main(int argc, char** argv)
                         100.0 - 100.0 * double(t.cycles) / double(stats.tile_cycles));
         }
         return stats.interrupted ? 130 : 0;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "statmc-render: error: out of memory rendering %s\n",
+                     scene_path.c_str());
+        return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "statmc-render: error: %s\n", e.what());
         return 1;

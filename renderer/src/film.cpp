@@ -1,7 +1,11 @@
 #include "statmc/render/film.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
+#include <stdexcept>
+
+#include <unistd.h>
 
 namespace statmc::render {
 
@@ -43,6 +47,39 @@ int Film::min_samples() const
         for (int x = 0; x < width; ++x)
             m = std::min(m, stats.at(x, y).n);
     return int(m);
+}
+
+double Film::bytes_needed(int width, int height, const BounceLayout& bounce_layout)
+{
+    using Stats3 = StatisticsImage<3>;
+    using Stats4 = StatisticsImage<BounceStatistics::kGroup>;
+    const int groups =
+        (bounce_layout.quantities() + BounceStatistics::kGroup - 1) / BounceStatistics::kGroup;
+    // Every accumulated double, and the output's float planes (at most one of each per
+    // statistic and channel, written once).
+    const double per_pixel = sizeof(Stats3::Pixel) + sizeof(Stats3::Position) + 7 * sizeof(double) +
+                             groups * (sizeof(Stats4::Pixel) + 16 * 4.0 * sizeof(float)) +
+                             64 * sizeof(float);
+    return double(width) * double(height) * per_pixel;
+}
+
+void require_renderable_resolution(int width, int height, const BounceLayout& bounce_layout,
+                                   const std::string& source, double memory_limit)
+{
+    if (width < 1 || height < 1 || width > 65536 || height > 65536)
+        throw std::runtime_error(source + ": width and height must be in 1..65536, got " +
+                                 std::to_string(width) + "x" + std::to_string(height));
+    if (memory_limit <= 0)
+        memory_limit = 0.75 * double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+    const double needed = Film::bytes_needed(width, height, bounce_layout);
+    if (needed > memory_limit) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      ": %dx%d needs about %.1f GB for the film, more than the %.1f GB allowed "
+                      "(three quarters of this machine's memory)",
+                      width, height, needed / 1e9, memory_limit / 1e9);
+        throw std::runtime_error(source + text);
+    }
 }
 
 }  // namespace statmc::render

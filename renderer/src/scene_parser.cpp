@@ -26,12 +26,16 @@ struct GraphicsState {
     bool reverse_orientation = false;
 };
 
+// Include nests at most this deep (pbrt-v3 sets no limit; a cycle is caught before it).
+constexpr int kMaxIncludeDepth = 32;
+
 class Parser {
 public:
     Parser(std::vector<Token> tokens, std::string file, std::string directory)
         : tokens_(std::move(tokens)), file_(std::move(file)), dir_(std::move(directory))
     {
         scene_.file = file_;
+        scene_.film_where = file_;
         Material matte;
         matte.name = "(default matte)";
         scene_.materials.push_back(matte);
@@ -39,8 +43,19 @@ public:
 
     SceneDescription run()
     {
-        while (pos_ < tokens_.size())
-            directive();
+        for (;;) {
+            if (pos_ < tokens_.size()) {
+                directive();
+                continue;
+            }
+            if (includers_.empty())
+                break;
+            // The included file is done: continue where its Include left off.
+            tokens_ = std::move(includers_.back().tokens);
+            file_ = std::move(includers_.back().file);
+            pos_ = includers_.back().pos;
+            includers_.pop_back();
+        }
         if (in_world_)
             warn(tokens_.empty() ? 1 : tokens_.back().line, "missing WorldEnd");
         if (!stack_.empty())
@@ -52,9 +67,17 @@ public:
     }
 
 private:
+    // A file suspended at an Include, resumed when the included file ends.
+    struct Includer {
+        std::vector<Token> tokens;
+        std::string file;
+        std::size_t pos;
+    };
+
     std::vector<Token> tokens_;
-    std::string file_, dir_;
+    std::string file_, dir_;  // the file being read; the main file's directory
     std::size_t pos_ = 0;
+    std::vector<Includer> includers_;
     SceneDescription scene_;
     GraphicsState gs_;
     std::vector<std::pair<GraphicsState, bool>> stack_;  // state, is-transform-only
@@ -201,7 +224,7 @@ private:
         } else if (d == "Shape") {
             shape(line);
         } else if (d == "Include" || d == "Import") {
-            fail(line, "unsupported: " + d);
+            include(d, line);
         } else if (d == "ObjectBegin" || d == "ObjectEnd" || d == "ObjectInstance" ||
                    d == "MakeNamedMedium" || d == "MediumInterface" || d == "CoordinateSystem" ||
                    d == "CoordSysTransform" || d == "ActiveTransform" || d == "TransformTimes") {
@@ -212,6 +235,44 @@ private:
             while (!at_end() && peek().kind != Token::Kind::Identifier)
                 ++pos_;
         }
+    }
+
+    /// Include (and Import, which pbrt-v3 does not have and pbrt-v4 reads the same way for
+    /// this subset): the named file's directives, in the current graphics state. Relative
+    /// names resolve against the main file's directory, as pbrt-v3 does.
+    void include(const std::string& d, int line)
+    {
+        const std::string name = expect_string("the file to " + d);
+        const std::string path = resolve(name);
+        std::error_code ec;
+        const fs::path canonical = fs::weakly_canonical(path, ec);
+        auto same_file = [&](const std::string& other) {
+            std::error_code e;
+            return fs::weakly_canonical(other, e) == canonical;
+        };
+        std::string chain;
+        bool cycle = same_file(file_);
+        for (const Includer& f : includers_) {
+            cycle = cycle || same_file(f.file);
+            chain += f.file + " -> ";
+        }
+        if (cycle)
+            fail(line, d + " \"" + name + "\" would include itself again (" + chain + file_ +
+                           " -> " + path + ")");
+        if (int(includers_.size()) >= kMaxIncludeDepth)
+            fail(line, d + " nested deeper than " + std::to_string(kMaxIncludeDepth) + " files");
+        if (fs::is_directory(path, ec))
+            fail(line, d + " \"" + name + "\": " + path + " is a directory");
+        std::ifstream in(path, std::ios::binary);
+        if (!in)
+            fail(line, d + " \"" + name + "\": cannot open " + path);
+        std::stringstream text;
+        text << in.rdbuf();
+        std::vector<Token> tokens = tokenize(text.str(), path);
+        includers_.push_back({std::move(tokens_), std::move(file_), pos_});
+        tokens_ = std::move(tokens);
+        file_ = path;
+        pos_ = 0;
     }
 
     void look_at(int line)
@@ -250,6 +311,7 @@ private:
         scene_.camera.height = ps.get_int("yresolution").value_or(480);
         if (scene_.camera.width <= 0 || scene_.camera.height <= 0)
             fail(line, "Film resolution must be positive");
+        scene_.film_where = where(line) + ": Film";
         ps.get_string("filename");  // checked, not used: the output name comes from -o
         warn_all(ps.unused_warnings("Film"));
     }
@@ -402,13 +464,24 @@ SceneDescription parse_scene_string(const std::string& text, const std::string& 
 
 SceneDescription parse_scene_file(const std::string& path)
 {
+    std::error_code ec;
+    if (fs::is_directory(path, ec))
+        throw SceneError(path + ": is a directory, not a scene file");
     std::ifstream in(path, std::ios::binary);
     if (!in)
         throw SceneError(path + ": cannot open scene file");
     std::stringstream ss;
     ss << in.rdbuf();
     const fs::path p(path);
-    return parse_scene_string(ss.str(), path, p.has_parent_path() ? p.parent_path().string() : ".");
+    SceneDescription scene =
+        parse_scene_string(ss.str(), path, p.has_parent_path() ? p.parent_path().string() : ".");
+    // A file that describes nothing would render black and look like success.
+    if (scene.shapes.empty())
+        throw SceneError(path + ": nothing to render: the scene has no Shape" +
+                         (ss.str().find("WorldBegin") == std::string::npos
+                              ? std::string(" (and no WorldBegin: is this a pbrt-v3 scene?)")
+                              : std::string()));
+    return scene;
 }
 
 }  // namespace statmc::render

@@ -1,6 +1,7 @@
 #include "statmc/render/tokenizer.h"
 
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 
 namespace statmc::render {
@@ -58,12 +59,21 @@ std::vector<Token> tokenize(const std::string& text, const std::string& file)
             const double v = std::strtod(s.c_str(), &end);
             if (end != s.c_str() + s.size())
                 fail("malformed number '" + s + "'");
+            if (!std::isfinite(v))
+                fail("number '" + s + "' is not finite");
             tokens.push_back({Token::Kind::Number, s, v, line});
         } else if (std::isalpha(static_cast<unsigned char>(c))) {
             const std::size_t start = i;
             while (i < n && (std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '_'))
                 ++i;
-            tokens.push_back({Token::Kind::Identifier, text.substr(start, i - start), 0, line});
+            std::string word = text.substr(start, i - start);
+            // No pbrt directive is spelt so; strtod would read them as numbers.
+            std::string lower;
+            for (char ch : word)
+                lower += char(std::tolower(static_cast<unsigned char>(ch)));
+            if (lower == "nan" || lower == "inf" || lower == "infinity")
+                fail("'" + word + "' is not a finite number");
+            tokens.push_back({Token::Kind::Identifier, std::move(word), 0, line});
         } else {
             fail(std::string("unexpected character '") + c + "'");
         }

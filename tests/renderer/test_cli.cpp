@@ -130,6 +130,38 @@ TEST(Cli, MalformedSceneFailsWithFileLineAndNoOutput)
     EXPECT_FALSE(std::filesystem::exists(dir.file("o.exr")));
 }
 
+TEST(Cli, ScenesWithNothingToRenderAndImpossibleSizesFailBeforeRendering)
+{
+    ScratchDir dir("cli");
+    auto fails_with = [&](const std::string& args, const std::string& message) {
+        const ProgramRun r = run(args + " -o \"" + dir.file("o.exr") + "\" -q", dir);
+        EXPECT_EQ(r.status, 1) << args << "\n" << r.output;
+        EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+        EXPECT_FALSE(std::filesystem::exists(dir.file("o.exr"))) << args;
+    };
+    fails_with("\"" + dir.write("empty.pbrt", "") + "\"", "nothing to render");
+    fails_with("\"" + dir.file("") + "\"", "is a directory, not a scene file");
+    const std::string huge = dir.write(
+        "huge.pbrt", "Film \"image\" \"integer xresolution\" 100000 \"integer yresolution\" "
+                     "100000\nWorldBegin\nShape \"sphere\"\n");
+    fails_with("\"" + huge + "\"", "huge.pbrt:1: Film: width and height must be in 1..65536");
+    const std::string scene = dir.write("s.pbrt", kScene);
+    // Within the side limit, beyond any machine's memory: refused before allocating.
+    fails_with("\"" + scene + "\" --resolution 65536x65536",
+               "--resolution: 65536x65536 needs about");
+}
+
+TEST(Cli, BadOptionValuesSayWhatIsExpected)
+{
+    ScratchDir dir("cli");
+    const std::string scene = dir.write("s.pbrt", kScene);
+    const ProgramRun r = run("\"" + scene + "\" -o \"" + dir.file("o.exr") + "\" --spp -1", dir);
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.output.find("--spp: must be an integer >= 1, got '-1'"), std::string::npos)
+        << r.output;
+    EXPECT_LT(r.output.size(), 200u) << "no 310-digit bound: " << r.output;
+}
+
 TEST(Cli, HelpListsEveryOptionWithItsDefault)
 {
     ScratchDir dir("cli");

@@ -1,6 +1,8 @@
 // The pbrt-v3 reader: each directive, and messages that name file and line.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <OpenImageIO/imagebuf.h>
 
 #include "renderer_test_support.h"
@@ -240,6 +242,97 @@ TEST(Parser, MissingFilesAndUnsupportedFeaturesAreClearErrors)
     EXPECT_NE(error_of("WorldBegin\nAreaLightSource \"diffuse\" \"spectrum L\" [400 1 700 1]\n")
                   .find("t.pbrt:2: unsupported"),
               std::string::npos);
+}
+
+TEST(Parser, NonFiniteNumbersAreNamed)
+{
+    const std::string nan = error_of("Transform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 nan 1]\n");
+    EXPECT_EQ(nan, "t.pbrt:1: 'nan' is not a finite number");
+    EXPECT_EQ(error_of("Translate 0 -Inf 0\n"), "t.pbrt:1: number '-Inf' is not finite");
+    EXPECT_EQ(error_of("Scale 1 1e999 1\n"), "t.pbrt:1: number '1e999' is not finite");
+}
+
+TEST(Parser, DeepNestingIsNoProblem)
+{
+    // The graphics-state stack is a vector, not the call stack.
+    std::string text = "WorldBegin\n";
+    for (int i = 0; i < 100000; ++i)
+        text += "AttributeBegin\n";
+    text += kTriangle;
+    for (int i = 0; i < 100000; ++i)
+        text += "AttributeEnd\n";
+    EXPECT_EQ(parse(text).shapes.size(), 1u);
+}
+
+TEST(Parser, IncludeReadsAnotherFileInTheSameGraphicsState)
+{
+    ScratchDir dir("include");
+    std::filesystem::create_directories(dir.file("parts"));
+    dir.write("parts/lights.pbrt",
+              "AreaLightSource \"diffuse\" \"rgb L\" [2 2 2]\nInclude \"parts/mesh.pbrt\"\n");
+    dir.write("parts/mesh.pbrt", kTriangle);
+    const SceneDescription s =
+        parse_scene_file(dir.write("main.pbrt", "WorldBegin\nAttributeBegin\nTranslate 0 0 5\n"
+                                                "Include \"parts/lights.pbrt\"\nAttributeEnd\n" +
+                                                    std::string(kTriangle) + "WorldEnd\n"));
+    ASSERT_EQ(s.shapes.size(), 2u);
+    // The included triangle carries the includer's light and transform; the one after the
+    // block neither.
+    ASSERT_TRUE(s.shapes[0].emission.has_value());
+    EXPECT_FLOAT_EQ(s.shapes[0].emission->r, 2.f);
+    EXPECT_FLOAT_EQ(s.shapes[0].mesh->positions[0].z, 5.f);
+    EXPECT_FALSE(s.shapes[1].emission.has_value());
+    EXPECT_NE(s.shapes[0].where.find("mesh.pbrt:1"), std::string::npos) << s.shapes[0].where;
+}
+
+TEST(Parser, IncludeCyclesMissingFilesAndDepthAreErrors)
+{
+    ScratchDir dir("include");
+    dir.write("a.pbrt", "Include \"b.pbrt\"\n");
+    dir.write("b.pbrt", "\nInclude \"a.pbrt\"\n");
+    auto error_in = [](const std::string& path) -> std::string {
+        try {
+            parse_scene_file(path);
+        } catch (const SceneError& e) {
+            return e.what();
+        }
+        return "(no error)";
+    };
+    const std::string cycle = error_in(dir.file("a.pbrt"));
+    EXPECT_NE(cycle.find("b.pbrt:2: Include \"a.pbrt\" would include itself again"),
+              std::string::npos)
+        << cycle;
+    const std::string missing =
+        error_in(dir.write("m.pbrt", "WorldBegin\nInclude \"nothere.pbrt\"\n"));
+    EXPECT_NE(missing.find("m.pbrt:2: Include \"nothere.pbrt\": cannot open"), std::string::npos)
+        << missing;
+    // A chain of 40 distinct files: deeper than the limit of 32.
+    for (int i = 0; i < 40; ++i)
+        dir.write("d" + std::to_string(i) + ".pbrt",
+                  "Include \"d" + std::to_string(i + 1) + ".pbrt\"\n");
+    const std::string deep = error_in(dir.file("d0.pbrt"));
+    EXPECT_NE(deep.find("nested deeper than 32 files"), std::string::npos) << deep;
+}
+
+TEST(Parser, AFileWithNothingToRenderIsAnError)
+{
+    ScratchDir dir("empty");
+    auto error_in = [](const std::string& path) -> std::string {
+        try {
+            parse_scene_file(path);
+        } catch (const SceneError& e) {
+            return e.what();
+        }
+        return "(no error)";
+    };
+    const std::string empty = dir.write("empty.pbrt", "");
+    EXPECT_EQ(error_in(empty), empty + ": nothing to render: the scene has no Shape (and no "
+                                       "WorldBegin: is this a pbrt-v3 scene?)");
+    const std::string no_shape = dir.write("lights.pbrt", "WorldBegin\nWorldEnd\n");
+    EXPECT_EQ(error_in(no_shape), no_shape + ": nothing to render: the scene has no Shape");
+    std::filesystem::create_directories(dir.file("folder"));
+    EXPECT_EQ(error_in(dir.file("folder")),
+              dir.file("folder") + ": is a directory, not a scene file");
 }
 
 TEST(Parser, SharedScenesParse)

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "statmc/core/statistics_image.h"
@@ -25,6 +26,17 @@ struct Film {
     std::vector<float> depth() const;
     /// The smallest per-pixel sample count.
     int min_samples() const;
+
+    /// What a film of this size holds while rendering, plus the float planes written out at
+    /// the end: the figure the resolution limit checks before anything is allocated.
+    static double bytes_needed(int width, int height, const BounceLayout& bounce_layout);
 };
+
+/// Throws std::runtime_error naming `source` (a Film directive's file:line, or
+/// "--resolution") when width × height is not a resolution statmc-render can hold: each side
+/// in 1..65536, and Film::bytes_needed within `memory_limit` bytes (default: three quarters of
+/// this machine's physical memory).
+void require_renderable_resolution(int width, int height, const BounceLayout& bounce_layout,
+                                   const std::string& source, double memory_limit = 0);
 
 }  // namespace statmc::render

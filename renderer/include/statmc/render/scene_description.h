@@ -48,6 +48,9 @@ struct CameraDesc {
 struct SceneDescription {
     std::string file;
     CameraDesc camera;
+    /// Where the resolution came from, for messages: "file:line: Film", or the file alone
+    /// when it has no Film directive (640×480).
+    std::string film_where;
     int spp = 16;                     ///< Sampler "integer pixelsamples"
     int maxdepth = 5;                 ///< Integrator "integer maxdepth" (pbrt-v3's default 5)
     std::vector<Material> materials;  ///< [0] is the default matte
