@@ -26,11 +26,12 @@ namespace {
 
 std::atomic<bool> g_interrupted{false};
 
-// Async-signal-safe: sets a lock-free flag; a second Ctrl-C gets the default action.
-extern "C" void on_sigint(int)
+// SIGINT or SIGTERM. Async-signal-safe: sets a lock-free flag; a second signal gets the
+// default action.
+extern "C" void on_interrupt(int signal_number)
 {
     g_interrupted.store(true);
-    std::signal(SIGINT, SIG_DFL);
+    std::signal(signal_number, SIG_DFL);
 }
 
 /// "WxH" (or "WXH") with decimal W and H and nothing else; false otherwise.
@@ -150,7 +151,7 @@ int main(int argc, char** argv)
         const auto start = std::chrono::steady_clock::now();
         auto write_outputs = [&](const Film& f, double seconds) {
             OutputInfo info;
-            info.spp = f.min_samples();
+            info.spp = f.sample_counts();
             info.seed = seed;
             info.render_seconds = float(seconds);
             info.scene = scene_path;
@@ -171,20 +172,24 @@ int main(int argc, char** argv)
                     f, std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
                            .count());
             };
-        std::signal(SIGINT, on_sigint);
+        // SIGTERM is what schedulers send on preemption: it stops the render like Ctrl-C,
+        // and what was rendered is written with its true counts.
+        std::signal(SIGINT, on_interrupt);
+        std::signal(SIGTERM, on_interrupt);
         const RenderStats stats =
             render(scene, camera, settings, film, &g_interrupted, after_iteration);
         std::signal(SIGINT, SIG_DFL);
+        std::signal(SIGTERM, SIG_DFL);
         const OutputInfo info = write_outputs(film, stats.seconds);
         if (!quiet)
-            std::fprintf(stderr, "%s: %dx%d, %d spp%s, %.2f s, %.2f Msamples/s\n", output.c_str(),
-                         width, height, info.spp, stats.interrupted ? " (interrupted)" : "",
-                         stats.seconds,
+            std::fprintf(stderr, "%s: %dx%d, %s%d spp%s, %.2f s, %.2f Msamples/s\n", output.c_str(),
+                         width, height, info.spp.uniform ? "" : "at least ", info.spp.min,
+                         stats.interrupted ? " (interrupted)" : "", stats.seconds,
                          stats.seconds > 0 ? double(stats.samples) / stats.seconds * 1e-6 : 0.0);
         if (profile) {
             const auto t = scene.traversal_counters();
             std::printf("%s: %dx%d, %d spp, %zu triangles, threads %s\n", scene_path.c_str(), width,
-                        height, info.spp, scene.triangle_count(),
+                        height, info.spp.min, scene.triangle_count(),
                         threads > 0 ? std::to_string(threads).c_str() : "all");
             std::printf("  %.3f s, %.3f Msamples/s, %.2f Mrays/s, %.2f rays/sample\n",
                         stats.seconds, double(stats.samples) / stats.seconds * 1e-6,

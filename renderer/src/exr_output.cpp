@@ -24,7 +24,8 @@ OIIO::ImageBuf make_output_image(const Film& film, const OutputInfo& info)
     }
     guides.depth = dense_plane(depth.data(), film.width);
     layers::StatisticsMetadata meta;
-    meta.spp = info.spp;
+    if (info.spp.uniform)
+        meta.spp = info.spp.min;
     meta.seed = info.seed;
     // Per-bounce quantities: one Y AOV each, sharing sampleCount.Y (docs/exr-layers.md).
     std::vector<StatisticsPlanes> groups;
@@ -36,6 +37,10 @@ OIIO::ImageBuf make_output_image(const Film& film, const OutputInfo& info)
             aovs.push_back({layout.aov(q), BounceStatistics::quantity_view(groups, q)});
     }
     OIIO::ImageBuf image = layers::make_statistics_image(planes.view(), meta, guides, aovs);
+    if (!info.spp.uniform) {
+        image.specmod().attribute(layers::attr::kSppMin, info.spp.min);
+        image.specmod().attribute(layers::attr::kSppMean, float(info.spp.mean));
+    }
     image.specmod().attribute(layers::attr::kRenderTime, info.render_seconds);
     image.specmod().attribute(layers::attr::kScene, info.scene);
     return image;

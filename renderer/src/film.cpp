@@ -40,13 +40,21 @@ std::vector<float> Film::albedo() const { return average(albedo_sum, 3, *this); 
 std::vector<float> Film::normal() const { return average(normal_sum, 3, *this); }
 std::vector<float> Film::depth() const { return average(depth_sum, 1, *this); }
 
-int Film::min_samples() const
+Film::SampleCounts Film::sample_counts() const
 {
-    double m = std::numeric_limits<double>::infinity();
+    SampleCounts counts;
+    double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = 0;
     for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            m = std::min(m, stats.at(x, y).n);
-    return int(m);
+        for (int x = 0; x < width; ++x) {
+            const double n = stats.at(x, y).n;
+            sum += n;
+            lo = std::min(lo, n);
+            hi = std::max(hi, n);
+        }
+    counts.min = int(lo);
+    counts.mean = sum / (double(width) * height);
+    counts.uniform = lo == hi;
+    return counts;
 }
 
 double Film::bytes_needed(int width, int height, const BounceLayout& bounce_layout)

@@ -270,7 +270,7 @@ TEST(Render, BitwiseIdenticalForAnyThreadCountAndSeedDependent)
     auto pixels = [&](std::uint64_t seed, int threads) {
         const auto r = render_scene(desc, 24, 20, 12, seed, threads);
         OutputInfo info;
-        info.spp = r.film->min_samples();
+        info.spp = r.film->sample_counts();
         const OIIO::ImageBuf img = make_output_image(*r.film, info);
         std::vector<float> px(std::size_t(img.spec().image_pixels()) * img.nchannels());
         EXPECT_TRUE(img.get_pixels(img.roi(), OIIO::TypeDesc::FLOAT, px.data()));

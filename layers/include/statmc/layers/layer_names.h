@@ -21,8 +21,11 @@ inline constexpr const char* kFormatVersion = "statmc:formatVersion";  // int
 inline constexpr const char* kBoxCoxLambda = "statmc:boxcoxLambda";    // float
 inline constexpr const char* kVariance = "statmc:variance";            // "sample" | "mean"
 inline constexpr const char* kSpp = "statmc:spp";                      // int
-inline constexpr const char* kSeed = "statmc:seed";                    // int
-inline constexpr const char* kDenoised = "statmc:denoised";            // int 1
+// When the pixels' counts differ (an interrupted render), in place of statmc:spp:
+inline constexpr const char* kSppMin = "statmc:sppMin";      // int: the smallest count
+inline constexpr const char* kSppMean = "statmc:sppMean";    // float: the mean count
+inline constexpr const char* kSeed = "statmc:seed";          // int
+inline constexpr const char* kDenoised = "statmc:denoised";  // int 1
 // string: the default's stages that --denoise left out, and why (docs/exr-layers.md)
 inline constexpr const char* kDenoiseSkipped = "statmc:denoiseSkipped";
 inline constexpr const char* kRenderTime = "statmc:renderTime";  // float seconds (statmc-render)

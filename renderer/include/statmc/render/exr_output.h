@@ -11,7 +11,9 @@
 namespace statmc::render {
 
 struct OutputInfo {
-    int spp = 0;  ///< the smallest per-pixel sample count
+    /// The per-pixel sample counts: statmc:spp when uniform, else statmc:sppMin and
+    /// statmc:sppMean (an interrupted render), so that no header claims a count it lacks.
+    Film::SampleCounts spp;
     int seed = 0;
     float render_seconds = 0;
     std::string scene;

@@ -24,8 +24,13 @@ struct Film {
     std::vector<float> albedo() const;
     std::vector<float> normal() const;
     std::vector<float> depth() const;
-    /// The smallest per-pixel sample count.
-    int min_samples() const;
+    /// The per-pixel sample counts: smallest, mean, and whether every pixel has the same.
+    struct SampleCounts {
+        int min = 0;
+        double mean = 0;
+        bool uniform = true;
+    };
+    SampleCounts sample_counts() const;
 
     /// What a film of this size holds while rendering, plus the float planes written out at
     /// the end: the figure the resolution limit checks before anything is allocated.
