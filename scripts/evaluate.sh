@@ -38,15 +38,15 @@ if [ "${OIDN:-1}" = 1 ]; then
   venv=$build/oidn-venv
   if [ -x "$venv/bin/python" ] || { /usr/bin/python3 -m venv --system-site-packages "$venv" &&
        "$venv/bin/pip" install -q pyoidn; }; then
-    externals=(--external oidn --external oidn-guides)
+    externals=(--external oidn,oidn-guides)
   else
     echo "evaluate.sh: pyoidn could not be installed; OIDN is left out" >&2
   fi
 fi
 
-# scene:resolution:scene file. Every frame has at least 640×360 pixels; Cornell is square
-# (its Tungsten reference is 1024²); caustic-corner is this project's own stress scene.
-for entry in cornell-box:640x640:$scenes_dir/cornell-box/scene.pbrt \
+# scene:resolution:scene file. Every frame has at least 640×360 pixels (Cornell: 512², square
+# as its Tungsten reference is); caustic-corner is this project's own stress scene.
+for entry in cornell-box:512x512:$scenes_dir/cornell-box/scene.pbrt \
              veach-mis:640x360:$scenes_dir/veach-mis/scene.pbrt \
              veach-ajar:640x360:$scenes_dir/veach-ajar/scene.pbrt \
              caustic-corner:640x360:$own_scenes/caustic-corner/scene.pbrt; do

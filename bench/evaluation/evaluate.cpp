@@ -193,7 +193,9 @@ int main(int argc, char** argv)
     app.add_option("--display-config", display_config, "OCIO config for DSSIM (Filmic view)");
     app.add_option("--external", externals,
                    "also score outside denoisers' results X.NAME.exr of each input X.exr, timed "
-                   "by their statmc:denoiseSeconds attribute (e.g. oidn, oidn-guides)");
+                   "by their statmc:denoiseSeconds attribute (e.g. oidn,oidn-guides)")
+        ->delimiter(',')
+        ->allow_extra_args(false);
     app.add_option("inputs", inputs, "noisy statistics EXRs")->required();
     CLI11_PARSE(app, argc, argv);
 

@@ -111,7 +111,6 @@ std::vector<statmc::ParameterSpec> parameters()
 {
     using namespace statmc;
     const DenoiseOptions& f = kDefaults.filter;
-    const DenoiseImageOptions classic = DenoiseImageOptions::classic();
     return {
         choice_parameter("method", spellings(kMethods), "default",
                          "default: the classic filter with each pixel at its own radius by the "
