@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The evaluation of docs/evaluation.md, refreshed with one command (not part of CI: about
-# 1.5 hours on this project's 2-core machine at REF_SPP=4096, most of it the references,
-# which are cached in OUT and reused). Renders a reference and noisy frames per scene with
+# The evaluation of docs/evaluation.md, refreshed with one command (not part of CI; on this
+# project's 2-core machine about 3 hours at the defaults, most of it the references, which
+# are cached in OUT and reused; the committed report used REF_SPP=2048 SPPS="4 16 64"
+# RUNS=1, about 1 hour). Renders a reference and noisy frames per scene with
 # statmc-render, runs OIDN on them when pyoidn can be installed (an evaluation-only
 # dependency, in a virtual environment under the build directory), scores every method with
 # statmc-evaluate, and redraws the charts and the report with scripts/plot_evaluation.py.
@@ -17,6 +18,7 @@ out=${OUT:-$build/evaluation}
 ref_spp=${REF_SPP:-4096}
 spps=${SPPS:-4 16 64 256}
 seeds=${SEEDS:-1 2}
+runs=${RUNS:-3}  # timed runs per method and input (the median is kept)
 scenes_dir=${SCENES:-$root/../shared/scenes}
 images=${IMAGES:-docs/images}
 report=${REPORT:-docs/evaluation.md}
@@ -44,8 +46,8 @@ if [ "${OIDN:-1}" = 1 ]; then
   fi
 fi
 
-# scene:resolution:scene file. Every frame has at least 640×360 pixels (Cornell: 512², square
-# as its Tungsten reference is); caustic-corner is this project's own stress scene.
+# scene:resolution:scene file. Every frame has at least as many pixels as 640×360 (Cornell:
+# 512², square as its Tungsten reference is); caustic-corner is this project's own scene.
 for entry in cornell-box:512x512:$scenes_dir/cornell-box/scene.pbrt \
              veach-mis:640x360:$scenes_dir/veach-mis/scene.pbrt \
              veach-ajar:640x360:$scenes_dir/veach-ajar/scene.pbrt \
@@ -76,14 +78,16 @@ for entry in cornell-box:512x512:$scenes_dir/cornell-box/scene.pbrt \
     "$venv/bin/python" bench/evaluation/oidn_denoise.py "${noisy[@]}"
   fi
   echo "== $scene: scoring"
-  "$evaluate" --reference "$ref" --scene "$scene" --csv "$csv" "${externals[@]}" "${noisy[@]}"
+  "$evaluate" --reference "$ref" --scene "$scene" --csv "$csv" --runs "$runs" "${externals[@]}" \
+    "${noisy[@]}"
 done
 
 # Denoise time against resolution and radius (Cornell, 16 spp).
 for res in 320x180 640x360 1280x720; do
   f=$out/timing-$res.exr
   [ -f "$f" ] || "$render" "$scenes_dir/cornell-box/scene.pbrt" -o "$f" --spp 16 --resolution "$res" --seed 7 -q
-  "$evaluate" --reference "$f" --scene cornell-box --csv "$timing" --radius-sweep 2,5,10,20 "$f"
+  "$evaluate" --reference "$f" --scene cornell-box --csv "$timing" --runs "$runs" \
+    --radius-sweep 2,5,10,20 "$f"
 done
 
 /usr/bin/python3 scripts/plot_evaluation.py "$csv" "$timing" --ref-spp "$ref_spp" \

@@ -252,7 +252,7 @@ def main():
            f"; references are statmc-render at {a.ref_spp} spp (seed 1000).", "",
            "Methods: " + "; ".join(f"**{m}** — {LABELS[m]}" for m in METHODS) + ". statmc's filter runs",
            "at its defaults (r = 20, α = 0.005, σ_s = 10, firefly guard κ = 256; the default adds the",
-           "ICI ladder at α = 0.005 with variances moderated at d₀ = 4, docs/method.md §10–11); the baselines at the",
+           "ICI ladder at α = 0.005 with variances moderated at d₀ = 16, docs/method.md §10–11); the baselines at the",
            "parameters in `bench/evaluation/baselines/baselines.h` (NL-means: search 10, patch 3, k = 0.45;",
            "cross-bilateral: r = 10, σ_s = 4, σ_a = 0.1, σ_n = 0.2). Render time is statmc-render's",
            "(2 threads); denoise time is the median of 3 runs of the whole operator on this 2-core",

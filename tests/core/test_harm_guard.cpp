@@ -96,12 +96,12 @@ RadiusLadderOptions at_z3()
 }
 
 // The denoise operator's default in core's terms: the firefly-guarded filter, the ladder
-// at α = 0.005 on variances moderated with d₀ = 4 (docs/method.md §11).
+// at α = 0.005 on variances moderated with d₀ = 16 (docs/method.md §11).
 RadiusLadderOptions the_defaults_ladder()
 {
     RadiusLadderOptions ladder;
     ladder.alpha = 0.005;
-    ladder.variance.prior_dof = 4;
+    ladder.variance.prior_dof = 16;
     return ladder;
 }
 

@@ -330,7 +330,7 @@ TEST(DenoiseOperator, TheDefaultIsTheClassicFilterWithTheModeratedLadder)
     std::vector<float> expected(est.value.size());
     RadiusLadderOptions ladder;
     ladder.alpha = 0.005;
-    ladder.variance.prior_dof = 4;
+    ladder.variance.prior_dof = 16;
     filter_with_radius_ladder(f.stats.view(), est, {}, small_filter(), rgb_planes(expected),
                               ladder);
     expect_rgb_equals(out, expected);

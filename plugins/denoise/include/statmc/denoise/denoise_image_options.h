@@ -72,7 +72,7 @@ struct DenoiseImageOptions {
     /// The prior degrees of freedom with which every variance filter above (variance_radius,
     /// do_no_harm, ici) moderates a pixel's variance towards its neighbourhood's
     /// (VarianceFilterOptions::prior_dof, docs/method.md §10); 0 = off.
-    double variance_prior_dof = 4;
+    double variance_prior_dof = 16;
     /// true: a stage whose layers the image lacks (the ladder on a format-1 file without
     /// M3/M4) or that the request excludes (the ladder with diagnostics) is skipped, and the
     /// result's statmc:denoiseSkipped attribute says which and why. false: either is an
