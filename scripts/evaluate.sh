@@ -58,7 +58,9 @@ for entry in cornell-box:512x512:$scenes_dir/cornell-box/scene.pbrt \
   ref=$dir/reference-$ref_spp-$res.exr
   if [ ! -f "$ref" ]; then
     echo "== $scene: reference, $ref_spp spp at $res"
-    "$render" "$file" -o "$ref" --spp "$ref_spp" --resolution "$res" --seed 1000 -q
+    # Into place only when complete: an interrupted render exits 130 with a partial file.
+    "$render" "$file" -o "$ref.part.exr" --spp "$ref_spp" --resolution "$res" --seed 1000 -q
+    mv "$ref.part.exr" "$ref"
   fi
   if [ -f "$scenes_dir/$scene/TungstenRender.exr" ]; then
     # Cross-check of our reference against Tungsten's, resampled to our resolution.
@@ -69,7 +71,10 @@ for entry in cornell-box:512x512:$scenes_dir/cornell-box/scene.pbrt \
   for spp in $spps; do
     for seed in $seeds; do
       f=$dir/noisy-$res-$spp-$seed.exr
-      [ -f "$f" ] || "$render" "$file" -o "$f" --spp "$spp" --resolution "$res" --seed "$seed" -q
+      if [ ! -f "$f" ]; then
+        "$render" "$file" -o "$f.part.exr" --spp "$spp" --resolution "$res" --seed "$seed" -q
+        mv "$f.part.exr" "$f"
+      fi
       noisy+=("$f")
     done
   done
@@ -90,6 +95,6 @@ for res in 320x180 640x360 1280x720; do
     --radius-sweep 2,5,10,20 "$f"
 done
 
-/usr/bin/python3 scripts/plot_evaluation.py "$csv" "$timing" --ref-spp "$ref_spp" \
+/usr/bin/python3 scripts/plot_evaluation.py "$csv" "$timing" --ref-spp "$ref_spp" --runs "$runs" \
   --tungsten "$out"/*/tungsten-check.txt --images "$images" --report "$report"
 echo "$report and $images/eval-*.png updated from $csv"

@@ -235,6 +235,7 @@ def main():
     ap.add_argument("results")
     ap.add_argument("timing")
     ap.add_argument("--ref-spp", type=int, required=True)
+    ap.add_argument("--runs", type=int, default=3, help="timed runs behind each denoise time")
     ap.add_argument("--tungsten", nargs="*", default=[])
     ap.add_argument("--images", required=True)
     ap.add_argument("--report", required=True)
@@ -255,7 +256,7 @@ def main():
            "ICI ladder at α = 0.005 with variances moderated at d₀ = 16, docs/method.md §10–11); the baselines at the",
            "parameters in `bench/evaluation/baselines/baselines.h` (NL-means: search 10, patch 3, k = 0.45;",
            "cross-bilateral: r = 10, σ_s = 4, σ_a = 0.1, σ_n = 0.2). Render time is statmc-render's",
-           "(2 threads); denoise time is the median of 3 runs of the whole operator on this 2-core",
+           f"(2 threads); denoise time is the median of {a.runs} run(s) of the whole operator on this 2-core",
            "machine, reading planes already in memory. DSSIM is on luminance after the OCIO Filmic",
            "view of the shipped config.", ""]
     if a.tungsten:
