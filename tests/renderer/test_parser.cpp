@@ -30,6 +30,16 @@ std::string error_of(const std::string& text, const std::string& dir = ".")
     return "(no error)";
 }
 
+std::string file_error_of(const std::string& path)
+{
+    try {
+        parse_scene_file(path);
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
 void expect_near(Vec3 a, Vec3 b, float tol = 1e-5f)
 {
     EXPECT_NEAR(a.x, b.x, tol);
@@ -290,48 +300,32 @@ TEST(Parser, IncludeCyclesMissingFilesAndDepthAreErrors)
     ScratchDir dir("include");
     dir.write("a.pbrt", "Include \"b.pbrt\"\n");
     dir.write("b.pbrt", "\nInclude \"a.pbrt\"\n");
-    auto error_in = [](const std::string& path) -> std::string {
-        try {
-            parse_scene_file(path);
-        } catch (const SceneError& e) {
-            return e.what();
-        }
-        return "(no error)";
-    };
-    const std::string cycle = error_in(dir.file("a.pbrt"));
+    const std::string cycle = file_error_of(dir.file("a.pbrt"));
     EXPECT_NE(cycle.find("b.pbrt:2: Include \"a.pbrt\" would include itself again"),
               std::string::npos)
         << cycle;
     const std::string missing =
-        error_in(dir.write("m.pbrt", "WorldBegin\nInclude \"nothere.pbrt\"\n"));
+        file_error_of(dir.write("m.pbrt", "WorldBegin\nInclude \"nothere.pbrt\"\n"));
     EXPECT_NE(missing.find("m.pbrt:2: Include \"nothere.pbrt\": cannot open"), std::string::npos)
         << missing;
     // A chain of 40 distinct files: deeper than the limit of 32.
     for (int i = 0; i < 40; ++i)
         dir.write("d" + std::to_string(i) + ".pbrt",
                   "Include \"d" + std::to_string(i + 1) + ".pbrt\"\n");
-    const std::string deep = error_in(dir.file("d0.pbrt"));
+    const std::string deep = file_error_of(dir.file("d0.pbrt"));
     EXPECT_NE(deep.find("nested deeper than 32 files"), std::string::npos) << deep;
 }
 
 TEST(Parser, AFileWithNothingToRenderIsAnError)
 {
     ScratchDir dir("empty");
-    auto error_in = [](const std::string& path) -> std::string {
-        try {
-            parse_scene_file(path);
-        } catch (const SceneError& e) {
-            return e.what();
-        }
-        return "(no error)";
-    };
     const std::string empty = dir.write("empty.pbrt", "");
-    EXPECT_EQ(error_in(empty), empty + ": nothing to render: the scene has no Shape (and no "
-                                       "WorldBegin: is this a pbrt-v3 scene?)");
+    EXPECT_EQ(file_error_of(empty), empty + ": nothing to render: the scene has no Shape (and no "
+                                            "WorldBegin: is this a pbrt-v3 scene?)");
     const std::string no_shape = dir.write("lights.pbrt", "WorldBegin\nWorldEnd\n");
-    EXPECT_EQ(error_in(no_shape), no_shape + ": nothing to render: the scene has no Shape");
+    EXPECT_EQ(file_error_of(no_shape), no_shape + ": nothing to render: the scene has no Shape");
     std::filesystem::create_directories(dir.file("folder"));
-    EXPECT_EQ(error_in(dir.file("folder")),
+    EXPECT_EQ(file_error_of(dir.file("folder")),
               dir.file("folder") + ": is a directory, not a scene file");
 }
 
