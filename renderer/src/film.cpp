@@ -72,13 +72,13 @@ double Film::bytes_needed(int width, int height, const BounceLayout& bounce_layo
 }
 
 void require_renderable_resolution(int width, int height, const BounceLayout& bounce_layout,
-                                   const std::string& source, double memory_limit)
+                                   const std::string& source)
 {
     if (width < 1 || height < 1 || width > 65536 || height > 65536)
         throw std::runtime_error(source + ": width and height must be in 1..65536, got " +
                                  std::to_string(width) + "x" + std::to_string(height));
-    if (memory_limit <= 0)
-        memory_limit = 0.75 * double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+    const double memory_limit =
+        0.75 * double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
     const double needed = Film::bytes_needed(width, height, bounce_layout);
     if (needed > memory_limit) {
         char text[160];

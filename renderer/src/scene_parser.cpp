@@ -26,6 +26,25 @@ struct GraphicsState {
     bool reverse_orientation = false;
 };
 
+// The text of a scene file; "" with `why` set (to be prefixed with the path) when it is a
+// directory or cannot be opened.
+std::string read_scene_text(const std::string& path, std::string& why)
+{
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) {
+        why = "is a directory, not a scene file";
+        return {};
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        why = "cannot open it";
+        return {};
+    }
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
 // Include nests at most this deep (pbrt-v3 sets no limit; a cycle is caught before it).
 constexpr int kMaxIncludeDepth = 32;
 
@@ -261,14 +280,11 @@ private:
                            " -> " + path + ")");
         if (int(includers_.size()) >= kMaxIncludeDepth)
             fail(line, d + " nested deeper than " + std::to_string(kMaxIncludeDepth) + " files");
-        if (fs::is_directory(path, ec))
-            fail(line, d + " \"" + name + "\": " + path + " is a directory");
-        std::ifstream in(path, std::ios::binary);
-        if (!in)
-            fail(line, d + " \"" + name + "\": cannot open " + path);
-        std::stringstream text;
-        text << in.rdbuf();
-        std::vector<Token> tokens = tokenize(text.str(), path);
+        std::string why;
+        const std::string text = read_scene_text(path, why);
+        if (!why.empty())
+            fail(line, d + " \"" + name + "\": " + path + ": " + why);
+        std::vector<Token> tokens = tokenize(text, path);
         includers_.push_back({std::move(tokens_), std::move(file_), pos_});
         tokens_ = std::move(tokens);
         file_ = path;
@@ -464,21 +480,17 @@ SceneDescription parse_scene_string(const std::string& text, const std::string& 
 
 SceneDescription parse_scene_file(const std::string& path)
 {
-    std::error_code ec;
-    if (fs::is_directory(path, ec))
-        throw SceneError(path + ": is a directory, not a scene file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw SceneError(path + ": cannot open scene file");
-    std::stringstream ss;
-    ss << in.rdbuf();
+    std::string why;
+    const std::string text = read_scene_text(path, why);
+    if (!why.empty())
+        throw SceneError(path + ": " + why);
     const fs::path p(path);
     SceneDescription scene =
-        parse_scene_string(ss.str(), path, p.has_parent_path() ? p.parent_path().string() : ".");
+        parse_scene_string(text, path, p.has_parent_path() ? p.parent_path().string() : ".");
     // A file that describes nothing would render black and look like success.
     if (scene.shapes.empty())
         throw SceneError(path + ": nothing to render: the scene has no Shape" +
-                         (ss.str().find("WorldBegin") == std::string::npos
+                         (text.find("WorldBegin") == std::string::npos
                               ? std::string(" (and no WorldBegin: is this a pbrt-v3 scene?)")
                               : std::string()));
     return scene;

@@ -306,8 +306,8 @@ TEST(Parser, IncludeCyclesMissingFilesAndDepthAreErrors)
         << cycle;
     const std::string missing =
         file_error_of(dir.write("m.pbrt", "WorldBegin\nInclude \"nothere.pbrt\"\n"));
-    EXPECT_NE(missing.find("m.pbrt:2: Include \"nothere.pbrt\": cannot open"), std::string::npos)
-        << missing;
+    EXPECT_NE(missing.find("m.pbrt:2: Include \"nothere.pbrt\": "), std::string::npos) << missing;
+    EXPECT_NE(missing.find("nothere.pbrt: cannot open it"), std::string::npos) << missing;
     // A chain of 40 distinct files: deeper than the limit of 32.
     for (int i = 0; i < 40; ++i)
         dir.write("d" + std::to_string(i) + ".pbrt",

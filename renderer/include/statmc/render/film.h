@@ -39,9 +39,8 @@ struct Film {
 
 /// Throws std::runtime_error naming `source` (a Film directive's file:line, or
 /// "--resolution") when width × height is not a resolution statmc-render can hold: each side
-/// in 1..65536, and Film::bytes_needed within `memory_limit` bytes (default: three quarters of
-/// this machine's physical memory).
+/// in 1..65536, and Film::bytes_needed within three quarters of this machine's physical memory.
 void require_renderable_resolution(int width, int height, const BounceLayout& bounce_layout,
-                                   const std::string& source, double memory_limit = 0);
+                                   const std::string& source);
 
 }  // namespace statmc::render
