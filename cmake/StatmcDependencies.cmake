@@ -16,6 +16,7 @@ pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET OpenColorIO>=2.1)
 # The renderer (renderer/): Embree 3 for rays, CLI11 for its command line.
 find_package(embree 3.13 CONFIG REQUIRED)   # target `embree` (no namespace)
 find_package(CLI11 CONFIG REQUIRED)
+find_package(ZLIB REQUIRED)         # CRC-32 of render checkpoints
 endif()
 
 if(STATMC_BUILD_TESTS)

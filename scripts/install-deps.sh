@@ -5,7 +5,8 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev openexr
   libopencolorio-dev libembree-dev libtbb-dev libboost-math-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev zlib1g-dev
+  slurm-wlm slurmctld slurmd slurm-client munge
   python3-matplotlib python3-numpy python3-openimageio python3-venv
 )
 export DEBIAN_FRONTEND=noninteractive

@@ -4,11 +4,10 @@
 #include <memory>
 #include <system_error>
 
-#include <unistd.h>
-
 #include <OpenImageIO/imagecache.h>
 #include <OpenImageIO/imageio.h>
 
+#include "statmc/layers/atomic_file.h"
 #include "statmc/layers/file_error.h"
 #include "statmc/layers/storage_rules.h"
 
@@ -30,44 +29,9 @@ struct ForgetOnExit {
     ~ForgetOnExit() { forget_cached(path); }
 };
 
-// Removes the temporary file unless the write got as far as renaming it.
-class TemporaryFile {
-public:
-    explicit TemporaryFile(fs::path path) : path_(std::move(path)) {}
-    ~TemporaryFile()
-    {
-        if (!path_.empty()) {
-            std::error_code ignored;
-            fs::remove(path_, ignored);
-        }
-    }
-    TemporaryFile(const TemporaryFile&) = delete;
-    TemporaryFile& operator=(const TemporaryFile&) = delete;
-
-    const fs::path& path() const { return path_; }
-    void release() { path_.clear(); }
-
-private:
-    fs::path path_;
-};
-
 [[noreturn]] void cannot_write(const std::string& path, const std::string& why)
 {
     throw FileError(path + ": cannot write: " + why);
-}
-
-fs::path directory_of(const fs::path& target)
-{
-    return target.has_parent_path() ? target.parent_path() : fs::path(".");
-}
-
-// A hidden name in the target's directory, so that the final rename never crosses
-// file systems and a crash leaves nothing that looks like an image.
-fs::path temporary_name(const fs::path& target)
-{
-    static int serial = 0;
-    return directory_of(target) / ("." + target.filename().string() + ".statmc-tmp-" +
-                                   std::to_string(::getpid()) + "-" + std::to_string(serial++));
 }
 
 std::unique_ptr<OIIO::ImageOutput> exr_writer(const std::string& path)
@@ -85,9 +49,10 @@ void check_target(const std::string& path)
     if (path.empty() || path == "-")
         cannot_write(path, "statmc cannot write images to standard output");
     const fs::path target(path);
+    const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
     std::error_code ec;
-    if (!fs::is_directory(directory_of(target), ec))
-        cannot_write(path, "directory '" + directory_of(target).string() + "' does not exist");
+    if (!fs::is_directory(directory, ec))
+        cannot_write(path, "directory '" + directory.string() + "' does not exist");
     if (fs::is_directory(target, ec))
         cannot_write(path, "it is a directory");
 }
@@ -165,25 +130,19 @@ void write_image_file(const std::vector<OIIO::ImageBuf>& subimages, const std::s
         specs.push_back(spec);
     }
 
-    const fs::path target(path);
-    TemporaryFile temporary(temporary_name(target));
-    if (!out->open(temporary.path().string(), int(specs.size()), specs.data()))
-        cannot_write(path, out->geterror());
-    for (std::size_t s = 0; s < subimages.size(); ++s) {
-        if (s > 0 &&
-            !out->open(temporary.path().string(), specs[s], OIIO::ImageOutput::AppendSubimage))
+    write_file_atomically(path, [&](const std::string& temporary) {
+        if (!out->open(temporary, int(specs.size()), specs.data()))
             cannot_write(path, out->geterror());
-        if (!subimages[s].write(out.get()))
-            cannot_write(path, subimages[s].geterror());
-    }
-    if (!out->close())
-        cannot_write(path, out->geterror());
-    out.reset();
-    std::error_code ec;
-    fs::rename(temporary.path(), target, ec);
-    if (ec)
-        cannot_write(path, ec.message());
-    temporary.release();
+        for (std::size_t s = 0; s < subimages.size(); ++s) {
+            if (s > 0 && !out->open(temporary, specs[s], OIIO::ImageOutput::AppendSubimage))
+                cannot_write(path, out->geterror());
+            if (!subimages[s].write(out.get()))
+                cannot_write(path, subimages[s].geterror());
+        }
+        if (!out->close())
+            cannot_write(path, out->geterror());
+        out.reset();
+    });
     forget_cached(path);
 }
 

@@ -8,17 +8,25 @@
 #include <exception>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "statmc/denoise/denoise.h"
+#include "statmc/layers/file_error.h"
+#include "statmc/layers/layer_names.h"
+#include "statmc/merge/merge.h"
 
 #include "sampling_options.h"
 #include "statmc/render/camera.h"
+#include "statmc/render/checkpoint.h"
 #include "statmc/render/exr_output.h"
 #include "statmc/render/progress.h"
 #include "statmc/render/render_loop.h"
+#include "statmc/render/render_task.h"
 #include "statmc/render/scene.h"
 #include "statmc/render/scene_parser.h"
 
@@ -62,6 +70,43 @@ CLI::Validator integer_at_least(int minimum)
         "INT>=" + std::to_string(minimum));
 }
 
+int total_spp(const std::vector<int>& schedule)
+{
+    int total = 0;
+    for (int n : schedule)
+        total += n;
+    return total;
+}
+
+// What else, besides scene, seed, resolution and task, makes two renders' films
+// incompatible: a checkpoint's settings line.
+std::string settings_text(const statmc::render::RenderSettings& s, bool bounce_layers)
+{
+    const auto& i = s.integrator;
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "maxdepth %d, rr %d/%d/%d, mis %d/%d/%g, bounce layers %s, schedule", i.maxdepth,
+                  int(i.roulette.mode), i.roulette.start_bounce, i.roulette.tracked_bounces,
+                  int(i.mis.mode), i.mis.tracked_bounces, double(i.mis.threshold),
+                  bounce_layers ? "all" : "used");
+    std::string out = text;
+    for (int n : s.schedule)
+        out += " " + std::to_string(n);
+    return out;
+}
+
+// The tasks' images merged in task order: what statmc --merge makes of their files.
+OIIO::ImageBuf merge_tasks(const std::vector<OIIO::ImageBuf>& parts)
+{
+    std::vector<const OIIO::ImageBuf*> pointers;
+    for (const OIIO::ImageBuf& p : parts)
+        pointers.push_back(&p);
+    OIIO::ImageBuf merged = statmc::merge(pointers);
+    if (merged.has_error())
+        throw std::runtime_error(merged.geterror());
+    return merged;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -103,12 +148,40 @@ int main(int argc, char** argv)
         "--bounce-layers", bounce_layers,
         "track and write every per-bounce layer (L and win counts) even with classic RR and "
         "standard MIS [default: only those --rr/--mis use]");
+    std::string task_text;
+    int task_total = 0;
+    double checkpoint_seconds = 0;
+    bool resume = false;
+    auto* task_opt = app.add_option(
+        "--task", task_text,
+        "render task I of N (counted from 0): the sample indices floor(I*S/N) .. "
+        "floor((I+1)*S/N)-1 of every pixel, for a farm; merge the N outputs with statmc "
+        "--merge (docs/farm.md) [default: the whole frame]");
+    auto* tasks_opt =
+        app.add_option("--tasks", task_total,
+                       "render the frame as N tasks one after another in this process and write "
+                       "their merge: what statmc --merge makes of N --task outputs, bit for bit "
+                       "[default: unset]")
+            ->check(integer_at_least(1))
+            ->excludes(task_opt);
+    app.add_option("--checkpoint", checkpoint_seconds,
+                       "every SECONDS, at a sample boundary, save the film to OUT.checkpoint "
+                       "(atomically); a SIGINT/SIGTERM saves it and stops; removed once OUT is "
+                       "written [default: off]")
+            ->check(CLI::PositiveNumber)
+            ->excludes(tasks_opt);
+    app.add_flag("--resume", resume,
+                 "continue from OUT.checkpoint when it exists (refused when it belongs to "
+                 "another scene, seed, resolution, task or settings); start afresh when it does "
+                 "not [default: off]")
+        ->excludes(tasks_opt);
     app.add_flag("--denoise", denoise,
                  "also write the denoised image to OUT.denoised.exr [default: off]");
     app.add_flag(
         "--write-every-iteration", every_iteration,
         "rewrite OUT (and OUT.denoised.exr with --denoise) after every progressive iteration, "
-        "each time atomically, to watch the render refine [default: off]");
+        "each time atomically, to watch the render refine [default: off]")
+        ->excludes(tasks_opt);
     app.add_flag("-q,--quiet", quiet, "no progress bar and no summary [default: off]");
     app.add_flag("--profile", profile,
                  "print samples/s, rays/s and the share of render time spent in Embree traversal "
@@ -123,6 +196,7 @@ int main(int argc, char** argv)
                 throw std::runtime_error(output + ": cannot write: directory '" + dir.string() +
                                          "' does not exist");
         }
+        const RenderTask task = task_text.empty() ? RenderTask{} : parse_task(task_text);
         SceneDescription desc = parse_scene_file(scene_path);
         for (const std::string& w : desc.warnings)
             std::fprintf(stderr, "%s\n", w.c_str());
@@ -144,52 +218,165 @@ int main(int argc, char** argv)
                                       resolution.empty() ? desc.film_where : "--resolution");
         settings.progress = !quiet && Progress::stderr_is_terminal();
 
+        const int frame_spp = total_spp(settings.schedule);
+        task_samples(frame_spp, task_total > 0 ? RenderTask{task_total - 1, task_total} : task);
+
         Scene scene(desc);
         scene.enable_profiling(profile);
         const Camera camera(desc.camera, width, height);
-        Film film(width, height, bounce_layout_for(integrator, bounce_layers));
+        const BounceLayout layout = bounce_layout_for(integrator, bounce_layers);
         const auto start = std::chrono::steady_clock::now();
-        auto write_outputs = [&](const Film& f, double seconds) {
-            OutputInfo info;
-            info.spp = f.sample_counts();
-            info.seed = seed;
-            info.render_seconds = float(seconds);
-            info.scene = scene_path;
-            const OIIO::ImageBuf image = make_output_image(f, info);
-            write_exr(image, output);
-            if (denoise) {
-                OIIO::ImageBuf denoised;
-                if (!statmc::denoise(denoised, image, statmc::DenoiseImageOptions{}))
-                    throw std::runtime_error("denoise: " + denoised.geterror());
-                write_exr(denoised, denoised_path(output));
+
+        // One share of the frame's samples into a film of its own; `task` null for the whole.
+        const bool whole = task_text.empty() && task_total == 0;
+        auto render_share = [&](const RenderTask& task, const IterationCallback& after_iteration,
+                                double& seconds_before) {
+            const statmc::layers::SampleRange range = task_samples(frame_spp, task);
+            RenderSettings share = settings;
+            if (!whole)
+                share.schedule = schedule_for_spp(range.count());
+            share.first_sample = std::uint64_t(range.begin);
+            share.checkpoint_seconds = checkpoint_seconds;
+            auto film = std::make_unique<Film>(width, height, layout);
+            CheckpointIdentity identity{scene_path,
+                                        desc.source_crc,
+                                        seed,
+                                        width,
+                                        height,
+                                        task.index,
+                                        task.count,
+                                        range.begin,
+                                        range.end,
+                                        settings_text(share, bounce_layers)};
+            const std::string checkpoint = checkpoint_path(output);
+            seconds_before = 0;
+            if (resume && std::filesystem::exists(checkpoint)) {
+                const CheckpointProgress done = read_checkpoint(checkpoint, *film, identity);
+                share.samples_done = done.samples_done;
+                seconds_before = done.render_seconds;
+                std::fprintf(stderr,
+                             "%s: resuming from checkpoint %s: %llu of %d samples per pixel done\n",
+                             output.c_str(), checkpoint.c_str(),
+                             static_cast<unsigned long long>(done.samples_done), range.count());
             }
-            return info;
+            CheckpointCallback save;
+            if (checkpoint_seconds > 0)
+                save = [&, identity](const Film& f, std::uint64_t samples_done) {
+                    const double seconds =
+                        seconds_before +
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                            .count();
+                    try {
+                        write_checkpoint(checkpoint, f, identity, {samples_done, seconds});
+                    } catch (const statmc::layers::FileError& e) {
+                        // The render goes on; the previous checkpoint, if any, is intact.
+                        std::fprintf(stderr,
+                                     "statmc-render: warning: %s; the previous checkpoint is "
+                                     "kept and the render continues\n",
+                                     e.what());
+                    }
+                };
+            const RenderStats stats =
+                render(scene, camera, share, *film, &g_interrupted, after_iteration, save);
+            OutputInfo info;
+            info.spp = film->sample_counts();
+            info.provenance.seed = seed;
+            info.provenance.range = range;
+            if (!task_text.empty() || task_total > 0) {
+                info.provenance.task_index = task.index;
+                info.provenance.task_count = task.count;
+            }
+            info.render_seconds = float(seconds_before + stats.seconds);
+            info.scene = scene_path;
+            return std::make_tuple(std::move(film), stats, info);
         };
-        IterationCallback after_iteration;
-        if (every_iteration)
-            after_iteration = [&](int, const Film& f, const IterationStats&) {
-                write_outputs(
-                    f, std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-                           .count());
-            };
+        auto write_denoised = [&](const OIIO::ImageBuf& image) {
+            if (!denoise)
+                return;
+            OIIO::ImageBuf denoised;
+            if (!statmc::denoise(denoised, image, statmc::DenoiseImageOptions{}))
+                throw std::runtime_error("denoise: " + denoised.geterror());
+            write_exr(denoised, denoised_path(output));
+        };
+
         // SIGTERM is what schedulers send on preemption: it stops the render like Ctrl-C,
-        // and what was rendered is written with its true counts.
+        // and what was rendered is written with its true counts (or, checkpointing, saved).
         std::signal(SIGINT, on_interrupt);
         std::signal(SIGTERM, on_interrupt);
-        const RenderStats stats =
-            render(scene, camera, settings, film, &g_interrupted, after_iteration);
-        std::signal(SIGINT, SIG_DFL);
-        std::signal(SIGTERM, SIG_DFL);
-        const OutputInfo info = write_outputs(film, stats.seconds);
+        RenderStats stats;
+        Film::SampleCounts counts;
+        if (task_total > 0) {
+            // The tasks one after another, merged in task order as statmc --merge would.
+            std::vector<OIIO::ImageBuf> parts;
+            for (int t = 0; t < task_total && !g_interrupted.load(); ++t) {
+                double before = 0;
+                auto [film, task_stats, info] = render_share({t, task_total}, {}, before);
+                stats.samples += task_stats.samples;
+                stats.seconds += task_stats.seconds;
+                stats.tile_cycles += task_stats.tile_cycles;
+                if (task_stats.interrupted)
+                    break;
+                parts.push_back(make_output_image(*film, info));
+            }
+            std::signal(SIGINT, SIG_DFL);
+            std::signal(SIGTERM, SIG_DFL);
+            if (int(parts.size()) < task_total) {
+                std::fprintf(stderr, "statmc-render: interrupted after %zu of %d tasks; %s not written\n",
+                             parts.size(), task_total, output.c_str());
+                return 130;
+            }
+            OIIO::ImageBuf merged = task_total == 1 ? parts[0] : merge_tasks(parts);
+            merged.specmod().attribute(statmc::layers::attr::kRenderTime, float(stats.seconds));
+            merged.specmod().attribute(statmc::layers::attr::kScene, scene_path);
+            write_exr(merged, output);
+            write_denoised(merged);
+            counts = Film::SampleCounts{frame_spp, double(frame_spp), true};
+        } else {
+            IterationCallback after_iteration;
+            if (every_iteration)
+                after_iteration = [&](int, const Film& f, const IterationStats&) {
+                    OutputInfo info;
+                    info.spp = f.sample_counts();
+                    info.provenance.seed = seed;
+                    info.render_seconds = float(
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                            .count());
+                    info.scene = scene_path;
+                    const OIIO::ImageBuf image = make_output_image(f, info);
+                    write_exr(image, output);
+                    write_denoised(image);
+                };
+            double before = 0;
+            auto [film, share_stats, info] = render_share(task, after_iteration, before);
+            std::signal(SIGINT, SIG_DFL);
+            std::signal(SIGTERM, SIG_DFL);
+            stats = share_stats;
+            counts = info.spp;
+            if (checkpoint_seconds > 0 && !stats.complete) {
+                // The film is saved; an output now would be a partial task that merges wrongly.
+                std::fprintf(stderr,
+                             "statmc-render: interrupted: %s holds the render so far; run again "
+                             "with --resume to finish %s\n",
+                             checkpoint_path(output).c_str(), output.c_str());
+                return 130;
+            }
+            const OIIO::ImageBuf image = make_output_image(*film, info);
+            write_exr(image, output);
+            write_denoised(image);
+            if (stats.complete) {  // the output holds it all now
+                std::error_code ignored;
+                std::filesystem::remove(checkpoint_path(output), ignored);
+            }
+        }
         if (!quiet)
             std::fprintf(stderr, "%s: %dx%d, %s%d spp%s, %.2f s, %.2f Msamples/s\n", output.c_str(),
-                         width, height, info.spp.uniform ? "" : "at least ", info.spp.min,
+                         width, height, counts.uniform ? "" : "at least ", counts.min,
                          stats.interrupted ? " (interrupted)" : "", stats.seconds,
                          stats.seconds > 0 ? double(stats.samples) / stats.seconds * 1e-6 : 0.0);
         if (profile) {
             const auto t = scene.traversal_counters();
             std::printf("%s: %dx%d, %d spp, %zu triangles, threads %s\n", scene_path.c_str(), width,
-                        height, info.spp.min, scene.triangle_count(),
+                        height, counts.min, scene.triangle_count(),
                         threads > 0 ? std::to_string(threads).c_str() : "all");
             std::printf("  %.3f s, %.3f Msamples/s, %.2f Mrays/s, %.2f rays/sample\n",
                         stats.seconds, double(stats.samples) / stats.seconds * 1e-6,

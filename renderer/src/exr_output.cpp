@@ -26,7 +26,6 @@ OIIO::ImageBuf make_output_image(const Film& film, const OutputInfo& info)
     layers::StatisticsMetadata meta;
     if (info.spp.uniform)
         meta.spp = info.spp.min;
-    meta.seed = info.seed;
     // Per-bounce quantities: one Y AOV each, sharing sampleCount.Y (docs/exr-layers.md).
     std::vector<StatisticsPlanes> groups;
     std::vector<layers::AovStatistics> aovs;
@@ -41,6 +40,7 @@ OIIO::ImageBuf make_output_image(const Film& film, const OutputInfo& info)
         image.specmod().attribute(layers::attr::kSppMin, info.spp.min);
         image.specmod().attribute(layers::attr::kSppMean, float(info.spp.mean));
     }
+    layers::write_sample_provenance(image.specmod(), info.provenance);
     image.specmod().attribute(layers::attr::kRenderTime, info.render_seconds);
     image.specmod().attribute(layers::attr::kScene, info.scene);
     return image;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -56,59 +57,59 @@ BounceLayout bounce_layout_for(const IntegratorSettings& settings, bool record_a
 
 namespace {
 
+// How many samples per pixel the next pass takes when the render checkpoints: about a
+// quarter of the checkpoint interval at the rate measured so far, so that a stop or a
+// checkpoint waits at most that long; one sample per pixel before anything is measured.
+int pass_samples(double checkpoint_seconds, double samples_per_second, std::size_t npix,
+                 std::uint64_t remaining)
+{
+    double spp = 1;
+    if (samples_per_second > 0)
+        spp = std::floor(0.25 * checkpoint_seconds * samples_per_second / double(npix));
+    return int(std::clamp(spp, 1.0, double(std::min<std::uint64_t>(remaining, 1 << 20))));
+}
+
 // The render on whatever threads the calling arena has.
 RenderStats render_in_arena(const Scene& scene, const Camera& camera,
                             const RenderSettings& settings, Film& film,
                             const std::atomic<bool>* cancel,
-                            const IterationCallback& after_iteration)
+                            const IterationCallback& after_iteration,
+                            const CheckpointCallback& checkpoint)
 {
-    const auto start = std::chrono::steady_clock::now();
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
     const PathIntegrator integrator(scene, settings.integrator);
     constexpr int kTile = 16;
     const int tiles_x = (settings.width + kTile - 1) / kTile,
               tiles_y = (settings.height + kTile - 1) / kTile;
     const std::size_t npix = std::size_t(settings.width) * settings.height;
 
-    std::uint64_t total = 0;
+    std::uint64_t schedule_total = 0;
     for (int n : settings.schedule)
-        total += std::uint64_t(n) * npix;
-    Progress progress(total, settings.progress);
+        schedule_total += std::uint64_t(n);
+    if (settings.samples_done > schedule_total)
+        throw std::invalid_argument("render: the film already holds more samples than the schedule");
+    Progress progress((schedule_total - settings.samples_done) * npix, settings.progress);
 
     const BounceLayout needed = bounce_layout_for(settings.integrator);
-    if (!needed.empty() &&
+    const bool steered = !needed.empty();
+    if (steered &&
         (!film.bounces || film.bounces->layout().luminance_bounces < needed.luminance_bounces ||
          film.bounces->layout().mis_bounces < needed.mis_bounces))
         throw std::invalid_argument("render: the film does not track the bounces ACRR/SMIS need");
+    // Passes within an iteration only without steering: the estimates of a steered
+    // iteration come from the film at its start, which a checkpoint inside it would not hold.
+    const bool in_passes = settings.checkpoint_seconds > 0;
     // Estimates steer sampling only from the second iteration on (§7, §8).
     std::optional<BounceEstimates> estimates;
 
-    RenderStats rs;
-    std::uint64_t first_sample = 0;
-    for (std::size_t it = 0; it < settings.schedule.size(); ++it) {
-        const int spp = settings.schedule[it];
-        const bool may_stop = it > 0;
-        IterationStats is{spp, 0};
-        // Denoised here rather than after the previous iteration, so a render that stops
-        // never pays for estimates no iteration will use.
-        if (!needed.empty() && it > 0) {
-            const auto denoise_start = std::chrono::steady_clock::now();
-            // Without the albedo/normal guides: the estimates only steer sampling, and the
-            // guided kernel costs about 4× (README, Performance); on Veach Ajar the
-            // unguided estimates were as good (relative variance 86.9 vs 88.4) and ACRR's
-            // cost 15% lower.
-            estimates = film.bounces->denoise({}, settings.bounce_filter, settings.threads);
-            is.denoise_seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - denoise_start)
-                    .count();
-            if (cancel &&
-                cancel->load()) {  // stopped while denoising: as if after the last iteration
-                rs.interrupted = true;
-                break;
-            }
-        }
+    // Samples [first, first + spp) of every pixel, tile by tile. A skippable pass leaves
+    // out the tiles not yet started once `cancel` is set. Returns the samples taken.
+    auto render_pass = [&](std::uint64_t first, int spp, bool skippable,
+                           std::uint64_t& cycle_sum) {
         std::atomic<std::uint64_t> samples{0}, cycles{0};
         tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
-            if (may_stop && cancel && cancel->load())
+            if (skippable && cancel && cancel->load())
                 return;
             const std::uint64_t t0 = __rdtsc();
             // Denormals flushed on every worker, so no pixel depends on the thread it ran on.
@@ -127,7 +128,8 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
                     const PixelEstimates pixel_estimates =
                         estimates ? estimates->pixel(pixel) : PixelEstimates{};
                     for (int s = 0; s < spp; ++s) {
-                        Sampler sampler(settings.seed, pixel, first_sample + std::uint64_t(s));
+                        Sampler sampler(settings.seed, pixel,
+                                        settings.first_sample + first + std::uint64_t(s));
                         const float jx = sampler.get1d(), jy = sampler.get1d();
                         const Ray ray = camera.generate(float(x) + jx, float(y) + jy);
                         GuideSample guide;
@@ -152,25 +154,102 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
             cycles += __rdtsc() - t0;
             progress.advance(n);
         });
-        rs.samples += samples.load();
-        rs.tile_cycles += cycles.load();
-        first_sample += std::uint64_t(spp);
-        const bool stopped = cancel && cancel->load() && may_stop;
-        if (stopped && samples.load() < std::uint64_t(spp) * npix) {
-            rs.interrupted = true;
-            ++rs.iterations_done;  // partial
-            break;
+        cycle_sum += cycles.load();
+        return samples.load();
+    };
+
+    RenderStats rs;
+    auto last_checkpoint = Clock::now();
+    std::uint64_t checkpointed = settings.samples_done, iteration_begin = 0;
+    double samples_per_second = 0;
+    auto save = [&](std::uint64_t done) {
+        if (checkpoint && done > checkpointed) {
+            checkpoint(film, done);
+            checkpointed = done;
         }
+        last_checkpoint = Clock::now();
+    };
+    for (std::size_t it = 0; it < settings.schedule.size(); ++it) {
+        const int spp = settings.schedule[it];
+        const std::uint64_t iteration_end = iteration_begin + std::uint64_t(spp);
+        if (iteration_end <= settings.samples_done) {  // in the film already
+            iteration_begin = iteration_end;
+            ++rs.iterations_done;
+            continue;
+        }
+        if (steered && settings.samples_done > iteration_begin)
+            throw std::invalid_argument(
+                "render: ACRR/SMIS resume only at an iteration boundary (their checkpoints are "
+                "written there)");
+        const bool may_stop = it > 0;
+        IterationStats is{spp, 0};
+        // Denoised here rather than after the previous iteration, so a render that stops
+        // never pays for estimates no iteration will use.
+        if (steered && it > 0) {
+            const auto denoise_start = Clock::now();
+            // Without the albedo/normal guides: the estimates only steer sampling, and the
+            // guided kernel costs about 4× (README, Performance); on Veach Ajar the
+            // unguided estimates were as good (relative variance 86.9 vs 88.4) and ACRR's
+            // cost 15% lower.
+            estimates = film.bounces->denoise({}, settings.bounce_filter, settings.threads);
+            is.denoise_seconds =
+                std::chrono::duration<double>(Clock::now() - denoise_start).count();
+            if (cancel &&
+                cancel->load()) {  // stopped while denoising: as if after the last iteration
+                save(iteration_begin);
+                rs.interrupted = true;
+                break;
+            }
+        }
+        std::uint64_t next = std::max(iteration_begin, settings.samples_done);
+        bool stopped = false;
+        while (next < iteration_end) {
+            const int pass = in_passes && !steered
+                                 ? pass_samples(settings.checkpoint_seconds, samples_per_second,
+                                                npix, iteration_end - next)
+                                 : int(iteration_end - next);
+            const auto pass_start = Clock::now();
+            // A checkpointing render stops only at pass boundaries, with whole passes.
+            const std::uint64_t taken =
+                render_pass(next, pass, may_stop && !in_passes, rs.tile_cycles);
+            rs.samples += taken;
+            const double seconds = std::chrono::duration<double>(Clock::now() - pass_start).count();
+            if (seconds > 0)
+                samples_per_second = double(taken) / seconds;
+            if (taken < std::uint64_t(pass) * npix) {  // tiles skipped: a partial iteration
+                rs.interrupted = true;
+                ++rs.iterations_done;
+                stopped = true;
+                break;
+            }
+            next += std::uint64_t(pass);
+            if (in_passes && cancel && cancel->load()) {
+                save(next);
+                rs.interrupted = true;
+                stopped = true;
+                break;
+            }
+            if (in_passes && next < schedule_total &&
+                std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >=
+                    settings.checkpoint_seconds)
+                save(next);
+        }
+        if (stopped)
+            break;
+        iteration_begin = iteration_end;
         ++rs.iterations_done;
         if (after_iteration)
             after_iteration(int(it), film, is);
         if (cancel && cancel->load()) {
+            if (in_passes && iteration_end < schedule_total)
+                save(iteration_end);
             rs.interrupted = true;
             break;
         }
     }
+    rs.complete = iteration_begin == schedule_total;
     progress.finish();
-    rs.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    rs.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return rs;
 }
 
@@ -178,13 +257,14 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
 
 RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                    Film& film, const std::atomic<bool>* cancel,
-                   const IterationCallback& after_iteration)
+                   const IterationCallback& after_iteration, const CheckpointCallback& checkpoint)
 {
     // An arena, not tbb::global_control: the limit holds for this render only, never for
     // the rest of the process (a host may render and denoise side by side).
     RenderStats stats;
     run_with_threads(settings.threads, [&] {
-        stats = render_in_arena(scene, camera, settings, film, cancel, after_iteration);
+        stats = render_in_arena(scene, camera, settings, film, cancel, after_iteration,
+                                checkpoint);
     });
     return stats;
 }

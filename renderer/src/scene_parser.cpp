@@ -6,6 +6,8 @@
 #include <sstream>
 #include <unordered_map>
 
+#include <zlib.h>
+
 #include "statmc/render/parameter_list.h"
 #include "statmc/render/ply_reader.h"
 #include "statmc/render/shapes.h"
@@ -45,6 +47,12 @@ std::string read_scene_text(const std::string& path, std::string& why)
     return text.str();
 }
 
+std::uint32_t text_crc(std::uint32_t crc, const std::string& text)
+{
+    return std::uint32_t(
+        crc32_z(crc, reinterpret_cast<const Bytef*>(text.data()), text.size()));
+}
+
 // Include nests at most this deep (pbrt-v3 sets no limit; a cycle is caught before it).
 constexpr int kMaxIncludeDepth = 32;
 
@@ -59,6 +67,9 @@ public:
         matte.name = "(default matte)";
         scene_.materials.push_back(matte);
     }
+
+    /// Counts `text` (the main file's) into the scene's source_crc.
+    void add_source(const std::string& text) { scene_.source_crc = text_crc(scene_.source_crc, text); }
 
     SceneDescription run()
     {
@@ -284,6 +295,7 @@ private:
         const std::string text = read_scene_text(path, why);
         if (!why.empty())
             fail(line, d + " \"" + name + "\": " + path + ": " + why);
+        scene_.source_crc = text_crc(scene_.source_crc, text);
         std::vector<Token> tokens = tokenize(text, path);
         includers_.push_back({std::move(tokens_), std::move(file_), pos_});
         tokens_ = std::move(tokens);
@@ -475,7 +487,9 @@ private:
 SceneDescription parse_scene_string(const std::string& text, const std::string& file,
                                     const std::string& directory)
 {
-    return Parser(tokenize(text, file), file, directory).run();
+    Parser parser(tokenize(text, file), file, directory);
+    parser.add_source(text);
+    return parser.run();
 }
 
 SceneDescription parse_scene_file(const std::string& path)

@@ -8,6 +8,8 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include "statmc/layers/layer_names.h"
+
 #include "cli_images.h"
 #include "cli_runner.h"
 #include "temp_dir.h"
@@ -137,16 +139,29 @@ TEST(CliPlugins, AnOperatorThatThrowsIsAnErrorNamingItsModule)
 TEST(CliPlugins, MergeAddsFarmTasksAndNamesMismatchedFiles)
 {
     TempDir dir;
-    const std::string a = dir.file("a.exr"), b = dir.file("b.exr"), v = dir.file("v.exr");
+    const std::string a = dir.file("a.exr"), b = dir.file("b.exr"), c = dir.file("c.exr"),
+                      v = dir.file("v.exr");
+    // Three renders of the same statistics with different seeds (seed 77 draws samples 0..7).
     write_exr(cli_statistics_image(), a);
-    write_exr(cli_statistics_image(), b);
+    for (const auto& [file, seed] : {std::pair{b, 78}, std::pair{c, 79}}) {
+        OIIO::ImageBuf other = cli_statistics_image();
+        other.specmod().attribute(layers::attr::kSeed, seed);
+        write_exr(other, file);
+    }
     write_exr(cli_variance_aov_image(), v);
-    const CliResult r = run_cli({a, b, a, "--merge", "-o", dir.file("all.exr")});
+    const CliResult r = run_cli({a, b, c, "--merge", "-o", dir.file("all.exr")});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const OIIO::ImageBuf in = read_exr(a), all = read_exr(dir.file("all.exr"));
     EXPECT_EQ(channel_value(all, "sampleCount.Y", 3, 2),
               3 * channel_value(in, "sampleCount.Y", 3, 2));
     EXPECT_NEAR(channel_value(all, "G", 3, 2), channel_value(in, "G", 3, 2), 1e-5);
+    // The same file twice: its samples would count twice.
+    const CliResult twice = run_cli({a, b, a, "--merge", "-o", dir.file("twice.exr")});
+    EXPECT_EQ(twice.exit_code, 1);
+    EXPECT_NE(twice.err.find("--merge: part 0 (" + a + ": seed 77, samples 0..7) and part 2 (" +
+                             a + ": seed 77, samples 0..7) drew the same samples"),
+              std::string::npos)
+        << twice.err;
 
     const CliResult n = run_cli({v, a, b, "--merge:n=2", "-o", dir.file("two.exr")});
     EXPECT_EQ(n.exit_code, 0) << n.err;

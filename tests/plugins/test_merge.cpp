@@ -7,6 +7,7 @@
 
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/layer_names.h"
+#include "statmc/layers/sample_provenance.h"
 #include "statmc/layers/statistics_layers.h"
 #include "statmc/merge/merge.h"
 #include "temp_dir.h"
@@ -56,16 +57,19 @@ OIIO::ImageBuf named(const OIIO::ImageBuf& buf, const std::string& name)
     return layers::read_image_file(path(name));
 }
 
-OIIO::ImageBuf image(const StatisticsImage<3>& stats, int spp, const std::string& name)
+// Seed `seed` draws samples 0..spp-1 (a render without the range attributes).
+OIIO::ImageBuf image(const StatisticsImage<3>& stats, int spp, const std::string& name,
+                     int seed = 1)
 {
-    return named(layers::make_statistics_image(stats.planes(), {"", spp, 1}), name);
+    return named(layers::make_statistics_image(stats.planes(), {"", spp, seed}), name);
 }
 
 std::vector<OIIO::ImageBuf> task_images(const FarmRender& farm)
 {
     std::vector<OIIO::ImageBuf> images;
     for (int k = 0; k < kTasks; ++k)
-        images.push_back(image(farm.tasks[k], 10 + k, "task" + std::to_string(k) + ".exr"));
+        images.push_back(
+            image(farm.tasks[k], 10 + k, "task" + std::to_string(k) + ".exr", 100 + k));
     return images;
 }
 
@@ -111,10 +115,10 @@ TEST(Merge, SameBitsForAnyThreadCount)
     // each pixel folds the parts in part order whichever thread takes it.
     const FarmRender farm;
     const std::vector<OIIO::ImageBuf> tasks = task_images(farm);
-    const OIIO::ImageBuf one = merge(pointers(tasks), 1);
+    const OIIO::ImageBuf one = merge(pointers(tasks), {}, 1);
     ASSERT_FALSE(one.has_error()) << one.geterror();
     for (int nthreads : {0, 2, 3}) {
-        const OIIO::ImageBuf other = merge(pointers(tasks), nthreads);
+        const OIIO::ImageBuf other = merge(pointers(tasks), {}, nthreads);
         ASSERT_FALSE(other.has_error()) << other.geterror();
         const auto px = [](const OIIO::ImageBuf& b) {
             std::vector<float> v(std::size_t(b.spec().image_pixels()) * b.nchannels());
@@ -190,6 +194,120 @@ TEST(Merge, RefusesDenoisedInputsAndSingleImages)
               std::string::npos);
     tasks.resize(1);
     EXPECT_NE(merge_error(tasks).find("merge needs at least 2 images, got 1"), std::string::npos);
+}
+
+// Farm task k of `count` with `seed`: samples 10k..10k+9 (the header is what is checked).
+OIIO::ImageBuf task_image(const FarmRender& farm, int k, int count, int seed = 5)
+{
+    OIIO::ImageBuf img = layers::make_statistics_image(farm.tasks[k % kTasks].planes(),
+                                                       {"", 10, seed});
+    layers::write_sample_provenance(img.specmod(), {seed, layers::SampleRange{10 * k, 10 * k + 10},
+                                                    k, count});
+    return named(img, "farm-task" + std::to_string(k) + "-of-" + std::to_string(count) + "-seed" +
+                          std::to_string(seed) + ".exr");
+}
+
+TEST(Merge, RefusesTheSameSamplesTwice)
+{
+    const FarmRender farm;
+    // Seed 1 drew samples 0..9 in one part and 0..10 in the other.
+    const std::vector<OIIO::ImageBuf> parts = {image(farm.tasks[0], 10, "seed1-a.exr", 1),
+                                               image(farm.tasks[1], 11, "seed1-b.exr", 1)};
+    EXPECT_NE(merge_error(parts).find("part 0 (" + path("seed1-a.exr") +
+                                      ": seed 1, samples 0..9) and part 1 (" +
+                                      path("seed1-b.exr") +
+                                      ": seed 1, samples 0..10) drew the same samples"),
+              std::string::npos)
+        << merge_error(parts);
+}
+
+TEST(Merge, CompleteTaskSetKeepsSeedAndSampleRange)
+{
+    const FarmRender farm;
+    const std::vector<OIIO::ImageBuf> parts = {task_image(farm, 1, 3), task_image(farm, 0, 3),
+                                               task_image(farm, 2, 3)};
+    const OIIO::ImageBuf merged = merge(pointers(parts));
+    ASSERT_FALSE(merged.has_error()) << merged.geterror();
+    const OIIO::ImageSpec& spec = merged.spec();
+    EXPECT_EQ(spec.get_int_attribute(layers::attr::kSeed, -1), 5);
+    EXPECT_EQ(spec.get_int_attribute(layers::attr::kSampleBegin, -1), 0);
+    EXPECT_EQ(spec.get_int_attribute(layers::attr::kSampleEnd, -1), 30);
+    EXPECT_EQ(spec.get_int_attribute(layers::attr::kSpp, -1), 30);
+    EXPECT_EQ(spec.find_attribute(layers::attr::kTaskIndex), nullptr);
+    EXPECT_EQ(spec.find_attribute(layers::attr::kTasksMissing), nullptr);
+}
+
+TEST(Merge, RefusesInconsistentAndIncompleteTaskSets)
+{
+    const FarmRender farm;
+    auto error_of = [](const std::vector<OIIO::ImageBuf>& parts) { return merge_error(parts); };
+    EXPECT_NE(error_of({task_image(farm, 0, 4), task_image(farm, 1, 4), task_image(farm, 3, 4)})
+                  .find("the task set is incomplete: 1 of 4 tasks missing (task 2)"),
+              std::string::npos);
+    EXPECT_NE(error_of({task_image(farm, 0, 2), task_image(farm, 1, 3)})
+                  .find("split the frame into different task counts"),
+              std::string::npos);
+    EXPECT_NE(error_of({task_image(farm, 0, 2, 5), task_image(farm, 1, 2, 6)})
+                  .find("are tasks of one frame with different seeds"),
+              std::string::npos);
+    // The same task twice under another name: refused as a duplicate sample range first.
+    OIIO::ImageBuf copy = task_image(farm, 1, 2);
+    const OIIO::ImageBuf twice = named(copy, "copy.exr");
+    EXPECT_NE(error_of({task_image(farm, 0, 2), task_image(farm, 1, 2), twice})
+                  .find("drew the same samples"),
+              std::string::npos);
+    // A task stopped early: its header has statmc:sppMin, not statmc:spp = 10.
+    OIIO::ImageBuf stopped = task_image(farm, 1, 2);
+    stopped.specmod().erase_attribute(layers::attr::kSpp);
+    stopped.specmod().attribute(layers::attr::kSppMin, 4);
+    EXPECT_NE(error_of({task_image(farm, 0, 2), named(stopped, "stopped.exr")})
+                  .find("part 1 (" + path("stopped.exr") +
+                        ": seed 5, samples 10..19, task 1/2) stopped before its last sample"),
+              std::string::npos)
+        << error_of({task_image(farm, 0, 2), named(stopped, "stopped.exr")});
+    OIIO::ImageBuf bad_index = task_image(farm, 1, 2);
+    bad_index.specmod().attribute(layers::attr::kTaskIndex, 2);
+    EXPECT_NE(error_of({task_image(farm, 0, 2), named(bad_index, "bad-index.exr")})
+                  .find("task 2 of 2 (statmc:taskIndex, statmc:taskCount) is not a task"),
+              std::string::npos);
+}
+
+TEST(Merge, AllowPartialMergesWhatIsThereAndCountsTheMissing)
+{
+    const FarmRender farm;
+    const std::vector<OIIO::ImageBuf> parts = {task_image(farm, 0, 4), task_image(farm, 2, 4)};
+    MergeOptions options;
+    options.allow_partial = true;
+    const OIIO::ImageBuf merged = merge(pointers(parts), options);
+    ASSERT_FALSE(merged.has_error()) << merged.geterror();
+    EXPECT_EQ(merged.spec().get_int_attribute(layers::attr::kTasksMissing), 2);
+    EXPECT_EQ(merged.spec().get_int_attribute(layers::attr::kSpp), 20);
+    EXPECT_EQ(merged.spec().find_attribute(layers::attr::kSampleBegin), nullptr)
+        << "samples 0..9 and 20..29 are not one range";
+    const std::vector<OIIO::ImageBuf> one = {task_image(farm, 3, 4)};
+    const OIIO::ImageBuf alone = merge(pointers(one), options);
+    ASSERT_FALSE(alone.has_error()) << alone.geterror();
+    EXPECT_EQ(alone.spec().get_int_attribute(layers::attr::kTasksMissing), 3);
+}
+
+TEST(Merge, DepthGuideIsTheSampleWeightedMean)
+{
+    const FarmRender farm;
+    std::vector<float> depth_a(std::size_t(kW) * kH, 1.f), depth_b(std::size_t(kW) * kH, 4.f);
+    layers::GuidePlanes ga, gb;
+    ga.depth = dense_plane(depth_a.data(), kW);
+    gb.depth = dense_plane(depth_b.data(), kW);
+    const std::vector<OIIO::ImageBuf> parts = {
+        named(layers::make_statistics_image(farm.tasks[0].planes(), {"", 1, 1}, ga), "da.exr"),
+        named(layers::make_statistics_image(farm.tasks[1].planes(), {"", 1, 2}, gb), "db.exr")};
+    const OIIO::ImageBuf merged = merge(pointers(parts));
+    ASSERT_FALSE(merged.has_error()) << merged.geterror();
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const double na = farm.tasks[0].at(x, y).n, nb = farm.tasks[1].at(x, y).n;
+            const double want = na + nb > 0 ? (na * 1 + nb * 4) / (na + nb) : 0;
+            EXPECT_NEAR(channel_value(merged, "depth.Z", x, y), want, 1e-6) << x << "," << y;
+        }
 }
 
 }  // namespace

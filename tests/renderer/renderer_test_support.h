@@ -3,11 +3,14 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "statmc/render/camera.h"
@@ -47,6 +50,23 @@ public:
 private:
     std::filesystem::path path_;
 };
+
+/// What a program run through the shell did.
+struct ProgramRun {
+    int status;          ///< exit status; -1 when it did not exit normally
+    std::string output;  ///< stdout and stderr
+};
+
+/// Runs `command` (a shell command line) with stdout and stderr captured in `dir`.
+inline ProgramRun run_program(const std::string& command, const ScratchDir& dir)
+{
+    const std::string log = dir.file("log.txt");
+    const int raw = std::system((command + " > \"" + log + "\" 2>&1").c_str());
+    std::ifstream in(log);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, ss.str()};
+}
 
 /// The shared scenes folder (../shared beside the source tree), or "" when absent.
 inline std::string shared_dir()

@@ -24,21 +24,12 @@ using statmc::render::test::ScratchDir;
 
 namespace {
 
-struct ProgramRun {
-    int status;
-    std::string output;  ///< stdout and stderr
-};
+using statmc::render::test::ProgramRun;
 
 ProgramRun run(const std::string& args, const ScratchDir& dir)
 {
-    const std::string log = dir.file("log.txt");
-    const std::string cmd =
-        std::string("\"") + STATMC_RENDER_EXE + "\" " + args + " > \"" + log + "\" 2>&1";
-    const int raw = std::system(cmd.c_str());
-    std::ifstream in(log);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, ss.str()};
+    return statmc::render::test::run_program(std::string("\"") + STATMC_RENDER_EXE + "\" " + args,
+                                             dir);
 }
 
 const std::string kScene =

@@ -1,7 +1,9 @@
 #include "statmc/merge/merge.h"
+#include "statmc/merge/merge_provenance.h"
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -13,6 +15,7 @@
 #include "statmc/layers/imagebufalgo_forms.h"
 #include "statmc/layers/layer_error.h"
 #include "statmc/layers/layer_names.h"
+#include "statmc/layers/sample_provenance.h"
 #include "statmc/layers/statistics_layers.h"
 #include "statmc/layers/statistics_validation.h"
 
@@ -69,26 +72,41 @@ StatisticsPlanes merge_views(const std::vector<StatisticsView>& views, int nthre
     return StatisticsImage<C>::merged(views, layers::thread_count(nthreads)).planes();
 }
 
-// Sample-weighted mean of a guide over the parts, in dense planes.
-std::vector<float> merged_guide(const std::vector<const OIIO::ImageBuf*>& floats,
-                                const std::vector<StatisticsView>& views, std::string_view layer,
-                                bool prefer_colour)
+// The channels of one guide layer in every part (an empty list when a part lacks it).
+using GuideChannels = std::vector<std::vector<int>>;
+
+GuideChannels guide_channels(const std::vector<const OIIO::ImageBuf*>& floats,
+                             const std::function<std::vector<int>(const OIIO::ImageSpec&)>& find)
 {
-    const int w = views[0].width, h = views[0].height;
-    std::vector<float> sum(std::size_t(3) * w * h, 0.f), weight(std::size_t(w) * h, 0.f);
-    for (std::size_t k = 0; k < floats.size(); ++k) {
-        const auto idx = layers::find_guide_layer(floats[k]->spec(), layer, prefer_colour);
-        if (idx.empty())
+    GuideChannels channels;
+    for (const OIIO::ImageBuf* part : floats) {
+        channels.push_back(find(part->spec()));
+        if (channels.back().empty())
             return {};
-        const auto planes = layers::guide_planes(*floats[k], idx);
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-                const float n = views[k].count(x, y);
-                weight[std::size_t(y) * w + x] += n;
-                for (int c = 0; c < 3; ++c)
-                    sum[(std::size_t(c) * h + y) * w + x] += n * planes[c](x, y);
-            }
     }
+    return channels;
+}
+
+// Sample-weighted mean of a guide over the parts, in dense channel-major planes.
+std::vector<float> merged_guide(const std::vector<const OIIO::ImageBuf*>& floats,
+                                const std::vector<StatisticsView>& views,
+                                const GuideChannels& channels)
+{
+    if (channels.empty())
+        return {};
+    const int w = views[0].width, h = views[0].height, nc = int(channels[0].size());
+    std::vector<float> sum(std::size_t(nc) * w * h, 0.f), weight(std::size_t(w) * h, 0.f);
+    for (std::size_t k = 0; k < floats.size(); ++k)
+        for (int c = 0; c < nc; ++c) {
+            const ConstPlane plane = layers::channel_plane(*floats[k], channels[k][c]);
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const float n = views[k].count(x, y);
+                    if (c == 0)
+                        weight[std::size_t(y) * w + x] += n;
+                    sum[(std::size_t(c) * h + y) * w + x] += n * plane(x, y);
+                }
+        }
     for (std::size_t i = 0; i < sum.size(); ++i) {
         const float n = weight[i % weight.size()];
         sum[i] = n > 0 ? sum[i] / n : 0.f;
@@ -117,9 +135,10 @@ std::optional<int> summed_spp(const Parts& parts)
     return total;
 }
 
-OIIO::ImageBuf merge_parts(const Parts& parts, int nthreads)
+OIIO::ImageBuf merge_parts(const Parts& parts, const MergeOptions& options, int nthreads)
 {
-    if (parts.size() < 2)
+    // One part is a merge too: the rest of an incomplete task set.
+    if (parts.size() < (options.allow_partial ? 1u : 2u))
         throw std::invalid_argument("merge needs at least 2 images, got " +
                                     std::to_string(parts.size()));
     for (std::size_t k = 0; k < parts.size(); ++k)
@@ -127,6 +146,7 @@ OIIO::ImageBuf merge_parts(const Parts& parts, int nthreads)
     layers::require_matching_inputs(parts, "part");
     for (std::size_t k = 1; k < parts.size(); ++k)
         check_format_version(parts, k);
+    const MergedProvenance provenance = check_merge_provenance(parts, options.allow_partial);
     std::vector<OIIO::ImageBuf> scratch(parts.size());
     std::vector<const OIIO::ImageBuf*> floats;
     std::vector<StatisticsView> views;
@@ -163,14 +183,31 @@ OIIO::ImageBuf merge_parts(const Parts& parts, int nthreads)
         merged.bc_moment4.clear();
 
     const int w = first.width, h = first.height;
-    const std::vector<float> albedo = merged_guide(floats, views, layers::kAlbedoLayer, true);
-    const std::vector<float> normal = merged_guide(floats, views, layers::kNormalLayer, false);
+    const std::vector<float> albedo = merged_guide(
+        floats, views, guide_channels(floats, [](const OIIO::ImageSpec& spec) {
+            return layers::find_guide_layer(spec, layers::kAlbedoLayer, true);
+        }));
+    const std::vector<float> normal = merged_guide(
+        floats, views, guide_channels(floats, [](const OIIO::ImageSpec& spec) {
+            return layers::find_guide_layer(spec, layers::kNormalLayer, false);
+        }));
+    const std::vector<float> depth = merged_guide(
+        floats, views, guide_channels(floats, [](const OIIO::ImageSpec& spec) {
+            const int i = spec.channelindex(layers::channel_name(layers::kDepthLayer, "Z"));
+            return i < 0 ? std::vector<int>{} : std::vector<int>{i};
+        }));
     layers::GuidePlanes guides;
     guides.albedo = dense_planes(albedo, w, h);
     guides.normal = dense_planes(normal, w, h);
+    if (!depth.empty())
+        guides.depth = dense_plane(depth.data(), w);
     layers::StatisticsMetadata metadata;
     metadata.spp = summed_spp(parts);
     OIIO::ImageBuf out = layers::make_statistics_image(merged, metadata, guides);
+    layers::write_sample_provenance(out.specmod(), provenance.merged);
+    const int missing = int(provenance.missing_tasks.size());
+    if (missing > 0)
+        out.specmod().attribute(layers::attr::kTasksMissing, missing);
     out.set_origin(first.x, first.y);
     out.set_full(first.full_x, first.full_x + first.full_width, first.full_y,
                  first.full_y + first.full_height, first.full_z, first.full_z + first.full_depth);
@@ -179,18 +216,18 @@ OIIO::ImageBuf merge_parts(const Parts& parts, int nthreads)
 
 }  // namespace
 
-bool merge(OIIO::ImageBuf& dst, const Parts& parts, int nthreads)
+bool merge(OIIO::ImageBuf& dst, const Parts& parts, const MergeOptions& options, int nthreads)
 {
     return layers::errors_on(dst, "merge", [&] {
-        dst = merge_parts(parts, nthreads);
+        dst = merge_parts(parts, options, nthreads);
         return true;
     });
 }
 
-OIIO::ImageBuf merge(const Parts& parts, int nthreads)
+OIIO::ImageBuf merge(const Parts& parts, const MergeOptions& options, int nthreads)
 {
-    return layers::returned_image("merge",
-                                  [&](OIIO::ImageBuf& dst) { return merge(dst, parts, nthreads); });
+    return layers::returned_image(
+        "merge", [&](OIIO::ImageBuf& dst) { return merge(dst, parts, options, nthreads); });
 }
 
 }  // namespace statmc

@@ -57,6 +57,13 @@ public:
         return positions_[std::size_t(y) * width_ + x];
     }
 
+    /// The accumulators as they are in memory, pixel by pixel in scanline order (positions
+    /// empty unless tracked): what a render checkpoint saves and restores bitwise.
+    std::vector<Pixel>& accumulators() { return pixels_; }
+    const std::vector<Pixel>& accumulators() const { return pixels_; }
+    std::vector<Position>& position_accumulators() { return positions_; }
+    const std::vector<Position>& position_accumulators() const { return positions_; }
+
     void add(int x, int y, const float* sample) { at(x, y).add(sample); }
     /// A sample taken at sub-pixel offset (u, v) ∈ [0, 1)²; the offset is dropped unless
     /// positions are tracked.

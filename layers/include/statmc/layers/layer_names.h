@@ -30,6 +30,13 @@ inline constexpr const char* kDenoised = "statmc:denoised";  // int 1
 inline constexpr const char* kDenoiseSkipped = "statmc:denoiseSkipped";
 inline constexpr const char* kRenderTime = "statmc:renderTime";  // float seconds (statmc-render)
 inline constexpr const char* kScene = "statmc:scene";  // string: the scene file (statmc-render)
+// Where the samples came from (sample_provenance.h): sample indices [begin, end) of every
+// pixel's stream, and the farm task that drew them.
+inline constexpr const char* kSampleBegin = "statmc:sampleBegin";    // int
+inline constexpr const char* kSampleEnd = "statmc:sampleEnd";        // int, exclusive
+inline constexpr const char* kTaskIndex = "statmc:taskIndex";        // int, 0-based
+inline constexpr const char* kTaskCount = "statmc:taskCount";        // int
+inline constexpr const char* kTasksMissing = "statmc:tasksMissing";  // int (merge allow_partial)
 }  // namespace attr
 
 /// Values of attr::kVariance: the per-sample variance s² (default) or the variance of the

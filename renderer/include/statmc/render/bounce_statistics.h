@@ -62,6 +62,10 @@ public:
     /// The one-channel view of quantity q inside `groups` (as group_planes() returned).
     static StatisticsView quantity_view(const std::vector<StatisticsPlanes>& groups, int q);
 
+    /// The accumulators, four quantities to a group: what a checkpoint saves and restores.
+    std::vector<StatisticsImage<kGroup>>& groups() { return groups_; }
+    const std::vector<StatisticsImage<kGroup>>& groups() const { return groups_; }
+
     /// Denoises every quantity, one filter call per group, Box-Cox test (§3).
     BounceEstimates denoise(const Guides& guides, const DenoiseOptions& options,
                             int threads = 0) const;

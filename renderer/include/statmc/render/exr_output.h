@@ -6,6 +6,7 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include "statmc/layers/sample_provenance.h"
 #include "statmc/render/render_loop.h"
 
 namespace statmc::render {
@@ -14,7 +15,8 @@ struct OutputInfo {
     /// The per-pixel sample counts: statmc:spp when uniform, else statmc:sppMin and
     /// statmc:sppMean (an interrupted render), so that no header claims a count it lacks.
     Film::SampleCounts spp;
-    int seed = 0;
+    /// statmc:seed, the sample range and the farm task (layers/sample_provenance.h).
+    layers::SampleProvenance provenance;
     float render_seconds = 0;
     std::string scene;
 };

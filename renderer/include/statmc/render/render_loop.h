@@ -40,6 +40,17 @@ struct RenderSettings {
     /// guard, as ACRR and SMIS were measured (docs/sampling.md).
     DenoiseOptions bounce_filter = DenoiseOptions::paper();
     bool progress = false;
+    /// The index of the first sample every pixel's stream draws: a farm task's share of
+    /// the frame starts here (docs/farm.md). Sample s of pixel p is the same for any split.
+    std::uint64_t first_sample = 0;
+    /// Samples per pixel the film already holds (a resumed checkpoint): the schedule
+    /// carries on after them, as if it had never stopped.
+    std::uint64_t samples_done = 0;
+    /// > 0: the render goes in passes of about a quarter of this many seconds (whole
+    /// iterations when ACRR/SMIS steer), stops only between passes, and calls the
+    /// checkpoint callback when this many seconds have passed since the last one and when
+    /// it stops early.
+    double checkpoint_seconds = 0;
 };
 
 /// What one progressive iteration cost.
@@ -53,20 +64,27 @@ struct RenderStats {
     double seconds = 0;
     int iterations_done = 0;
     bool interrupted = false;
+    bool complete = false;  ///< every sample of the schedule was taken
     std::uint64_t samples = 0;
     std::uint64_t tile_cycles = 0;  ///< time stamp counter cycles inside tiles, all threads
 };
 
 /// Runs after an iteration with the film so far and what the iteration cost.
 using IterationCallback = std::function<void(int iteration, const Film&, const IterationStats&)>;
+/// Runs at a pass boundary with the film and the samples per pixel it holds (counted from
+/// RenderSettings::first_sample): the hook that writes a checkpoint.
+using CheckpointCallback = std::function<void(const Film&, std::uint64_t samples_done)>;
 
 /// Renders into `film`. When `cancel` becomes true, the iteration in progress finishes
 /// the tiles already started and skips the rest (never during the first iteration, so
 /// every pixel has samples), then the render stops. `after_iteration` runs after each
 /// iteration (the hook for per-iteration denoising). The film's layout must be
-/// bounce_layout_for(settings.integrator) or a superset of it (record_all).
+/// bounce_layout_for(settings.integrator) or a superset of it (record_all). With
+/// settings.checkpoint_seconds, a cancel stops the render at the next pass boundary
+/// instead, in any iteration, after `checkpoint` has saved the film.
 RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                    Film& film, const std::atomic<bool>* cancel = nullptr,
-                   const IterationCallback& after_iteration = {});
+                   const IterationCallback& after_iteration = {},
+                   const CheckpointCallback& checkpoint = {});
 
 }  // namespace statmc::render

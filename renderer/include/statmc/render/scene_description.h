@@ -56,6 +56,9 @@ struct SceneDescription {
     std::vector<Material> materials;  ///< [0] is the default matte
     std::vector<ShapeDesc> shapes;
     std::vector<std::string> warnings;  ///< "file:line: warning: ..."
+    /// CRC-32 of the scene text and its Includes' in reading order (meshes are not read
+    /// here): what a checkpoint checks to refuse another scene's.
+    std::uint32_t source_crc = 0;
 };
 
 }  // namespace statmc::render
