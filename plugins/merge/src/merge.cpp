@@ -137,8 +137,11 @@ std::optional<int> summed_spp(const Parts& parts)
 
 OIIO::ImageBuf merge_parts(const Parts& parts, const MergeOptions& options, int nthreads)
 {
-    // One part is a merge too: the rest of an incomplete task set.
-    if (parts.size() < (options.allow_partial ? 1u : 2u))
+    // One part is a merge too when it is a whole task set (a frame of one task) or, with
+    // allow_partial, what is left of one.
+    const bool whole_task = parts.size() == 1 && parts[0] &&
+                            parts[0]->spec().get_int_attribute(layers::attr::kTaskCount, 0) == 1;
+    if (parts.empty() || (parts.size() == 1 && !options.allow_partial && !whole_task))
         throw std::invalid_argument("merge needs at least 2 images, got " +
                                     std::to_string(parts.size()));
     for (std::size_t k = 0; k < parts.size(); ++k)
