@@ -13,39 +13,54 @@ work=$(mktemp -d /tmp/statmc-farm-bench.XXXXXX)
 source tests/farm/local_slurm.sh
 trap 'stop_local_slurm; rm -rf "$work"' EXIT
 
-rate() { sed -n 's/.* \([0-9.]*\) Msamples\/s/\1/p' "$1"; }
-echo "== checkpoint overhead: 640x360, 256 spp, 2 threads (median of 3)"
-for mode in none every-10s; do
-    for run in 1 2 3; do
+now() { date +%s.%N; }
+since() { awk -v a="$1" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }'; }
+# Waits for the job in $1 to be merged; fails when it failed or took over 20 minutes.
+wait_merged()
+{
+    local status start=$SECONDS
+    while true; do
+        status=0
+        "$farm" status --job-dir "$1" >"$work/status.txt" 2>&1 || status=$?
+        [[ $status -eq 0 ]] && return 0
+        [[ $status -eq 3 && $((SECONDS - start)) -lt 1200 ]] || { cat "$work/status.txt" >&2; exit 1; }
+        sleep 0.2
+    done
+}
+
+echo "== checkpoint overhead: 640x360, 256 spp, 2 threads (Msamples/s of 3 runs each, interleaved)"
+for run in 1 2 3; do
+    for mode in none every-10s; do
         extra=(); [[ $mode == every-10s ]] && extra=(--checkpoint 10)
         "$render" "$scene" --resolution 640x360 --spp 256 --threads 2 "${extra[@]}" -o "$work/c.exr" 2>"$work/c.log"
-        rate "$work/c.log"
-    done | sort -n | sed -n 2p | sed "s/^/$mode: Msamples\/s (median) /"
+        echo "$mode: $(sed -n 's/.* \([0-9.]*\) Msamples\/s/\1/p' "$work/c.log") Msamples/s"
+    done
 done
 
 start_local_slurm "$work/slurm"
-echo "== 4-task farm render vs one local render: 640x360, 256 spp"
-t0=$(date +%s.%N)
+echo "== 4-task farm render vs one local render: 640x360, 256 spp, 2 cores"
+t0=$(now)
 "$render" "$scene" --resolution 640x360 --spp 256 -q -o "$work/local.exr"
-echo "local render: $(echo "$(date +%s.%N) - $t0" | bc) s"
-t0=$(date +%s.%N)
-"$farm" submit "$scene" --tasks 4 --spp 256 -o "$work/farm.exr" --render-args=--resolution --render-args=640x360 >/dev/null
-until "$farm" status --job-dir "$work/statmc-farm" >/dev/null 2>&1; do sleep 0.2; done
-echo "farm (submit to merged): $(echo "$(date +%s.%N) - $t0" | bc) s"
+echo "local render: $(since "$t0") s"
+t0=$(now)
+"$farm" submit "$scene" --tasks 4 --spp 256 -o "$work/farm.exr" --cpus-per-task 1 \
+    --render-args=--resolution --render-args=640x360 >/dev/null
+wait_merged "$work/statmc-farm"
+echo "farm, submit to merged (tasks on 1 CPU each, 2 at a time): $(since "$t0") s"
 
-echo "== time lost to a killed task: checkpoint every 5 s, SIGKILL 7 s after the first one"
+echo "== time lost to a killed task: 320x180, 2 tasks of 512 spp, checkpoint every 5 s, SIGKILL 7 s after the first"
 mkdir -p "$work/k"
-t0=$(date +%s.%N)
-"$farm" submit "$scene" --tasks 2 --spp 1024 --checkpoint 5 -o "$work/k/frame.exr" \
-    --render-args=--resolution --render-args=320x180 --render-args=--threads --render-args=1 >/dev/null
+args=(--tasks 2 --spp 1024 --checkpoint 5 --cpus-per-task 1 --render-args=--resolution --render-args=320x180)
+t0=$(now)
+"$farm" submit "$scene" "${args[@]}" -o "$work/k/again.exr" --job-dir "$work/k/again" >/dev/null
+wait_merged "$work/k/again"
+echo "not killed, submit to merged: $(since "$t0") s"
+t0=$(now)
+"$farm" submit "$scene" "${args[@]}" -o "$work/k/frame.exr" >/dev/null
 until [[ -f "$work/k/frame.task1.exr.checkpoint" ]]; do sleep 0.1; done
 sleep 7
 pkill -KILL -f -- "-o $work/k/frame.task1.exr --task 1/2"
-until "$farm" status --job-dir "$work/k/statmc-farm" >/dev/null 2>&1; do sleep 0.2; done
-echo "killed farm (submit to merged): $(echo "$(date +%s.%N) - $t0" | bc) s"
-grep -h "resuming\|attempt" "$work/k/statmc-farm/logs/render-1.log"
-t0=$(date +%s.%N)
-"$farm" submit "$scene" --tasks 2 --spp 1024 --checkpoint 5 -o "$work/k/again.exr" --job-dir "$work/k/again" \
-    --render-args=--resolution --render-args=320x180 --render-args=--threads --render-args=1 >/dev/null
-until "$farm" status --job-dir "$work/k/again" >/dev/null 2>&1; do sleep 0.2; done
-echo "same job unkilled (submit to merged): $(echo "$(date +%s.%N) - $t0" | bc) s"
+echo "killed at $(since "$t0") s"
+wait_merged "$work/k/statmc-farm"
+echo "killed once, submit to merged: $(since "$t0") s"
+grep -h "resuming\|attempt\|requeue" "$work/k/statmc-farm/logs/render-1.log"

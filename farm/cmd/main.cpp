@@ -139,7 +139,7 @@ int report_status(const std::string& job_dir)
     ids.insert(ids.end(), record.merge_jobs.begin(), record.merge_jobs.end());
     const auto queued = queued_states(ids);
     const auto accounted = accounted_states(ids);
-    int unfinished = 0;
+    int unfinished = 0, failed_frames = 0;
     for (std::size_t i = 0; i < record.job.frames.size(); ++i) {
         const Frame& f = record.job.frames[i];
         int done = 0, running = 0, pending = 0, failed = 0;
@@ -167,11 +167,13 @@ int report_status(const std::string& job_dir)
         else
             merge = "failed (see " + record.job.job_dir + "/logs)";
         unfinished += merge != "merged";
+        failed_frames += merge.rfind("failed", 0) == 0 || merge.rfind("blocked", 0) == 0 ||
+                         (failed > 0 && merge != "merged");
         std::printf("frame %d: %d/%d tasks done, %d running, %d pending, %d failed; %s: %s\n",
                     f.number, done, record.job.tasks, running, pending, failed, merge.c_str(),
                     f.output.c_str());
     }
-    return unfinished == 0 ? 0 : 3;
+    return unfinished == 0 ? 0 : failed_frames > 0 ? 2 : 3;
 }
 
 }  // namespace
@@ -243,7 +245,7 @@ int main(int argc, char** argv)
     CLI::App* status_cmd = app.add_subcommand(
         "status", "per frame: render tasks done, running, pending and failed, and the merge "
                   "(from squeue, sacct where accounting runs, and the files); exit status 0 "
-                  "once every frame is merged, 3 before");
+                  "once every frame is merged, 2 when a frame failed, 3 while in progress");
     status_cmd->add_option("--job-dir", status_dir, "the job directory of statmc-farm submit")
         ->required();
 

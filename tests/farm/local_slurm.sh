@@ -47,7 +47,8 @@ SlurmctldHost=localhost(127.0.0.1)
 SlurmctldPort=$ports_base
 SlurmdPort=$((ports_base + 1))
 AuthType=auth/munge
-AuthInfo=socket=$dir/munge/munge.socket
+# cred_expire: also how long a requeued job waits before it may start again (default 120 s).
+AuthInfo=socket=$dir/munge/munge.socket,cred_expire=10
 CryptoType=crypto/munge
 SlurmUser=root
 SlurmdUser=root
@@ -68,8 +69,6 @@ MpiDefault=none
 ReturnToService=2
 SchedulerType=sched/backfill
 SchedulerParameters=sched_interval=1
-# A requeued job waits this long before it may start again (default 120 s).
-SlurmctldParameters=cred_expire=5
 MinJobAge=300
 KillWait=5
 SlurmctldTimeout=30

@@ -39,8 +39,12 @@ fail() { echo "test_slurm_farm: $*" >&2; exit 1; }
 # Waits until every frame of the job in $1 is merged (statmc-farm status exits 0), at most $2 s.
 wait_merged()
 {
-    local dir=$1 limit=$2 start=$SECONDS
-    until "$farm" status --job-dir "$dir" >"$work/status.txt" 2>&1; do
+    local dir=$1 limit=$2 start=$SECONDS status
+    while true; do
+        status=0
+        "$farm" status --job-dir "$dir" >"$work/status.txt" 2>&1 || status=$?
+        [[ $status -eq 0 ]] && break
+        [[ $status -eq 3 ]] || { cat "$work/status.txt" >&2; fail "the job failed (status $status)"; }
         (( SECONDS - start < limit )) || { cat "$work/status.txt" >&2; squeue >&2; fail "not merged within $limit s"; }
         sleep 1
     done
