@@ -41,6 +41,17 @@ std::string bash_array(const std::string& name, const std::vector<std::string>& 
     return text + ")\n";
 }
 
+// The lines every statmc-farm script starts with: what it is, its job name, its log (in
+// append mode, so a requeued job adds to its log), the user's Slurm options.
+std::string script_header(const std::string& what, const std::string& name,
+                          const std::string& log, const FarmJob& job)
+{
+    return "#!/bin/bash\n# statmc-farm: " + what +
+           " Written by statmc-farm submit (docs/farm.md).\n#SBATCH --job-name=" + name +
+           "\n#SBATCH --open-mode=append\n#SBATCH --output=" + job.job_dir + "/logs/" + log +
+           "\n" + slurm_lines(job.slurm);
+}
+
 std::string number(double value)
 {
     char text[32];
@@ -78,22 +89,18 @@ std::string render_script(const FarmJob& job)
         extra += " " + shell_quote(a);
     const int elements = int(job.frames.size()) * job.tasks;
     const std::string n = std::to_string(job.tasks);
-    std::string s = "#!/bin/bash\n";
-    s += "# statmc-farm: render tasks. Element k renders task k % " + n + " of frame k / " + n +
-         "; written by statmc-farm submit (docs/farm.md).\n";
-    s += "#SBATCH --job-name=statmc-render\n";
+    std::string s = script_header("render tasks. Element k renders task k % " + n +
+                                      " of frame k / " + n + ".",
+                                  "statmc-render", "render-%a.log", job);
     s += "#SBATCH --array=0-" + std::to_string(elements - 1) + "\n";
     s += "#SBATCH --requeue\n";
-    s += "#SBATCH --open-mode=append\n";
-    s += "#SBATCH --output=" + job.job_dir + "/logs/render-%a.log\n";
-    s += slurm_lines(job.slurm);
     s += "set -u\n";
     s += bash_array("scenes", scenes);
     s += bash_array("outputs", outputs);
     s += "k=${SLURM_ARRAY_TASK_ID:?run this script with sbatch}\n";
     s += "frame=$((k / " + n + ")); task=$((k % " + n + "))\n";
     s += "attempt=$((${SLURM_RESTART_COUNT:-0} + 1))\n";
-    s += "echo \"statmc-farm: $(date -Is) ${SLURM_ARRAY_JOB_ID}_${k} on $(hostname): \"\\\n"
+    s += "echo \"statmc-farm: $(date -Is) ${SLURM_ARRAY_JOB_ID}_${k} on $(hostname):\"\\\n"
          "     \"task $task/" + n + " of ${scenes[$frame]}, attempt $attempt\"\n";
     s += shell_quote(job.render_exe) + " \"${scenes[$frame]}\" -o \"${outputs[$k]}\" --task \"$task/" +
          n + "\"" + (job.spp > 0 ? " --spp " + std::to_string(job.spp) : std::string()) +
@@ -104,7 +111,7 @@ std::string render_script(const FarmJob& job)
     // exited 130): run again from the checkpoint. Errors (status 1) are not retried.
     s += "if [ \"$status\" -ge 128 ] && [ \"${SLURM_RESTART_COUNT:-0}\" -lt " +
          std::to_string(job.max_restarts) + " ]; then\n";
-    s += "  echo \"statmc-farm: the render stopped with status $status; requeueing it to resume \"\\\n"
+    s += "  echo \"statmc-farm: the render stopped with status $status; requeueing it to resume\"\\\n"
          "       \"from its checkpoint\"\n";
     s += "  scontrol requeue \"${SLURM_ARRAY_JOB_ID}_${k}\"\n";
     s += "fi\n";
@@ -122,13 +129,9 @@ std::string merge_script(const FarmJob& job)
             tasks.push_back(task_output(f, t));
     }
     const std::string n = std::to_string(job.tasks);
-    std::string s = "#!/bin/bash\n";
-    s += "# statmc-farm: merge (and denoise) one frame's tasks; the argument is the frame's "
-         "index. Written by statmc-farm submit (docs/farm.md).\n";
-    s += "#SBATCH --job-name=statmc-merge\n";
-    s += "#SBATCH --open-mode=append\n";
-    s += "#SBATCH --output=" + job.job_dir + "/logs/merge-%j.log\n";
-    s += slurm_lines(job.slurm);
+    std::string s = script_header("merge (and denoise) one frame's tasks; the argument is the "
+                                  "frame's index.",
+                                  "statmc-merge", "merge-%j.log", job);
     s += "set -euo pipefail\n";
     s += bash_array("outputs", outputs);
     s += bash_array("denoised", denoised);

@@ -227,8 +227,22 @@ int main(int argc, char** argv)
         const BounceLayout layout = bounce_layout_for(integrator, bounce_layers);
         const auto start = std::chrono::steady_clock::now();
 
-        // One share of the frame's samples into a film of its own; `task` null for the whole.
+        // One share of the frame's samples into a film of its own; `task` 0/1 for the whole.
         const bool whole = task_text.empty() && task_total == 0;
+        // The header of a film holding `task`'s samples after `seconds` of rendering.
+        auto output_info = [&](const Film& f, const RenderTask& task, double seconds) {
+            OutputInfo info;
+            info.spp = f.sample_counts();
+            info.provenance.seed = seed;
+            info.provenance.range = task_samples(frame_spp, task);
+            if (!whole) {
+                info.provenance.task_index = task.index;
+                info.provenance.task_count = task.count;
+            }
+            info.render_seconds = float(seconds);
+            info.scene = scene_path;
+            return info;
+        };
         auto render_share = [&](const RenderTask& task, const IterationCallback& after_iteration,
                                 double& seconds_before) {
             const statmc::layers::SampleRange range = task_samples(frame_spp, task);
@@ -278,16 +292,7 @@ int main(int argc, char** argv)
                 };
             const RenderStats stats =
                 render(scene, camera, share, *film, &g_interrupted, after_iteration, save);
-            OutputInfo info;
-            info.spp = film->sample_counts();
-            info.provenance.seed = seed;
-            info.provenance.range = range;
-            if (!task_text.empty() || task_total > 0) {
-                info.provenance.task_index = task.index;
-                info.provenance.task_count = task.count;
-            }
-            info.render_seconds = float(seconds_before + stats.seconds);
-            info.scene = scene_path;
+            const OutputInfo info = output_info(*film, task, seconds_before + stats.seconds);
             return std::make_tuple(std::move(film), stats, info);
         };
         auto write_denoised = [&](const OIIO::ImageBuf& image) {
@@ -335,13 +340,12 @@ int main(int argc, char** argv)
             IterationCallback after_iteration;
             if (every_iteration)
                 after_iteration = [&](int, const Film& f, const IterationStats&) {
-                    OutputInfo info;
-                    info.spp = f.sample_counts();
-                    info.provenance.seed = seed;
-                    info.render_seconds = float(
+                    OutputInfo info = output_info(
+                        f, task,
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
                             .count());
-                    info.scene = scene_path;
+                    // The samples so far, not the whole range.
+                    info.provenance.range->end = info.provenance.range->begin + info.spp.min;
                     const OIIO::ImageBuf image = make_output_image(f, info);
                     write_exr(image, output);
                     write_denoised(image);

@@ -34,6 +34,18 @@ struct Scratch {
     }
 };
 
+// Runs `command` through the shell with its output in `log`; returns the output and sets
+// `status` to the exit status.
+std::string shell_output(const std::string& command, const std::string& log, int& status)
+{
+    const int raw = std::system((command + " > '" + log + "' 2>&1").c_str());
+    status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    std::ifstream in(log);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
 FarmJob two_frames()
 {
     FarmJob job;
@@ -107,15 +119,10 @@ std::string run_element(Scratch& s, int k, int status)
                              true);
     s.write("scontrol", "#!/bin/sh\necho scontrol \"$@\"\n", true);
     const std::string script = s.write("render.sbatch", render_script(job));
-    const std::string log = (s.dir / "element.log").string();
-    const std::string cmd = "PATH='" + s.dir.string() + "':$PATH SLURM_ARRAY_JOB_ID=41 " +
-                            "SLURM_ARRAY_TASK_ID=" + std::to_string(k) + " bash '" + script +
-                            "' > '" + log + "' 2>&1";
-    std::system(cmd.c_str());
-    std::ifstream in(log);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
+    int ignored = 0;
+    return shell_output("PATH='" + s.dir.string() + "':$PATH SLURM_ARRAY_JOB_ID=41 " +
+                            "SLURM_ARRAY_TASK_ID=" + std::to_string(k) + " bash '" + script + "'",
+                        (s.dir / "element.log").string(), ignored);
 }
 
 TEST(FarmScripts, ElementRendersItsTaskAndIsRequeuedOnlyWhenKilled)
@@ -166,15 +173,8 @@ TEST(FarmJobRecord, RoundTripsAndRefusesOtherFiles)
 std::string farm_output(const Scratch& s, const std::string& args, const std::string& path,
                         int& status)
 {
-    const std::string log = (s.dir / "farm.log").string();
-    const int raw = std::system(("PATH='" + path + "' '" STATMC_FARM_EXE "' " + args + " > '" +
-                                 log + "' 2>&1")
-                                    .c_str());
-    status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    std::ifstream in(log);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
+    return shell_output("PATH='" + path + "' '" STATMC_FARM_EXE "' " + args,
+                        (s.dir / "farm.log").string(), status);
 }
 
 TEST(FarmCommand, SbatchMissingOrFailingIsAnErrorThatSaysSo)
