@@ -9,6 +9,7 @@
 
 #include "statmc/layers/atomic_file.h"
 #include "statmc/layers/file_error.h"
+#include "statmc/layers/openexr_check.h"
 #include "statmc/layers/storage_rules.h"
 
 namespace statmc::layers {
@@ -28,6 +29,11 @@ struct ForgetOnExit {
     std::string path;
     ~ForgetOnExit() { forget_cached(path); }
 };
+
+FileError unreadable(const std::string& path, const std::string& why)
+{
+    return FileError(path + ": not an OpenEXR/readable image: " + why);
+}
 
 [[noreturn]] void cannot_write(const std::string& path, const std::string& why)
 {
@@ -57,23 +63,43 @@ void check_target(const std::string& path)
         cannot_write(path, "it is a directory");
 }
 
-// Subimage `s` of an existing file; `subimages` is set to the file's count.
-OIIO::ImageBuf read_subimage(const std::string& path, int s, int& subimages)
+// Subimage `s` of an existing file opened for reading, after the header's checks (deep,
+// volume, memory budget) and, for s = 0, OpenEXR's check of the whole file; `subimages`
+// is set to the file's count.
+std::unique_ptr<OIIO::ImageInput> open_checked(const std::string& path, int s, int& subimages,
+                                               const ReadOptions& options)
 {
-    OIIO::ImageBuf image(path);
-    auto unreadable = [&] {
-        const std::string why = image.has_error() ? image.geterror() : OIIO::geterror();
-        return FileError(path + ": not an OpenEXR/readable image: " + why);
-    };
-    if (!image.init_spec(path, s, 0))
-        throw unreadable();
-    subimages = image.nsubimages();
-    if (image.deep())
+    auto in = OIIO::ImageInput::open(path);
+    if (!in)
+        throw unreadable(path, OIIO::geterror());
+    subimages = 1;
+    while (in->seek_subimage(subimages, 0))
+        ++subimages;
+    if (!in->seek_subimage(s, 0))
+        throw unreadable(path, in->geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.deep)
         throw FileError(path + ": deep images are not supported");
-    if (image.spec().depth > 1)
+    if (spec.depth > 1)
         throw FileError(path + ": volume images are not supported");
-    if (!image.read(s, 0, /*force=*/true, OIIO::TypeDesc::FLOAT))
-        throw unreadable();
+    check_read_budget(path, s, spec,
+                      options.max_memory > 0 ? options.max_memory : default_read_budget());
+    // The whole file once, after the header's own checks have had their say.
+    if (s == 0 && options.check_structure && is_openexr_file(path))
+        check_openexr_structure(path);
+    return in;
+}
+
+// Subimage `s` in float pixels, after open_checked. OIIO's ImageBuf reads it (so that the
+// file's own pixel types stay known as its nativespec, which --info reports); its forced
+// read goes through ImageInput, the header through the ImageCache.
+OIIO::ImageBuf read_subimage(const std::string& path, int s, int& subimages,
+                             const ReadOptions& options)
+{
+    open_checked(path, s, subimages, options);
+    OIIO::ImageBuf image(path);
+    if (!image.init_spec(path, s, 0) || !image.read(s, 0, /*force=*/true, OIIO::TypeDesc::FLOAT))
+        throw unreadable(path, image.has_error() ? image.geterror() : OIIO::geterror());
     return image;
 }
 
@@ -88,22 +114,30 @@ void check_readable(const std::string& path)
 
 }  // namespace
 
-OIIO::ImageBuf read_image_file(const std::string& path)
+void check_image_file(const std::string& path, const ReadOptions& options)
+{
+    check_readable(path);
+    int subimages = 0;
+    open_checked(path, 0, subimages, options);
+}
+
+OIIO::ImageBuf read_image_file(const std::string& path, const ReadOptions& options)
 {
     check_readable(path);
     const ForgetOnExit forget{path};
     int subimages = 0;
-    return read_subimage(path, 0, subimages);
+    return read_subimage(path, 0, subimages, options);
 }
 
-std::vector<OIIO::ImageBuf> read_image_subimages(const std::string& path)
+std::vector<OIIO::ImageBuf> read_image_subimages(const std::string& path,
+                                                 const ReadOptions& options)
 {
     check_readable(path);
     const ForgetOnExit forget{path};
     std::vector<OIIO::ImageBuf> images;
     int subimages = 1;
     for (int s = 0; s < subimages; ++s)
-        images.push_back(read_subimage(path, s, subimages));
+        images.push_back(read_subimage(path, s, subimages, options));
     // The file's count, as OIIO reports it on a single-part file's spec.
     images[0].specmod().attribute("oiio:subimages", subimages);
     return images;

@@ -50,8 +50,9 @@ const std::vector<Command>& command_table()
         colorconfig_command(), colorconvert_command(),  ociodisplay_command(),
         crop_command(),        resize_command(),        info_command(),
         verbose_command(),     stats_command(),         diff_command(),
-        echo_command(),        threads_command(),       list_ops_command(),
-        help_command(),        version_command(),
+        echo_command(),        threads_command(),       max_memory_command(),
+        check_inputs_command(), list_ops_command(),     help_command(),
+        version_command(),
     };
     return table;
 }

@@ -27,6 +27,7 @@ struct ToolContext {
     bool info_verbose = false;    ///< --info:verbose=1, as -v does for --info
     bool print_stats = false;     ///< --stats
     layers::WriteOptions output;  ///< -d, --compression
+    layers::ReadOptions input;    ///< --max-memory, --check-inputs
     std::string colorconfig;      ///< --colorconfig; empty = $OCIO, else OIIO's built-in
     /// The loaded colorconfig: made by --colorconfig, else by the first colour command
     /// (not const: ImageBufAlgo 2.4 takes a ColorConfig*).

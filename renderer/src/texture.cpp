@@ -6,6 +6,9 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include "statmc/layers/exr_files.h"
+#include "statmc/layers/file_error.h"
+
 namespace statmc::render {
 
 namespace {
@@ -42,6 +45,12 @@ ImageTexture::ImageTexture(int width, int height, std::vector<float> rgb)
 std::shared_ptr<const ImageTexture> ImageTexture::load(const std::string& path, bool gamma,
                                                        float scale)
 {
+    // The input checks of every statmc read first (a damaged EXR, a hostile header).
+    try {
+        layers::check_image_file(path);
+    } catch (const layers::FileError& e) {
+        throw std::runtime_error(std::string("cannot read texture: ") + e.what());
+    }
     OIIO::ImageBuf buf(path);
     if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT))
         throw std::runtime_error("cannot read texture '" + path + "': " + buf.geterror());

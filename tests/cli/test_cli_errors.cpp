@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -53,6 +54,25 @@ protected:
     TempDir dir;
     std::vector<std::string> inputs;
 };
+
+TEST_F(CliError, ReadLimitsAndChecks)
+{
+    const std::string in = input("in.exr", cli_statistics_image());
+    expect_failure({"--max-memory", "1K", in, "-o", out()},
+                   in + ": subimage 0 declares 24x16 pixels x 32 channels, 49.2 KB as float, more "
+                        "than the 1 KB one image may take (--max-memory)");
+    expect_failure({"--max-memory", "lots", in, "-o", out()},
+                   "--max-memory: expected a size such as 16G, 512M or a byte count, got 'lots'");
+    expect_failure({"--check-inputs", "yes", in, "-o", out()},
+                   "--check-inputs: expected 0 or 1, got 'yes'");
+    std::ifstream whole(in, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(whole)), std::istreambuf_iterator<char>());
+    const std::string cut = text_input("cut.exr", bytes.substr(0, bytes.size() / 2));
+    expect_failure({cut, "-o", out()}, cut + ": damaged OpenEXR file");
+    expect_failure({"--check-inputs", "0", cut, "-o", out()}, cut + ": ");
+    const CliResult ok = run_cli({"--max-memory", "1G", "--check-inputs", "0", in, "-o", out()});
+    EXPECT_EQ(ok.exit_code, 0) << ok.err;
+}
 
 TEST_F(CliError, MissingLayer)
 {
@@ -168,7 +188,9 @@ TEST_F(CliError, TruncatedExr)
     const auto in = input("in.exr", cli_statistics_image());
     const auto size = std::filesystem::file_size(in);
     std::filesystem::resize_file(in, size - size / 3);
-    expect_failure({in, "--denoise", "-o", out()}, in + ": not an OpenEXR/readable image: ");
+    expect_failure({in, "--denoise", "-o", out()}, in + ": damaged OpenEXR file: ");
+    expect_failure({"--check-inputs", "0", in, "--denoise", "-o", out()},
+                   in + ": not an OpenEXR/readable image: ");
     std::filesystem::resize_file(in, 64);  // cut inside the header
     expect_failure({in, "--denoise", "-o", out()}, in + ": not an OpenEXR/readable image: ");
 }

@@ -1,12 +1,16 @@
-// -i, -o and the settings for the outputs that follow (-d, --compression): images
-// between files and the stack.
+// -i, -o and the settings for the reads and writes that follow (--max-memory,
+// --check-inputs, -d, --compression): images between files and the stack.
+#include <cctype>
+#include <cstdint>
 #include <optional>
+#include <utility>
 
 #include "channel_selection.h"
 #include "image_report.h"
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/storage_rules.h"
 #include "statmc/tool/command_table.h"
+#include "statmc/tool/number_parsing.h"
 #include "statmc/tool/tool_error.h"
 #include "tool_context.h"
 
@@ -48,7 +52,59 @@ std::optional<OIIO::TypeDesc> output_type(const Invocation& inv)
     return type;
 }
 
+// "16G", "512M", "1.5G", "100000K" or plain bytes, as a byte count > 0.
+std::uint64_t byte_size(const std::string& text, const std::string& command)
+{
+    static const std::pair<char, double> units[] = {{'K', 1e3}, {'M', 1e6}, {'G', 1e9}, {'T', 1e12}};
+    double scale = 1;
+    std::string number = text;
+    for (const auto& [suffix, factor] : units)
+        if (!number.empty() && std::toupper(static_cast<unsigned char>(number.back())) == suffix) {
+            scale = factor;
+            number.pop_back();
+        }
+    const std::optional<double> value = try_parse_float(number);
+    if (!value || !(*value > 0) || *value * scale > 1e18)
+        throw ToolError(command + ": expected a size such as 16G, 512M or a byte count, got '" +
+                        text + "'");
+    return std::uint64_t(*value * scale);
+}
+
 }  // namespace
+
+Command max_memory_command()
+{
+    Command c;
+    c.name = "--max-memory";
+    c.arg_names = {"SIZE"};
+    c.summary = "Refuse to read an image whose header declares more than SIZE bytes of float "
+                "pixels (16G, 512M, ...) [default: half of this machine's memory]";
+    c.check = [](const Invocation& inv) { byte_size(inv.args[0], inv.name); };
+    c.run = [](ToolContext& ctx, const Invocation& inv) {
+        ctx.input.max_memory = byte_size(inv.args[0], inv.name);
+    };
+    return c;
+}
+
+Command check_inputs_command()
+{
+    Command c;
+    c.name = "--check-inputs";
+    c.arg_names = {"0|1"};
+    c.summary = "Check each OpenEXR input with OpenEXR's own file checker before reading it "
+                "(1, the default; it costs about 3.5x the read) or trust the files (0)";
+    auto flag = [](const Invocation& inv) {
+        const std::string& a = inv.args[0];
+        if (a != "0" && a != "1")
+            throw ToolError(inv.name + ": expected 0 or 1, got '" + a + "'");
+        return a == "1";
+    };
+    c.check = [flag](const Invocation& inv) { flag(inv); };
+    c.run = [flag](ToolContext& ctx, const Invocation& inv) {
+        ctx.input.check_structure = flag(inv);
+    };
+    return c;
+}
 
 Command input_command()
 {
@@ -67,7 +123,7 @@ Command input_command()
         const std::string& path = inv.args[0];
         if (ctx.verbose)
             ctx.out << "Reading " << path << "\n";
-        StackImage image{layers::read_image_subimages(path), path};
+        StackImage image{layers::read_image_subimages(path, ctx.input), path};
         if (ctx.print_info || ctx.print_stats)
             print_info(ctx.out, image, ctx.print_info && (ctx.verbose || ctx.info_verbose),
                        ctx.all_subimages);

@@ -3,6 +3,7 @@
 // and are renamed into place, so a failed write never leaves a partial or stray file.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -10,11 +11,27 @@
 
 namespace statmc::layers {
 
-/// Reads subimage 0 of `path` into local float pixels. Throws FileError "<path>: ...".
-OIIO::ImageBuf read_image_file(const std::string& path);
+/// What one read may take: a hostile header must not take the machine.
+struct ReadOptions {
+    /// The most bytes one subimage may take as float pixels; 0: half of physical memory.
+    std::uint64_t max_memory = 0;
+    /// Check an OpenEXR file with OpenEXR's own checker before reading its pixels. It costs
+    /// about 3.5 times the read (docs/reliability.md); turn it off for trusted files only.
+    bool check_structure = true;
+};
+
+/// Reads subimage 0 of `path` into local float pixels, after OpenEXR's own check of the
+/// file (an EXR) and the memory budget of `options` (openexr_check.h). Throws FileError
+/// "<path>: ...".
+OIIO::ImageBuf read_image_file(const std::string& path, const ReadOptions& options = {});
+
+/// The checks read_image_file makes before it reads pixels (subimage 0), for a host that
+/// reads the file another way (a texture through OIIO). Throws FileError "<path>: ...".
+void check_image_file(const std::string& path, const ReadOptions& options = {});
 
 /// Every subimage (EXR part) of `path`, each as read_image_file reads subimage 0.
-std::vector<OIIO::ImageBuf> read_image_subimages(const std::string& path);
+std::vector<OIIO::ImageBuf> read_image_subimages(const std::string& path,
+                                                 const ReadOptions& options = {});
 
 /// How a write may depart from the storage rules, when a user asks for it explicitly.
 struct WriteOptions {

@@ -25,6 +25,8 @@ Command input_command();
 Command output_command();
 Command data_format_command();
 Command compression_command();
+Command max_memory_command();
+Command check_inputs_command();
 // channel_commands.cpp
 Command ch_command();
 Command chnames_command();

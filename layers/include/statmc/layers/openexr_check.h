@@ -1,0 +1,29 @@
+// Input files are checked before their pixels are read (docs/reliability.md): OpenEXR's own
+// fuzz-hardened checker on the file's structure, and a memory budget on what its header
+// declares, so that a damaged or hostile file ends in a clear error naming it, never in a
+// crash, a hang or an allocation of the declared 100 GB.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <OpenImageIO/imageio.h>
+
+namespace statmc::layers {
+
+/// Whether `path` starts with OpenEXR's magic number.
+bool is_openexr_file(const std::string& path);
+
+/// Runs Imf::checkOpenEXRFile (reduced memory and time) on an OpenEXR file. Throws
+/// FileError "<path>: damaged OpenEXR file: ..." when it finds the file unreadable.
+void check_openexr_structure(const std::string& path);
+
+/// Half of this machine's physical memory: the default budget of one input image.
+std::uint64_t default_read_budget();
+
+/// Throws FileError naming the file, subimage, size and the limit when the pixels `spec`
+/// declares would take more than `max_bytes` as float (`--max-memory` sets it).
+void check_read_budget(const std::string& path, int subimage, const OIIO::ImageSpec& spec,
+                       std::uint64_t max_bytes);
+
+}  // namespace statmc::layers

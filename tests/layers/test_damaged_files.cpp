@@ -1,0 +1,94 @@
+// Damaged and hostile files end in a clear FileError naming them, before a crash, a hang or
+// a huge allocation can happen: OpenEXR's own check, the memory budget on what a header
+// declares, and deep images refused before their pixels are touched.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenImageIO/imagebuf.h>
+
+#include "statmc/layers/exr_files.h"
+#include "statmc/layers/file_error.h"
+#include "statmc/layers/statistics_layers.h"
+#include "temp_dir.h"
+#include "test_images.h"
+
+namespace statmc::test {
+namespace {
+
+std::string error_of(const std::string& path, const layers::ReadOptions& options = {})
+{
+    try {
+        layers::read_image_file(path, options);
+    } catch (const layers::FileError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+std::string bytes_of(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(DamagedFiles, TruncatedAnywhereIsAnErrorNamingTheFile)
+{
+    TempDir dir;
+    const std::string good = dir.file("good.exr");
+    layers::write_image_file(
+        layers::make_statistics_image(noisy_statistics(40, 30, 8, 3), {"", 8, 1}), good);
+    const std::string bytes = bytes_of(good);
+    ASSERT_TRUE(error_of(good).empty()) << error_of(good);
+    for (double fraction : {0.0, 0.001, 0.01, 0.1, 0.5, 0.9, 0.999}) {
+        const std::string cut = dir.file("cut.exr");
+        std::ofstream(cut, std::ios::binary | std::ios::trunc)
+            << bytes.substr(0, std::size_t(fraction * double(bytes.size())));
+        const std::string e = error_of(cut);
+        EXPECT_EQ(e.rfind(cut + ": ", 0), 0u) << fraction << ": " << e;
+        // Without OpenEXR's check, the reader itself still fails cleanly.
+        layers::ReadOptions trusting;
+        trusting.check_structure = false;
+        EXPECT_EQ(error_of(cut, trusting).rfind(cut + ": ", 0), 0u) << fraction;
+    }
+}
+
+TEST(DamagedFiles, AHugeDeclaredImageIsRefusedBeforeAnyPixelIsAllocated)
+{
+    TempDir dir;
+    const std::string huge = dir.file("huge.exr");
+    {  // A 100000 x 100000 header with its full offset table and no pixels written.
+        Imf::Header header(100000, 100000);
+        header.channels().insert("R", Imf::Channel(Imf::FLOAT));
+        header.channels().insert("G", Imf::Channel(Imf::FLOAT));
+        header.channels().insert("B", Imf::Channel(Imf::FLOAT));
+        Imf::OutputFile out(huge.c_str(), header);
+    }
+    layers::ReadOptions options;
+    options.max_memory = 1000000000;
+    EXPECT_EQ(error_of(huge, options),
+              huge + ": subimage 0 declares 100000x100000 pixels x 3 channels, 120 GB as float, "
+                     "more than the 1 GB one image may take (--max-memory)");
+    // The default budget (half of this machine's memory) refuses it too, before OpenEXR's
+    // check reads the file.
+    EXPECT_NE(error_of(huge).find("declares 100000x100000 pixels"), std::string::npos);
+}
+
+TEST(DamagedFiles, DeepImagesAreRefusedBeforeTheirSamplesAreRead)
+{
+    TempDir dir;
+    const std::string deep = dir.file("deep.exr");
+    OIIO::ImageSpec spec(4, 3, 1, OIIO::TypeDesc::FLOAT);
+    spec.deep = true;
+    OIIO::ImageBuf buf(spec);
+    ASSERT_TRUE(buf.write(deep)) << buf.geterror();
+    EXPECT_EQ(error_of(deep), deep + ": deep images are not supported");
+}
+
+}  // namespace
+}  // namespace statmc::test
