@@ -99,8 +99,23 @@ std::string task_elements(const std::string& render_job, std::size_t frame, int 
     return ids;
 }
 
+// A value that goes into an #SBATCH line: one line, no spaces, and no '%' (Slurm expands
+// it in --output paths).
+void require_sbatch_value(const std::string& option, const std::string& value)
+{
+    if (value.find_first_of("\n\r \t%") != std::string::npos)
+        throw std::runtime_error(option + " '" + value +
+                                 "': Slurm options and the job directory may not hold spaces, "
+                                 "line breaks or '%'");
+}
+
 int submit_job(FarmJob job, bool dry_run)
 {
+    require_sbatch_value("--partition", job.slurm.partition);
+    require_sbatch_value("--time", job.slurm.time);
+    require_sbatch_value("--mem", job.slurm.mem);
+    require_sbatch_value("--account", job.slurm.account);
+    require_sbatch_value("--job-dir", job.job_dir);
     const std::string render = job.job_dir + "/render.sbatch", merge = job.job_dir + "/merge.sbatch";
     if (dry_run) {
         std::printf("# %s\n%s\n# %s\n%s\n", render.c_str(), render_script(job).c_str(),
@@ -118,10 +133,20 @@ int submit_job(FarmJob job, bool dry_run)
     std::printf("statmc-farm: render job %s: %zu frame(s) x %d task(s)\n", record.render_job.c_str(),
                 job.frames.size(), job.tasks);
     for (std::size_t i = 0; i < job.frames.size(); ++i) {
-        record.merge_jobs.push_back(
-            submit(merge, {"--kill-on-invalid-dep=yes",
-                           "--dependency=afterok:" + task_elements(record.render_job, i, job.tasks)},
-                   {std::to_string(i)}));
+        try {
+            record.merge_jobs.push_back(submit(
+                merge,
+                {"--kill-on-invalid-dep=yes",
+                 "--dependency=afterok:" + task_elements(record.render_job, i, job.tasks)},
+                {std::to_string(i)}));
+        } catch (const std::runtime_error& e) {
+            // No job left behind that nothing follows: the renders and merges go too.
+            std::vector<std::string> cancel{"scancel", record.render_job};
+            cancel.insert(cancel.end(), record.merge_jobs.begin(), record.merge_jobs.end());
+            run_command(cancel);
+            throw std::runtime_error(std::string(e.what()) + "; cancelled the jobs submitted so far (" +
+                                     record.render_job + " and its merges)");
+        }
         std::printf("statmc-farm: merge job %s -> %s\n", record.merge_jobs.back().c_str(),
                     job.frames[i].output.c_str());
     }

@@ -100,6 +100,10 @@ std::string render_script(const FarmJob& job)
     s += "k=${SLURM_ARRAY_TASK_ID:?run this script with sbatch}\n";
     s += "frame=$((k / " + n + ")); task=$((k % " + n + "))\n";
     s += "attempt=$((${SLURM_RESTART_COUNT:-0} + 1))\n";
+    // Slurm's SIGTERM (time limit, preemption, scancel) reaches this shell too: with a trap
+    // it waits for the render, which saves its checkpoint and exits 130, and goes on below.
+    s += "trap 'echo \"statmc-farm: $(date -Is) SIGTERM: the render saves its checkpoint\"' "
+         "TERM INT\n";
     s += "echo \"statmc-farm: $(date -Is) ${SLURM_ARRAY_JOB_ID}_${k} on $(hostname):\"\\\n"
          "     \"task $task/" + n + " of ${scenes[$frame]}, attempt $attempt\"\n";
     s += shell_quote(job.render_exe) + " \"${scenes[$frame]}\" -o \"${outputs[$k]}\" --task \"$task/" +
@@ -141,7 +145,7 @@ std::string merge_script(const FarmJob& job)
     s += shell_quote(job.statmc_exe) + " \"${tasks[@]:$((frame * " + n + ")):" + n +
          "}\" --merge -o \"${outputs[$frame]}\"";
     if (job.denoise)
-        s += " --denoise" + job.denoise_modifiers + " -o \"${denoised[$frame]}\"";
+        s += " " + shell_quote("--denoise" + job.denoise_modifiers) + " -o \"${denoised[$frame]}\"";
     s += "\n";
     return s;
 }

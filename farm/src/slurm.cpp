@@ -65,8 +65,14 @@ void drain(int out_fd, int err_fd, std::string& out, std::string& err)
 CommandResult run_command(const std::vector<std::string>& argv)
 {
     int out_pipe[2], err_pipe[2];
-    if (::pipe2(out_pipe, O_CLOEXEC) != 0 || ::pipe2(err_pipe, O_CLOEXEC) != 0)
+    if (::pipe2(out_pipe, O_CLOEXEC) != 0)
         throw std::runtime_error(argv[0] + ": cannot start: " + std::strerror(errno));
+    if (::pipe2(err_pipe, O_CLOEXEC) != 0) {
+        const int error = errno;
+        ::close(out_pipe[0]);
+        ::close(out_pipe[1]);
+        throw std::runtime_error(argv[0] + ": cannot start: " + std::strerror(error));
+    }
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_adddup2(&actions, out_pipe[1], 1);
@@ -117,8 +123,14 @@ std::map<std::string, std::string> queued_states(const std::vector<std::string>&
     const CommandResult r =
         run_command({"squeue", "-h", "-r", "-j", joined(job_ids, ","), "-o", "%i %T"});
     std::map<std::string, std::string> states;
-    if (r.status != 0)  // squeue fails for job ids it has forgotten: none queued
-        return states;
+    if (r.status != 0) {
+        // squeue refuses job ids it has forgotten (all ended): nothing is queued. Anything
+        // else (the controller not answering) is no answer at all.
+        if (r.err.find("Invalid job id") != std::string::npos)
+            return states;
+        throw std::runtime_error("squeue failed (exit status " + std::to_string(r.status) +
+                                 "): " + trimmed(r.err));
+    }
     std::istringstream lines(r.out);
     std::string id, state;
     while (lines >> id >> state)

@@ -1,11 +1,14 @@
 #include "statmc/layers/atomic_file.h"
 
+#include <atomic>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include "statmc/layers/file_error.h"
@@ -47,13 +50,46 @@ fs::path directory_of(const fs::path& target)
     return target.has_parent_path() ? target.parent_path() : fs::path(".");
 }
 
-// A hidden name in the target's directory, so that the final rename never crosses
-// file systems and a crash leaves nothing that looks like the target.
+std::string host_name()
+{
+    char name[256] = {};
+    ::gethostname(name, sizeof name - 1);
+    return name;
+}
+
+// ".out.exr.statmc-tmp-<host>-": what every temporary of `target` written on this host
+// starts with.
+std::string temporary_prefix(const fs::path& target)
+{
+    return "." + target.filename().string() + ".statmc-tmp-" + host_name() + "-";
+}
+
+// A hidden name in the target's directory, so that the final rename never crosses file
+// systems and a crash leaves nothing that looks like the target; host and process in the
+// name, so that writers on a shared file system never collide.
 fs::path temporary_name(const fs::path& target)
 {
-    static int serial = 0;
-    return directory_of(target) / ("." + target.filename().string() + ".statmc-tmp-" +
-                                   std::to_string(::getpid()) + "-" + std::to_string(serial++));
+    static std::atomic<int> serial{0};
+    return directory_of(target) / (temporary_prefix(target) + std::to_string(::getpid()) + "-" +
+                                   std::to_string(serial++));
+}
+
+// Temporaries of `target` that a process on this host left when it was killed (SIGKILL
+// gives no chance to clean up): the next write of the target removes them.
+void remove_stale_temporaries(const fs::path& target)
+{
+    const std::string prefix = temporary_prefix(target);
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(directory_of(target), ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.compare(0, prefix.size(), prefix) != 0)
+            continue;
+        const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+        if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) {
+            std::error_code ignored;
+            fs::remove(entry.path(), ignored);
+        }
+    }
 }
 
 // fsync of a file or directory by name; errno's text on failure, "" on success.
@@ -74,6 +110,7 @@ void write_file_atomically(const std::string& target,
                            const std::function<void(const std::string& temporary)>& write)
 {
     const fs::path path(target);
+    remove_stale_temporaries(path);
     TemporaryFile temporary(temporary_name(path));
     write(temporary.path().string());
     // On disk before the rename: after a crash the target is the old file or the new one.

@@ -330,7 +330,7 @@ int main(int argc, char** argv)
                              parts.size(), task_total, output.c_str());
                 return 130;
             }
-            OIIO::ImageBuf merged = task_total == 1 ? parts[0] : merge_tasks(parts);
+            OIIO::ImageBuf merged = merge_tasks(parts);
             merged.specmod().attribute(statmc::layers::attr::kRenderTime, float(stats.seconds));
             merged.specmod().attribute(statmc::layers::attr::kScene, scene_path);
             write_exr(merged, output);
@@ -390,7 +390,8 @@ int main(int argc, char** argv)
                         100.0 * double(t.cycles) / double(stats.tile_cycles),
                         100.0 - 100.0 * double(t.cycles) / double(stats.tile_cycles));
         }
-        return stats.interrupted ? 130 : 0;
+        // A stop that came after the last sample changed nothing: the output is whole.
+        return stats.interrupted && !stats.complete ? 130 : 0;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "statmc-render: error: out of memory rendering %s\n",
                      scene_path.c_str());

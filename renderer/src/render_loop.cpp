@@ -57,15 +57,33 @@ BounceLayout bounce_layout_for(const IntegratorSettings& settings, bool record_a
 
 namespace {
 
+// Flush-to-zero and denormals-are-zero for the scope's lifetime; the caller's mode after.
+class FlushDenormals {
+public:
+    FlushDenormals() : saved_(_mm_getcsr())
+    {
+        _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+        _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+    }
+    ~FlushDenormals() { _mm_setcsr(saved_); }
+    FlushDenormals(const FlushDenormals&) = delete;
+    FlushDenormals& operator=(const FlushDenormals&) = delete;
+
+private:
+    unsigned int saved_;
+};
+
 // How many samples per pixel the next pass takes when the render checkpoints: about a
-// quarter of the checkpoint interval at the rate measured so far, so that a stop or a
-// checkpoint waits at most that long; one sample per pixel before anything is measured.
+// quarter of the checkpoint interval, and at most 5 s (a scheduler's SIGTERM is followed by
+// SIGKILL after its grace period, 30 s in Slurm by default), at the rate measured so far;
+// one sample per pixel before anything is measured.
 int pass_samples(double checkpoint_seconds, double samples_per_second, std::size_t npix,
                  std::uint64_t remaining)
 {
     double spp = 1;
     if (samples_per_second > 0)
-        spp = std::floor(0.25 * checkpoint_seconds * samples_per_second / double(npix));
+        spp = std::floor(std::min(0.25 * checkpoint_seconds, 5.0) * samples_per_second /
+                         double(npix));
     return int(std::clamp(spp, 1.0, double(std::min<std::uint64_t>(remaining, 1 << 20))));
 }
 
@@ -112,9 +130,10 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
             if (skippable && cancel && cancel->load())
                 return;
             const std::uint64_t t0 = __rdtsc();
-            // Denormals flushed on every worker, so no pixel depends on the thread it ran on.
-            _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-            _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+            // Denormals flushed on every worker, so no pixel depends on the thread it ran on;
+            // and only here, so that what runs after the render (the output, a merge, the
+            // estimates' filter) never depends on which threads rendered tiles.
+            const FlushDenormals flush;
             const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
             const int x1 = std::min(x0 + kTile, settings.width),
                       y1 = std::min(y0 + kTile, settings.height);
@@ -223,7 +242,8 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
                 break;
             }
             next += std::uint64_t(pass);
-            if (in_passes && cancel && cancel->load()) {
+            // A stop on the last pass finds the render complete: it is written, not saved.
+            if (in_passes && cancel && cancel->load() && next < schedule_total) {
                 save(next);
                 rs.interrupted = true;
                 stopped = true;

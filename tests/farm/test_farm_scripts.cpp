@@ -137,6 +137,27 @@ TEST(FarmScripts, ElementRendersItsTaskAndIsRequeuedOnlyWhenKilled)
     EXPECT_FALSE(contains(error, "scontrol")) << "a scene error is not retried: " << error;
 }
 
+TEST(FarmScripts, SlurmsSigtermLetsTheRenderSaveAndRequeues)
+{
+    // Slurm signals the whole job: the script's shell and the render. The render saves its
+    // checkpoint and exits 130; the script must live to requeue it.
+    Scratch s;
+    FarmJob job = two_frames();
+    job.render_exe = s.write("render.sh", "#!/bin/bash\ntrap 'echo saved; exit 130' TERM\n"
+                                          "sleep 5 & wait\n",
+                             true);
+    s.write("scontrol", "#!/bin/sh\necho scontrol \"$@\"\n", true);
+    const std::string script = s.write("render.sbatch", render_script(job));
+    int status = 0;
+    const std::string out = shell_output(
+        "(PATH='" + s.dir.string() + "':$PATH SLURM_ARRAY_JOB_ID=41 SLURM_ARRAY_TASK_ID=2 "
+        "setsid bash '" + script + "' & pid=$!; sleep 1; kill -TERM -$pid; wait $pid)",
+        (s.dir / "term.log").string(), status);
+    EXPECT_TRUE(contains(out, "SIGTERM: the render saves its checkpoint")) << out;
+    EXPECT_TRUE(contains(out, "saved")) << out;
+    EXPECT_TRUE(contains(out, "scontrol requeue 41_2")) << out;
+}
+
 TEST(FarmScripts, MergeTakesTheFramesTasksInOrderAndDenoises)
 {
     Scratch s;
@@ -146,7 +167,7 @@ TEST(FarmScripts, MergeTakesTheFramesTasksInOrderAndDenoises)
     const std::string merge = merge_script(job);
     EXPECT_EQ(bash_syntax_check(s, merge), 0) << merge;
     EXPECT_TRUE(contains(merge, "\"${tasks[@]:$((frame * 3)):3}\" --merge -o \"${outputs[$frame]}\" "
-                                "--denoise:method=classic -o \"${denoised[$frame]}\""))
+                                "'--denoise:method=classic' -o \"${denoised[$frame]}\""))
         << merge;
     EXPECT_TRUE(contains(merge, "'/o/shot.0008.denoised.exr'"));
 }

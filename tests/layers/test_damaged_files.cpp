@@ -7,6 +7,9 @@
 #include <fstream>
 #include <iterator>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfOutputFile.h>
@@ -88,6 +91,30 @@ TEST(DamagedFiles, DeepImagesAreRefusedBeforeTheirSamplesAreRead)
     OIIO::ImageBuf buf(spec);
     ASSERT_TRUE(buf.write(deep)) << buf.geterror();
     EXPECT_EQ(error_of(deep), deep + ": deep images are not supported");
+}
+
+TEST(InterruptedWrites, TemporariesOfKilledWritersAreRemovedByTheNextWrite)
+{
+    TempDir dir;
+    const std::string out = dir.file("out.exr");
+    // A temporary as a writer killed by SIGKILL leaves it: this host, a process now gone.
+    const pid_t child = ::fork();
+    if (child == 0)
+        ::_exit(0);
+    ::waitpid(child, nullptr, 0);
+    char host[256] = {};
+    ::gethostname(host, sizeof host - 1);
+    const std::string stale = dir.file(".out.exr.statmc-tmp-" + std::string(host) + "-" +
+                                       std::to_string(child) + "-0");
+    const std::string alive = dir.file(".out.exr.statmc-tmp-" + std::string(host) + "-" +
+                                       std::to_string(::getpid()) + "-99");
+    std::ofstream(stale) << "half a file";
+    std::ofstream(alive) << "another writer's, still running";
+    layers::write_image_file(
+        layers::make_statistics_image(noisy_statistics(8, 6, 4, 1), {"", 4, 1}), out);
+    EXPECT_FALSE(std::filesystem::exists(stale));
+    EXPECT_TRUE(std::filesystem::exists(alive)) << "a live writer's temporary is left alone";
+    EXPECT_TRUE(error_of(out).empty()) << error_of(out);
 }
 
 }  // namespace

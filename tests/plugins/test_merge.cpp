@@ -272,6 +272,22 @@ TEST(Merge, RefusesInconsistentAndIncompleteTaskSets)
               std::string::npos);
 }
 
+TEST(Merge, RefusesATaskFileThatIsNotItsTasksShare)
+{
+    // Task 1 of 2 written after 5 of its 10 samples (--write-every-iteration): its header
+    // says samples 10..14 and statmc:spp 5, complete in itself, but not task 1's share.
+    const FarmRender farm;
+    OIIO::ImageBuf early = layers::make_statistics_image(farm.tasks[1].planes(), {"", 5, 5});
+    layers::write_sample_provenance(early.specmod(), {5, layers::SampleRange{10, 15}, 1, 2});
+    const std::vector<OIIO::ImageBuf> parts = {task_image(farm, 0, 2), named(early, "early.exr")};
+    EXPECT_NE(merge_error(parts).find("the tasks do not split one frame of 15 samples: part 0 (" +
+                                      path("farm-task0-of-2-seed5.exr") +
+                                      ": seed 5, samples 0..9, task 0/2) holds other samples "
+                                      "than task 0's share (0..6)"),
+              std::string::npos)
+        << merge_error(parts);
+}
+
 TEST(Merge, AllowPartialMergesWhatIsThereAndCountsTheMissing)
 {
     const FarmRender farm;
@@ -284,6 +300,8 @@ TEST(Merge, AllowPartialMergesWhatIsThereAndCountsTheMissing)
     EXPECT_EQ(merged.spec().get_int_attribute(layers::attr::kSpp), 20);
     EXPECT_EQ(merged.spec().find_attribute(layers::attr::kSampleBegin), nullptr)
         << "samples 0..9 and 20..29 are not one range";
+    EXPECT_EQ(merged.spec().find_attribute(layers::attr::kSeed), nullptr)
+        << "a seed without its range would read back as samples 0..19";
     const std::vector<OIIO::ImageBuf> one = {task_image(farm, 3, 4)};
     const OIIO::ImageBuf alone = merge(pointers(one), options);
     ASSERT_FALSE(alone.has_error()) << alone.geterror();

@@ -1,6 +1,7 @@
 #include "statmc/merge/merge_provenance.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 
@@ -13,6 +14,9 @@ namespace statmc {
 namespace {
 
 using Parts = std::vector<const OIIO::ImageBuf*>;
+
+// More tasks than this is a damaged header, not a split: the task table stays small.
+constexpr int kMaxTasks = 1 << 20;
 
 std::string label(const Parts& parts, std::size_t k)
 {
@@ -78,6 +82,9 @@ MergedProvenance check_merge_provenance(const Parts& parts, bool allow_partial)
             continue;
         if (!first_task) {
             first_task = k;
+            if (*p.task_count > kMaxTasks)
+                throw std::invalid_argument(label(parts, k, p) + ": a task count above " +
+                                            std::to_string(kMaxTasks) + " is not a farm split");
             holder.resize(std::size_t(*p.task_count));
         }
         const layers::SampleProvenance& t = all[*first_task];
@@ -118,6 +125,29 @@ MergedProvenance check_merge_provenance(const Parts& parts, bool allow_partial)
             "); give them all, or merge with :allow_partial=1");
     }
 
+    // A complete set holds each task's own share of [0, S): a task file written before its
+    // task ended (statmc-render --write-every-iteration) holds less and is no task's share.
+    if (first_task && result.missing_tasks.empty() && result.partial_tasks.empty()) {
+        int total = 0;
+        for (const auto& slot : holder)
+            total = std::max(total, all[*slot].range->end);
+        const int n = int(holder.size());
+        for (int i = 0; i < n; ++i) {
+            const layers::SampleRange want{int(std::int64_t(i) * total / n),
+                                           int(std::int64_t(i + 1) * total / n)};
+            const layers::SampleRange got = *all[*holder[std::size_t(i)]].range;
+            if (got.begin != want.begin || got.end != want.end)
+                throw std::invalid_argument(
+                    "the tasks do not split one frame of " + std::to_string(total) +
+                    " samples: " +
+                    label(parts, *holder[std::size_t(i)], all[*holder[std::size_t(i)]]) +
+                    " holds other samples than task " + std::to_string(i) + "'s share (" +
+                    std::to_string(want.begin) + ".." + std::to_string(want.end - 1) +
+                    "). A task file written before its task ended (--write-every-iteration), "
+                    "or tasks of different --spp?");
+        }
+    }
+
     // The merge's own provenance: the common seed, and the sample range when the parts'
     // ranges join into one.
     const bool one_seed = std::all_of(all.begin(), all.end(), [&](const auto& p) {
@@ -136,6 +166,8 @@ MergedProvenance check_merge_provenance(const Parts& parts, bool allow_partial)
             joined = ranges[i].begin == ranges[i - 1].end;
         if (joined)
             result.merged.range = layers::SampleRange{ranges.front().begin, ranges.back().end};
+        else  // a seed without its range would read back as samples [0, spp)
+            result.merged.seed.reset();
     }
     return result;
 }

@@ -9,7 +9,8 @@
 
 namespace statmc::layers {
 
-/// Runs `write(temporary)` on a hidden name next to `target`, flushes the file to disk
+/// Removes the temporaries of `target` that killed processes of this host left, then runs
+/// `write(temporary)` on a hidden name next to `target`, flushes the file to disk
 /// (fsync) and renames it onto `target`. When `write` throws or a step fails, the
 /// temporary is removed and `target` keeps its previous contents. Failures of the flush or
 /// rename throw FileError "<target>: cannot write: ..."; what `write` throws passes through.

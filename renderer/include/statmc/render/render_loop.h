@@ -46,7 +46,7 @@ struct RenderSettings {
     /// Samples per pixel the film already holds (a resumed checkpoint): the schedule
     /// carries on after them, as if it had never stopped.
     std::uint64_t samples_done = 0;
-    /// > 0: the render goes in passes of about a quarter of this many seconds (whole
+    /// > 0: the render goes in passes of about a quarter of this many seconds, 5 s at most (whole
     /// iterations when ACRR/SMIS steer), stops only between passes, and calls the
     /// checkpoint callback when this many seconds have passed since the last one and when
     /// it stops early.
