@@ -9,7 +9,7 @@ build=$(cd "${1:-build}" && pwd)
 render=$build/renderer/statmc-render
 farm=$build/farm/statmc-farm
 scene=$(cd .. && pwd)/shared/scenes/cornell-box/scene.pbrt
-work=$(mktemp -d /tmp/statmc-farm-bench.XXXXXX)
+work=$(mktemp -d -t statmc-farm-bench.XXXXXX)
 source tests/farm/local_slurm.sh
 trap 'stop_local_slurm; rm -rf "$work"' EXIT
 

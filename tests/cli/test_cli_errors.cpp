@@ -3,7 +3,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -65,8 +64,7 @@ TEST_F(CliError, ReadLimitsAndChecks)
                    "--max-memory: expected a size such as 16G, 512M or a byte count, got 'lots'");
     expect_failure({"--check-inputs", "yes", in, "-o", out()},
                    "--check-inputs: expected 0 or 1, got 'yes'");
-    std::ifstream whole(in, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(whole)), std::istreambuf_iterator<char>());
+    const std::string bytes = file_bytes(in);
     const std::string cut = text_input("cut.exr", bytes.substr(0, bytes.size() / 2));
     expect_failure({cut, "-o", out()}, cut + ": damaged OpenEXR file");
     expect_failure({"--check-inputs", "0", cut, "-o", out()}, cut + ": ");

@@ -16,7 +16,7 @@ scene=$(cd "$here/../../.." && pwd)/shared/scenes/cornell-box/scene.pbrt
 [[ -f "$scene" ]] || { echo "test_slurm_farm: $scene not found (../shared must sit beside the checkout)" >&2; exit 1; }
 [[ $(id -u) -eq 0 ]] || { echo "test_slurm_farm: must run as root (slurmd starts jobs as their owner)" >&2; exit 1; }
 
-work=$(mktemp -d /tmp/statmc-slurm-test.XXXXXX)
+work=$(mktemp -d -t statmc-slurm-test.XXXXXX)
 source "$here/local_slurm.sh"
 finish()
 {

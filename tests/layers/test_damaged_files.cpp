@@ -5,7 +5,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -34,19 +33,13 @@ std::string error_of(const std::string& path, const layers::ReadOptions& options
     return "";
 }
 
-std::string bytes_of(const std::string& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 TEST(DamagedFiles, TruncatedAnywhereIsAnErrorNamingTheFile)
 {
     TempDir dir;
     const std::string good = dir.file("good.exr");
     layers::write_image_file(
         layers::make_statistics_image(noisy_statistics(40, 30, 8, 3), {"", 8, 1}), good);
-    const std::string bytes = bytes_of(good);
+    const std::string bytes = file_bytes(good);
     ASSERT_TRUE(error_of(good).empty()) << error_of(good);
     for (double fraction : {0.0, 0.001, 0.01, 0.1, 0.5, 0.9, 0.999}) {
         const std::string cut = dir.file("cut.exr");

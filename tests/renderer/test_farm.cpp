@@ -9,7 +9,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <thread>
 #include <vector>
 
@@ -20,10 +19,13 @@
 #include <OpenImageIO/imagebuf.h>
 
 #include "renderer_test_support.h"
+#include "temp_dir.h"
 #include "statmc/render/render_task.h"
 
 namespace statmc::render::test {
 namespace {
+
+using statmc::test::file_bytes;
 
 namespace fs = std::filesystem;
 
@@ -68,12 +70,6 @@ void expect_bitwise_equal(const std::string& a, const std::string& b)
     ASSERT_EQ(px.size(), py.size());
     EXPECT_EQ(0, std::memcmp(px.data(), py.data(), px.size() * sizeof(float)))
         << a << " and " << b << " differ";
-}
-
-std::string bytes_of(const std::string& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // Starts `args` in the background (stdout/stderr appended to `log`); returns its pid.
@@ -231,8 +227,8 @@ TEST(Farm, RenderKilledAtAnyMomentResumesBitwiseEqual)
     }
     EXPECT_GE(kills, 1) << "the render finished before it could be killed: make it longer";
     const pid_t last = start(args, log);
-    ASSERT_EQ(wait_exit(last), 0) << bytes_of(log);
-    EXPECT_NE(bytes_of(log).find("resuming from checkpoint"), std::string::npos) << bytes_of(log);
+    ASSERT_EQ(wait_exit(last), 0) << file_bytes(log);
+    EXPECT_NE(file_bytes(log).find("resuming from checkpoint"), std::string::npos) << file_bytes(log);
     EXPECT_FALSE(fs::exists(checkpoint)) << "removed once the output holds the render";
     expect_bitwise_equal(out, straight);
 }
@@ -246,8 +242,8 @@ std::string stopped_render(const FarmScene& f, const std::string& out)
                             log);
     EXPECT_TRUE(wait_for_new_file(checkpoint, fs::file_time_type::min(), pid));
     ::kill(pid, SIGTERM);
-    EXPECT_EQ(wait_exit(pid), 130) << bytes_of(log);
-    EXPECT_NE(bytes_of(log).find("run again with --resume"), std::string::npos) << bytes_of(log);
+    EXPECT_EQ(wait_exit(pid), 130) << file_bytes(log);
+    EXPECT_NE(file_bytes(log).find("run again with --resume"), std::string::npos) << file_bytes(log);
     EXPECT_FALSE(fs::exists(out)) << "a stopped task writes no output that could be merged";
     return checkpoint;
 }
@@ -257,7 +253,7 @@ TEST(Farm, CheckpointsOfOtherRendersAndDamagedOnesAreRefused)
     const FarmScene f;
     const std::string out = f.dir.file("out.exr");
     const std::string checkpoint = stopped_render(f, out);
-    const std::string good = bytes_of(checkpoint);
+    const std::string good = file_bytes(checkpoint);
     const std::string base = quoted(f.scene) + " --spp 100000 --threads 2 -q --resume -o " + quoted(out);
     const std::pair<std::string, std::string> others[] = {
         {" --resolution 24x16 --seed 4", "(seed: '3' in the checkpoint, '4' in this render)"},
@@ -274,7 +270,7 @@ TEST(Farm, CheckpointsOfOtherRendersAndDamagedOnesAreRefused)
                   std::string::npos)
             << r.output;
         EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
-        EXPECT_EQ(bytes_of(checkpoint), good) << "a refused checkpoint is left as it was";
+        EXPECT_EQ(file_bytes(checkpoint), good) << "a refused checkpoint is left as it was";
     }
     const std::string same = base + " --resolution 24x16 --seed 3";
     std::ofstream(checkpoint, std::ios::binary | std::ios::trunc) << good.substr(0, good.size() / 2);
@@ -297,7 +293,7 @@ TEST(Farm, CheckpointThatCannotBeWrittenKeepsThePreviousOne)
     const FarmScene f;
     const std::string out = f.dir.file("out.exr"), straight = f.dir.file("straight.exr");
     const std::string checkpoint = stopped_render(f, out);
-    const std::string previous = bytes_of(checkpoint);
+    const std::string previous = file_bytes(checkpoint);
     // A file size limit far below a checkpoint's makes every write fail as a full disk
     // would (EFBIG instead of ENOSPC; SIGXFSZ ignored so that write() returns the error).
     const std::string log = f.dir.file("full.log");
@@ -310,15 +306,15 @@ TEST(Farm, CheckpointThatCannotBeWrittenKeepsThePreviousOne)
         ::execl("/bin/sh", "sh", "-c", limited.c_str(), static_cast<char*>(nullptr));
         ::_exit(127);
     }
-    for (int i = 0; i < 3000 && bytes_of(log).find("warning") == std::string::npos; ++i)
+    for (int i = 0; i < 3000 && file_bytes(log).find("warning") == std::string::npos; ++i)
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     ::kill(pid, SIGTERM);
-    EXPECT_EQ(wait_exit(pid), 130) << bytes_of(log);
-    EXPECT_NE(bytes_of(log).find("cannot write checkpoint: File too large; the previous "
+    EXPECT_EQ(wait_exit(pid), 130) << file_bytes(log);
+    EXPECT_NE(file_bytes(log).find("cannot write checkpoint: File too large; the previous "
                                  "checkpoint is kept"),
               std::string::npos)
-        << bytes_of(log);
-    EXPECT_EQ(bytes_of(checkpoint), previous);
+        << file_bytes(log);
+    EXPECT_EQ(file_bytes(checkpoint), previous);
     for (const auto& entry : fs::directory_iterator(fs::path(out).parent_path()))
         EXPECT_EQ(entry.path().filename().string().find(".statmc-tmp"), std::string::npos)
             << "left behind: " << entry.path();

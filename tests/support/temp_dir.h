@@ -24,4 +24,7 @@ private:
     std::filesystem::path path_;
 };
 
+/// The bytes of the file at `path` ("" when it cannot be read).
+std::string file_bytes(const std::string& path);
+
 }  // namespace statmc::test
