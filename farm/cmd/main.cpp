@@ -4,7 +4,6 @@
 // (docs/farm.md). Slurm does the scheduling, requeueing and dependencies.
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -79,13 +78,7 @@ std::vector<Frame> frames_of(const std::vector<std::string>& scenes, const std::
 
 void write_script(const std::string& path, const std::string& text)
 {
-    statmc::layers::write_file_atomically(path, [&](const std::string& temporary) {
-        std::ofstream out(temporary, std::ios::binary);
-        out << text;
-        out.close();
-        if (!out)
-            throw std::runtime_error(path + ": cannot write");
-    });
+    statmc::layers::write_text_file_atomically(path, text);
     fs::permissions(path, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
                     fs::perm_options::add);
 }

@@ -27,14 +27,7 @@ void write_job_record(const JobRecord& record)
         text << "frame\t" << f.number << "\t" << record.merge_jobs.at(i) << "\t" << f.scene << "\t"
              << f.output << "\n";
     }
-    const std::string path = job_record_path(record.job.job_dir);
-    layers::write_file_atomically(path, [&](const std::string& temporary) {
-        std::ofstream out(temporary, std::ios::binary);
-        out << text.str();
-        out.close();
-        if (!out)
-            throw std::runtime_error(path + ": cannot write the job record");
-    });
+    layers::write_text_file_atomically(job_record_path(record.job.job_dir), text.str());
 }
 
 JobRecord read_job_record(const std::string& job_dir)

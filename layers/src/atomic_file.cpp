@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <system_error>
 
 #include <fcntl.h>
@@ -122,6 +123,17 @@ void write_file_atomically(const std::string& target,
         cannot_write(target, ec.message());
     temporary.release();
     sync_path(directory_of(path), O_RDONLY | O_DIRECTORY);  // the rename itself; best effort
+}
+
+void write_text_file_atomically(const std::string& target, const std::string& text)
+{
+    write_file_atomically(target, [&](const std::string& temporary) {
+        std::ofstream out(temporary, std::ios::binary);
+        out << text;
+        out.close();
+        if (!out)
+            cannot_write(target, std::strerror(errno));
+    });
 }
 
 }  // namespace statmc::layers

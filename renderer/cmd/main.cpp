@@ -70,14 +70,6 @@ CLI::Validator integer_at_least(int minimum)
         "INT>=" + std::to_string(minimum));
 }
 
-int total_spp(const std::vector<int>& schedule)
-{
-    int total = 0;
-    for (int n : schedule)
-        total += n;
-    return total;
-}
-
 // What else, besides scene, seed, resolution and task, makes two renders' films
 // incompatible: a checkpoint's settings line.
 std::string settings_text(const statmc::render::RenderSettings& s, bool bounce_layers)
@@ -218,7 +210,7 @@ int main(int argc, char** argv)
                                       resolution.empty() ? desc.film_where : "--resolution");
         settings.progress = !quiet && Progress::stderr_is_terminal();
 
-        const int frame_spp = total_spp(settings.schedule);
+        const int frame_spp = int(schedule_samples(settings.schedule));
         task_samples(frame_spp, task_total > 0 ? RenderTask{task_total - 1, task_total} : task);
 
         Scene scene(desc);

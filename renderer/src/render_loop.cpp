@@ -33,6 +33,14 @@ std::vector<int> schedule_for_spp(int total_spp)
     return s;
 }
 
+std::uint64_t schedule_samples(const std::vector<int>& schedule)
+{
+    std::uint64_t total = 0;
+    for (int n : schedule)
+        total += std::uint64_t(n);
+    return total;
+}
+
 std::vector<int> schedule_for_iterations(int iterations)
 {
     std::vector<int> s;
@@ -102,9 +110,7 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
               tiles_y = (settings.height + kTile - 1) / kTile;
     const std::size_t npix = std::size_t(settings.width) * settings.height;
 
-    std::uint64_t schedule_total = 0;
-    for (int n : settings.schedule)
-        schedule_total += std::uint64_t(n);
+    const std::uint64_t schedule_total = schedule_samples(settings.schedule);
     if (settings.samples_done > schedule_total)
         throw std::invalid_argument("render: the film already holds more samples than the schedule");
     Progress progress((schedule_total - settings.samples_done) * npix, settings.progress);

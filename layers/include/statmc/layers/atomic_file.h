@@ -17,4 +17,8 @@ namespace statmc::layers {
 void write_file_atomically(const std::string& target,
                            const std::function<void(const std::string& temporary)>& write);
 
+/// write_file_atomically for a text file (a script, a record): `text` as its whole content.
+/// Throws FileError "<target>: cannot write: ..." on failure.
+void write_text_file_atomically(const std::string& target, const std::string& text);
+
 }  // namespace statmc::layers

@@ -22,6 +22,8 @@ namespace statmc::render {
 
 /// Per-iteration sample counts reaching `total_spp` (the last one clipped).
 std::vector<int> schedule_for_spp(int total_spp);
+/// Samples per pixel of a whole schedule.
+std::uint64_t schedule_samples(const std::vector<int>& schedule);
 /// The first `iterations` entries of the schedule: totals 4·2^(K−1).
 std::vector<int> schedule_for_iterations(int iterations);
 
