@@ -9,6 +9,7 @@
 
 #include "statmc/layers/atomic_file.h"
 #include "statmc/layers/file_error.h"
+#include "statmc/layers/input_path.h"
 #include "statmc/layers/openexr_check.h"
 #include "statmc/layers/storage_rules.h"
 
@@ -85,31 +86,48 @@ std::unique_ptr<OIIO::ImageInput> open_checked(const std::string& path, int s, i
     check_read_budget(path, s, spec,
                       options.max_memory > 0 ? options.max_memory : default_read_budget());
     // The whole file once, after the header's own checks have had their say.
-    if (s == 0 && options.check_structure && is_openexr_file(path))
-        check_openexr_structure(path);
+    if (s == 0 && is_openexr_file(path)) {
+        check_openexr_headers(path);
+        if (options.check_structure)
+            check_openexr_structure(path);
+    }
     return in;
 }
 
-// Subimage `s` in float pixels, after open_checked. OIIO's ImageBuf reads it (so that the
-// file's own pixel types stay known as its nativespec, which --info reports); its forced
-// read goes through ImageInput, the header through the ImageCache.
-OIIO::ImageBuf read_subimage(const std::string& path, int s, int& subimages,
-                             const ReadOptions& options)
+// MIP level `m` of subimage `s` in float pixels, after open_checked. OIIO's ImageBuf
+// reads it (so that the file's own pixel types stay known as its nativespec, which --info
+// reports); its forced read goes through ImageInput, the header through the ImageCache.
+OIIO::ImageBuf read_level(const std::string& path, int s, int m)
 {
-    open_checked(path, s, subimages, options);
     OIIO::ImageBuf image(path);
-    if (!image.init_spec(path, s, 0) || !image.read(s, 0, /*force=*/true, OIIO::TypeDesc::FLOAT))
+    if (!image.init_spec(path, s, m) || !image.read(s, m, /*force=*/true, OIIO::TypeDesc::FLOAT))
         throw unreadable(path, image.has_error() ? image.geterror() : OIIO::geterror());
     return image;
 }
 
+OIIO::ImageBuf read_subimage(const std::string& path, int s, int& subimages,
+                             const ReadOptions& options)
+{
+    open_checked(path, s, subimages, options);
+    return read_level(path, s, 0);
+}
+
+// The levels after the first of a subimage read by read_subimage: each is smaller than
+// the first, so the budget that admitted it covers them.
+std::vector<OIIO::ImageBuf> read_coarser_levels(const std::string& path, int s,
+                                                const OIIO::ImageBuf& first)
+{
+    std::vector<OIIO::ImageBuf> levels;
+    for (int m = 1; m < first.nmiplevels(); ++m)
+        levels.push_back(read_level(path, s, m));
+    return levels;
+}
+
 void check_readable(const std::string& path)
 {
-    std::error_code ec;
-    if (!fs::exists(path, ec))
-        throw FileError(path + ": no such file");
-    if (fs::is_directory(path, ec))
-        throw FileError(path + ": is a directory, not an image");
+    const std::string problem = input_path_problem(path);
+    if (!problem.empty())
+        throw FileError(path + ": " + problem);
 }
 
 }  // namespace
@@ -130,14 +148,20 @@ OIIO::ImageBuf read_image_file(const std::string& path, const ReadOptions& optio
 }
 
 std::vector<OIIO::ImageBuf> read_image_subimages(const std::string& path,
-                                                 const ReadOptions& options)
+                                                 const ReadOptions& options,
+                                                 MipLevels* mip_levels)
 {
     check_readable(path);
     const ForgetOnExit forget{path};
     std::vector<OIIO::ImageBuf> images;
+    if (mip_levels)
+        mip_levels->clear();
     int subimages = 1;
-    for (int s = 0; s < subimages; ++s)
+    for (int s = 0; s < subimages; ++s) {
         images.push_back(read_subimage(path, s, subimages, options));
+        if (mip_levels)
+            mip_levels->push_back(read_coarser_levels(path, s, images.back()));
+    }
     // The file's count, as OIIO reports it on a single-part file's spec.
     images[0].specmod().attribute("oiio:subimages", subimages);
     return images;
@@ -149,20 +173,38 @@ void write_image_file(const OIIO::ImageBuf& image, const std::string& path)
 }
 
 void write_image_file(const std::vector<OIIO::ImageBuf>& subimages, const std::string& path,
-                      const WriteOptions& options)
+                      const WriteOptions& options, const MipLevels& mip_levels)
 {
     check_target(path);
+    if (!mip_levels.empty() && mip_levels.size() != subimages.size())
+        cannot_write(path, "MIP levels given for " + std::to_string(mip_levels.size()) +
+                               " subimages of " + std::to_string(subimages.size()));
     auto out = exr_writer(path);
-    std::vector<OIIO::ImageSpec> specs;
-    for (const OIIO::ImageBuf& image : subimages) {
-        OIIO::ImageSpec spec = image.spec();
+    static const std::vector<OIIO::ImageBuf> none;
+    auto levels_of = [&](std::size_t s) -> const std::vector<OIIO::ImageBuf>& {
+        return mip_levels.empty() ? none : mip_levels[s];
+    };
+    // The storage rules, the user's overrides, and for a MIP map the tiles it needs.
+    auto stored_spec = [&](const OIIO::ImageSpec& image_spec, bool mip_mapped) {
+        OIIO::ImageSpec spec = image_spec;
         apply_storage_rules(spec);
         if (options.format != OIIO::TypeDesc::UNKNOWN)
             spec.set_format(options.format);
         if (!options.compression.empty())
             spec.attribute("compression", options.compression);
-        specs.push_back(spec);
-    }
+        if (mip_mapped) {
+            spec.tile_width = image_spec.tile_width > 0 ? image_spec.tile_width : 64;
+            spec.tile_height = image_spec.tile_height > 0 ? image_spec.tile_height : 64;
+            spec.tile_depth = 1;
+            // OIIO's EXR writer makes a MIP map only of a "Plain Texture".
+            spec.attribute("textureformat", "Plain Texture");
+            spec.attribute("openexr:levelmode", 1);  // Imf::MIPMAP_LEVELS
+        }
+        return spec;
+    };
+    std::vector<OIIO::ImageSpec> specs;
+    for (std::size_t s = 0; s < subimages.size(); ++s)
+        specs.push_back(stored_spec(subimages[s].spec(), !levels_of(s).empty()));
 
     write_file_atomically(path, [&](const std::string& temporary) {
         if (!out->open(temporary, int(specs.size()), specs.data()))
@@ -172,6 +214,13 @@ void write_image_file(const std::vector<OIIO::ImageBuf>& subimages, const std::s
                 cannot_write(path, out->geterror());
             if (!subimages[s].write(out.get()))
                 cannot_write(path, subimages[s].geterror());
+            for (const OIIO::ImageBuf& level : levels_of(s)) {
+                if (!out->open(temporary, stored_spec(level.spec(), true),
+                               OIIO::ImageOutput::AppendMIPLevel))
+                    cannot_write(path, out->geterror());
+                if (!level.write(out.get()))
+                    cannot_write(path, level.geterror());
+            }
         }
         if (!out->close())
             cannot_write(path, out->geterror());

@@ -1,7 +1,9 @@
 #include "statmc/layers/openexr_check.h"
 
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <set>
 
 #include <unistd.h>
 
@@ -26,6 +28,87 @@ void check_openexr_structure(const std::string& path)
     if (Imf::checkOpenEXRFile(path.c_str(), /*reduceMemory=*/true, /*reduceTime=*/true))
         throw FileError(path + ": damaged OpenEXR file: OpenEXR's file check fails on it "
                                "(truncated, or corrupted headers, offsets or pixel data)");
+}
+
+namespace {
+
+// A reader of the header bytes that stops (fails) at the end of the file or at anything
+// longer than OpenEXR allows, so that a damaged header cannot make it loop or allocate.
+struct HeaderBytes {
+    std::ifstream in;
+
+    bool text(std::string& out)  // a null-terminated name, at most 255 characters
+    {
+        out.clear();
+        for (char c; in.get(c);) {
+            if (c == '\0')
+                return true;
+            if (out.size() == 255)
+                return false;
+            out.push_back(c);
+        }
+        return false;
+    }
+    bool int32(std::int32_t& value)
+    {
+        unsigned char b[4];
+        if (!in.read(reinterpret_cast<char*>(b), 4))
+            return false;
+        value = std::int32_t(std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 |
+                             std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24);
+        return true;
+    }
+    bool skip(std::int32_t bytes) { return bytes >= 0 && bool(in.seekg(bytes, std::ios::cur)); }
+};
+
+// The channel named twice in one chlist value of `size` bytes, or "".
+std::string repeated_channel(HeaderBytes& bytes, std::int32_t size)
+{
+    std::set<std::string> names;
+    const std::streamoff end = bytes.in.tellg() + std::streamoff(size);
+    std::string name;
+    while (bytes.in.tellg() < end && bytes.text(name) && !name.empty()) {
+        if (!names.insert(name).second)
+            return name;
+        if (!bytes.skip(16))  // pixel type, pLinear + reserved, x and y sampling
+            break;
+    }
+    bytes.in.seekg(end);
+    return {};
+}
+
+}  // namespace
+
+void check_openexr_headers(const std::string& path)
+{
+    HeaderBytes bytes{std::ifstream(path, std::ios::binary)};
+    std::int32_t magic = 0, version = 0;
+    if (!bytes.int32(magic) || !bytes.int32(version))
+        return;  // too short: the reader says so
+    const bool multipart = version & 0x1000;
+    std::string name, type;
+    // Attributes until an empty name ends a header; a multi-part file's headers until an
+    // empty header ends the list. Each step consumes bytes, so the end of the file ends it.
+    for (int part = 0;; ++part) {
+        if (!bytes.text(name) || name.empty())
+            return;
+        do {
+            std::int32_t size = 0;
+            if (!bytes.text(type) || !bytes.int32(size) || size < 0)
+                return;
+            if (name == "channels" && type == "chlist") {
+                const std::string twice = repeated_channel(bytes, size);
+                if (!twice.empty())
+                    throw FileError(path + ": damaged OpenEXR file: part " + std::to_string(part) +
+                                    " lists channel '" + twice + "' twice (a reader would "
+                                    "silently keep only one of them)");
+            } else if (!bytes.skip(size)) {
+                return;
+            }
+        } while (bytes.text(name) && !name.empty());
+        if (!multipart)
+            return;
+    }
 }
 
 std::uint64_t default_read_budget()

@@ -97,4 +97,18 @@ Invocation parse_invocation(const std::vector<std::string>& args, std::size_t& i
     return inv;
 }
 
+std::vector<Invocation> parse_program(const std::vector<std::string>& args)
+{
+    std::vector<Invocation> program;
+    for (std::size_t i = 0; i < args.size();) {
+        program.push_back(parse_invocation(args, i));
+        const Invocation& inv = program.back();
+        if (inv.command->immediate)
+            break;
+        if (inv.command->check)
+            inv.command->check(inv);
+    }
+    return program;
+}
+
 }  // namespace statmc::tool

@@ -8,6 +8,8 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include "statmc/layers/exr_files.h"
+
 namespace statmc::tool {
 
 /// One stack entry: an image with one or more subimages (the parts of a multi-part EXR),
@@ -27,6 +29,9 @@ struct StackImage {
 
     std::vector<OIIO::ImageBuf> subimages;  ///< never empty
     std::string label;  ///< names the image in messages: its file, or the command that made it
+    /// The coarser MIP levels of each subimage as read (empty, or one entry per subimage):
+    /// a copy writes them back. Results of operators are single-level images.
+    layers::MipLevels mip_levels;
 
     /// Subimage 0: what a command reads unless -a is given.
     const OIIO::ImageBuf& image() const { return subimages.front(); }

@@ -13,8 +13,6 @@ namespace statmc::tool {
 
 namespace {
 
-// The whole command line is parsed and checked before the first command runs, so that
-// a typo late on the line cannot leave the outputs of earlier commands half done.
 int run_program(const std::vector<std::string>& args, ToolContext& ctx)
 {
     plugin_commands();  // a broken module is reported before anything else
@@ -22,16 +20,11 @@ int run_program(const std::vector<std::string>& args, ToolContext& ctx)
         ctx.out << help_text();
         return 0;
     }
-    std::vector<Invocation> program;
-    for (std::size_t i = 0; i < args.size();) {
-        Invocation inv = parse_invocation(args, i);
-        if (inv.command->immediate) {
-            inv.command->run(ctx, inv);
-            return 0;
-        }
-        if (inv.command->check)
-            inv.command->check(inv);
-        program.push_back(std::move(inv));
+    const std::vector<Invocation> program = parse_program(args);
+    // An immediate command (--help) runs alone: what came before it is only parsed.
+    if (program.back().command->immediate) {
+        program.back().command->run(ctx, program.back());
+        return 0;
     }
     for (const Invocation& inv : program)
         inv.command->run(ctx, inv);

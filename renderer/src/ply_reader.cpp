@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "statmc/layers/input_path.h"
+
 namespace statmc::render {
 
 namespace {
@@ -160,6 +162,8 @@ private:
 
 TriangleMesh read_ply(const std::string& path)
 {
+    if (const std::string problem = layers::input_path_problem(path); !problem.empty())
+        throw std::runtime_error("mesh '" + path + "': " + problem);
     std::ifstream in(path, std::ios::binary);
     if (!in)
         throw std::runtime_error("cannot open mesh '" + path + "'");

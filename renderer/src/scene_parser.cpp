@@ -8,6 +8,7 @@
 
 #include <zlib.h>
 
+#include "statmc/layers/input_path.h"
 #include "statmc/render/parameter_list.h"
 #include "statmc/render/ply_reader.h"
 #include "statmc/render/shapes.h"
@@ -32,11 +33,9 @@ struct GraphicsState {
 // directory or cannot be opened.
 std::string read_scene_text(const std::string& path, std::string& why)
 {
-    std::error_code ec;
-    if (fs::is_directory(path, ec)) {
-        why = "is a directory, not a scene file";
+    why = layers::input_path_problem(path);
+    if (!why.empty())
         return {};
-    }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         why = "cannot open it";

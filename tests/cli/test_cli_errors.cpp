@@ -205,7 +205,10 @@ TEST_F(CliError, NonexistentInput)
 {
     const std::string missing = dir.file("missing.exr");
     expect_failure({missing, "--denoise", "-o", out()}, missing + ": no such file");
-    expect_failure({"-i", dir.path().string(), "-o", out()}, ": is a directory, not an image");
+    expect_failure({"-i", dir.path().string(), "-o", out()}, ": is a directory, not a file");
+    // A device would be read without end.
+    expect_failure({"/dev/zero", "-o", out()},
+                   "/dev/zero: is not a regular file (a device, pipe or socket)");
 }
 
 TEST_F(CliError, UnwritableOutput)

@@ -1,7 +1,11 @@
 // statmc runs that succeed: outputs equal the operators' results on the same files.
 #include <algorithm>
+#include <array>
 
 #include <gtest/gtest.h>
+
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
 
 #include "cli_images.h"
 #include "cli_runner.h"
@@ -93,6 +97,59 @@ TEST(CliRun, OutputMayReplaceTheInput)
     expect_success(run_cli({dir.file("frame.exr"), "--denoise", "-o", dir.file("frame.exr")}));
     EXPECT_EQ(dir.entries(), (std::vector<std::string>{"frame.exr"}));
     expect_same_channels(read_exr(dir.file("frame.exr")), expected);
+}
+
+// A tiled RGB MIP map of `levels` levels from 32x32 down, level m filled with m + 0.5.
+void write_mip_map(const std::string& path, int levels)
+{
+    OIIO::ImageSpec spec(32, 32, 3, OIIO::TypeDesc::HALF);
+    spec.tile_width = spec.tile_height = 16;
+    spec.attribute("textureformat", "Plain Texture");
+    auto out = OIIO::ImageOutput::create(path);
+    for (int m = 0; m < levels; ++m) {
+        OIIO::ImageSpec level = spec;
+        level.width = level.height = level.full_width = level.full_height = 32 >> m;
+        OIIO::ImageBuf buf(level);
+        OIIO::ImageBufAlgo::fill(buf, {m + 0.5f, m + 0.5f, m + 0.5f});
+        ASSERT_TRUE(out->open(path, level, m == 0 ? OIIO::ImageOutput::Create
+                                                  : OIIO::ImageOutput::AppendMIPLevel))
+            << out->geterror();
+        ASSERT_TRUE(buf.write(out.get())) << buf.geterror();
+    }
+    ASSERT_TRUE(out->close());
+}
+
+// Each MIP level of subimage 0 of `path`: {width, channels, value of its first pixel}.
+std::vector<std::array<float, 3>> mip_levels_of(const std::string& path)
+{
+    std::vector<std::array<float, 3>> levels;
+    auto in = OIIO::ImageInput::open(path);
+    for (int m = 0; in && in->seek_subimage(0, m); ++m) {
+        std::vector<float> pixels(std::size_t(in->spec().image_pixels()) *
+                                  std::size_t(in->spec().nchannels));
+        in->read_image(0, m, 0, in->spec().nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
+        levels.push_back({float(in->spec().width), float(in->spec().nchannels), pixels[0]});
+    }
+    return levels;
+}
+
+TEST(CliRun, CopiesKeepMipLevels)
+{
+    TempDir dir;
+    const std::string in = dir.file("mip.exr");
+    write_mip_map(in, 6);
+    const auto want = mip_levels_of(in);
+    ASSERT_EQ(want.size(), 6u);
+    expect_success(run_cli({in, "-o", dir.file("copy.exr")}));
+    EXPECT_EQ(mip_levels_of(dir.file("copy.exr")), want);
+    expect_success(run_cli({in, "--subimage", "0", "-o", dir.file("sub.exr")}));
+    EXPECT_EQ(mip_levels_of(dir.file("sub.exr")), want);
+    // A channel selection applies to every level.
+    expect_success(run_cli({"-i:ch=R,G", in, "-o", dir.file("rg.exr")}));
+    const auto rg = mip_levels_of(dir.file("rg.exr"));
+    ASSERT_EQ(rg.size(), 6u);
+    for (int m = 0; m < 6; ++m)
+        EXPECT_EQ(rg[std::size_t(m)], (std::array<float, 3>{float(32 >> m), 2.f, m + 0.5f}));
 }
 
 TEST(CliRun, PassesThenDenoise)

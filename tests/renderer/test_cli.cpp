@@ -132,7 +132,7 @@ TEST(Cli, ScenesWithNothingToRenderAndImpossibleSizesFailBeforeRendering)
         EXPECT_FALSE(std::filesystem::exists(dir.file("o.exr"))) << args;
     };
     fails_with("\"" + dir.write("empty.pbrt", "") + "\"", "nothing to render");
-    fails_with("\"" + dir.file("") + "\"", "is a directory, not a scene file");
+    fails_with("\"" + dir.file("") + "\"", "is a directory, not a file");
     const std::string huge = dir.write(
         "huge.pbrt", "Film \"image\" \"integer xresolution\" 100000 \"integer yresolution\" "
                      "100000\nWorldBegin\nShape \"sphere\"\n");

@@ -307,7 +307,7 @@ TEST(Parser, IncludeCyclesMissingFilesAndDepthAreErrors)
     const std::string missing =
         file_error_of(dir.write("m.pbrt", "WorldBegin\nInclude \"nothere.pbrt\"\n"));
     EXPECT_NE(missing.find("m.pbrt:2: Include \"nothere.pbrt\": "), std::string::npos) << missing;
-    EXPECT_NE(missing.find("nothere.pbrt: cannot open it"), std::string::npos) << missing;
+    EXPECT_NE(missing.find("nothere.pbrt: no such file"), std::string::npos) << missing;
     // A chain of 40 distinct files: deeper than the limit of 32.
     for (int i = 0; i < 40; ++i)
         dir.write("d" + std::to_string(i) + ".pbrt",
@@ -326,7 +326,21 @@ TEST(Parser, AFileWithNothingToRenderIsAnError)
     EXPECT_EQ(file_error_of(no_shape), no_shape + ": nothing to render: the scene has no Shape");
     std::filesystem::create_directories(dir.file("folder"));
     EXPECT_EQ(file_error_of(dir.file("folder")),
-              dir.file("folder") + ": is a directory, not a scene file");
+              dir.file("folder") + ": is a directory, not a file");
+}
+
+TEST(Parser, EndlessFilesAreRefusedBeforeTheyAreRead)
+{
+    // A device would be read for ever (and held in memory): scene, Include and mesh alike.
+    EXPECT_EQ(file_error_of("/dev/zero"),
+              "/dev/zero: is not a regular file (a device, pipe or socket)");
+    const std::string include = error_of("Include \"/dev/zero\"\n");
+    EXPECT_NE(include.find("Include \"/dev/zero\": /dev/zero: is not a regular file"),
+              std::string::npos)
+        << include;
+    const std::string mesh =
+        error_of("WorldBegin\nShape \"plymesh\" \"string filename\" \"/dev/urandom\"\n");
+    EXPECT_NE(mesh.find("mesh '/dev/urandom': is not a regular file"), std::string::npos) << mesh;
 }
 
 TEST(Parser, SharedScenesParse)

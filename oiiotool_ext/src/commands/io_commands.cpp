@@ -123,19 +123,27 @@ Command input_command()
         const std::string& path = inv.args[0];
         if (ctx.verbose)
             ctx.out << "Reading " << path << "\n";
-        StackImage image{layers::read_image_subimages(path, ctx.input), path};
+        layers::MipLevels mip_levels;
+        StackImage image{layers::read_image_subimages(path, ctx.input, &mip_levels), path};
+        image.mip_levels = std::move(mip_levels);
         if (ctx.print_info || ctx.print_stats)
             print_info(ctx.out, image, ctx.print_info && (ctx.verbose || ctx.info_verbose),
                        ctx.all_subimages);
         if (ctx.print_stats)
             print_all_stats(ctx.out, image, ctx.all_subimages, ctx.nthreads);
-        if (inv.modifiers.has("ch"))
-            for (OIIO::ImageBuf& sub : image.subimages) {
-                sub = select_channels(sub, inv.modifiers.get_string("ch"), path + ": -i:ch",
+        if (inv.modifiers.has("ch")) {
+            auto keep_channels = [&](OIIO::ImageBuf& buf) {
+                buf = select_channels(buf, inv.modifiers.get_string("ch"), path + ": -i:ch",
                                       ctx.nthreads);
-                if (sub.has_error())
-                    throw ToolError(path + ": -i:ch: " + sub.geterror());
-            }
+                if (buf.has_error())
+                    throw ToolError(path + ": -i:ch: " + buf.geterror());
+            };
+            for (OIIO::ImageBuf& sub : image.subimages)
+                keep_channels(sub);
+            for (std::vector<OIIO::ImageBuf>& levels : image.mip_levels)
+                for (OIIO::ImageBuf& level : levels)
+                    keep_channels(level);
+        }
         ctx.stack.push(std::move(image));
     };
     return c;
@@ -158,7 +166,8 @@ Command output_command()
             options.format = *type;
         if (ctx.verbose)
             ctx.out << "Writing " << inv.args[0] << "\n";
-        layers::write_image_file(ctx.stack.top(inv.name).subimages, inv.args[0], options);
+        const StackImage& image = ctx.stack.top(inv.name);
+        layers::write_image_file(image.subimages, inv.args[0], options, image.mip_levels);
     };
     return c;
 }

@@ -31,11 +31,18 @@ Command subimage_command()
                 throw ToolError(inv.name + ": " + image.label +
                                 " has one subimage; deleting it would leave no image");
             image.subimages.erase(image.subimages.begin() + std::ptrdiff_t(s));
+            if (!image.mip_levels.empty())
+                image.mip_levels.erase(image.mip_levels.begin() + std::ptrdiff_t(s));
         } else {
             // Moved, not copied: a copy of a failed ImageBuf is not safe in OIIO 2.4.
             OIIO::ImageBuf kept = std::move(image.subimages[s]);
             image.subimages.clear();
             image.subimages.push_back(std::move(kept));
+            if (!image.mip_levels.empty()) {
+                std::vector<OIIO::ImageBuf> levels = std::move(image.mip_levels[s]);
+                image.mip_levels.clear();
+                image.mip_levels.push_back(std::move(levels));
+            }
         }
         image.label += " (" + inv.name + " " + inv.args[0] + ")";
         ctx.stack.push(std::move(image));
@@ -54,9 +61,15 @@ Command siappend_command()
         std::vector<StackImage> images =
             ctx.stack.pop(std::size_t(inv.modifiers.get_int("n")), inv.name);
         StackImage joined = std::move(images[0]);
-        for (std::size_t k = 1; k < images.size(); ++k)
-            for (OIIO::ImageBuf& sub : images[k].subimages)
-                joined.subimages.push_back(std::move(sub));
+        // MIP levels follow their subimages; a single-level subimage has none.
+        joined.mip_levels.resize(joined.subimages.size());
+        for (std::size_t k = 1; k < images.size(); ++k) {
+            images[k].mip_levels.resize(images[k].subimages.size());
+            for (std::size_t s = 0; s < images[k].subimages.size(); ++s) {
+                joined.subimages.push_back(std::move(images[k].subimages[s]));
+                joined.mip_levels.push_back(std::move(images[k].mip_levels[s]));
+            }
+        }
         joined.label += " (" + inv.name + ")";
         ctx.stack.push(std::move(joined));
     };

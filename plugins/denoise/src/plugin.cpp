@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "statmc/denoise/denoise.h"
+#include "statmc/layers/storage_rules.h"
 #include "statmc/plugin_sdk/plugin_interface.h"
 
 namespace {
@@ -189,6 +190,19 @@ void note_skipped_stages(const OIIO::ImageBuf& result, const statmc::RunContext&
     std::cerr << "--denoise: note: " << label << "left out " << skipped << "\n";
 }
 
+// Statistics stored under lossy compression carry its rounding in every moment: the
+// result is still computed, but the user should know the file breaks the contract.
+void note_lossy_storage(const OIIO::ImageBuf& input, const statmc::RunContext& ctx)
+{
+    const std::string compression = input.spec().get_string_attribute("compression");
+    if (compression.empty() || statmc::layers::is_lossless_compression(compression))
+        return;
+    const std::string label = ctx.input_labels.empty() ? "" : ctx.input_labels[0] + ": ";
+    std::cerr << "--denoise: warning: " << label << "statistics stored with lossy compression '"
+              << compression << "': their variances and moments carry its rounding (the layer "
+              << "contract stores them lossless)\n";
+}
+
 void register_denoise(statmc::PluginRegistry& registry)
 {
     statmc::OperatorSpec op;
@@ -201,12 +215,14 @@ void register_denoise(statmc::PluginRegistry& registry)
     op.check = [](const ParameterValues& p) { return options_from(p).validate(); };
     op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs, const ParameterValues& p,
                 const statmc::RunContext& ctx) {
+        note_lossy_storage(*inputs[0], ctx);
         OIIO::ImageBuf result = statmc::denoise(*inputs[0], options_from(p), {}, ctx.nthreads);
         note_skipped_stages(result, ctx);
         return result;
     };
     op.run_in_place = [](OIIO::ImageBuf& image, const ParameterValues& p,
                          const statmc::RunContext& ctx) {
+        note_lossy_storage(image, ctx);
         const bool ok = statmc::denoise(image, image, options_from(p), {}, ctx.nthreads);
         if (ok)
             note_skipped_stages(image, ctx);

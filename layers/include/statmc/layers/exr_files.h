@@ -29,9 +29,15 @@ OIIO::ImageBuf read_image_file(const std::string& path, const ReadOptions& optio
 /// reads the file another way (a texture through OIIO). Throws FileError "<path>: ...".
 void check_image_file(const std::string& path, const ReadOptions& options = {});
 
-/// Every subimage (EXR part) of `path`, each as read_image_file reads subimage 0.
+/// The MIP levels below the full resolution, per subimage (empty for a subimage that has
+/// none): what a copy writes back so that a MIP-mapped file stays whole.
+using MipLevels = std::vector<std::vector<OIIO::ImageBuf>>;
+
+/// Every subimage (EXR part) of `path`, each as read_image_file reads subimage 0; with
+/// `mip_levels`, also each subimage's coarser MIP levels, in float.
 std::vector<OIIO::ImageBuf> read_image_subimages(const std::string& path,
-                                                 const ReadOptions& options = {});
+                                                 const ReadOptions& options = {},
+                                                 MipLevels* mip_levels = nullptr);
 
 /// How a write may depart from the storage rules, when a user asks for it explicitly.
 struct WriteOptions {
@@ -44,8 +50,9 @@ struct WriteOptions {
 void write_image_file(const OIIO::ImageBuf& image, const std::string& path);
 
 /// Writes `subimages` (at least one) as the parts of one OpenEXR file, atomically as
-/// above, with `options` overriding the pixel type and compression.
+/// above, with `options` overriding the pixel type and compression. A subimage with
+/// `mip_levels` (empty, or one entry per subimage) is written as a tiled MIP map.
 void write_image_file(const std::vector<OIIO::ImageBuf>& subimages, const std::string& path,
-                      const WriteOptions& options);
+                      const WriteOptions& options, const MipLevels& mip_levels = {});
 
 }  // namespace statmc::layers

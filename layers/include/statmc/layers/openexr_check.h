@@ -18,6 +18,11 @@ bool is_openexr_file(const std::string& path);
 /// FileError "<path>: damaged OpenEXR file: ..." when it finds the file unreadable.
 void check_openexr_structure(const std::string& path);
 
+/// Walks the headers of an OpenEXR file (they are small: no pixel is read) for what
+/// OpenEXR's own reader would pass over silently: a channel listed twice in one part, of
+/// which it keeps only one. Throws FileError "<path>: damaged OpenEXR file: ...".
+void check_openexr_headers(const std::string& path);
+
 /// Half of this machine's physical memory: the default budget of one input image.
 std::uint64_t default_read_budget();
 

@@ -22,4 +22,10 @@ split_command(const std::string& word);
 /// argument or a bad modifier.
 Invocation parse_invocation(const std::vector<std::string>& args, std::size_t& i);
 
+/// The whole command line, parsed and each invocation checked (Command::check), so that
+/// a typo late on the line is reported before the first command runs. An immediate
+/// command (--help, --version) ends the program: it is the last invocation returned, and
+/// nothing after it is parsed. Throws ToolError.
+std::vector<Invocation> parse_program(const std::vector<std::string>& args);
+
 }  // namespace statmc::tool

@@ -1,0 +1,63 @@
+// Bytes as an EXR → the layer contract's reader (OpenEXR's check, the header budget, every
+// part) → the statistics, guide and AOV lookups → the denoise operator, in its default
+// and in the paper's form. Every failure must be a FileError or LayerError, or an error
+// on the destination image; a crash, a hang or a runaway allocation is a finding.
+#include <cstdint>
+
+#include <OpenImageIO/imageio.h>
+
+#include "fuzz_input.h"
+#include "statmc/denoise/denoise.h"
+#include "statmc/layers/exr_files.h"
+#include "statmc/layers/file_error.h"
+#include "statmc/layers/guide_layers.h"
+#include "statmc/layers/layer_error.h"
+#include "statmc/layers/layer_lookup.h"
+#include "statmc/layers/layer_names.h"
+#include "statmc/layers/statistics_validation.h"
+
+namespace {
+
+void look_up_layers(const OIIO::ImageBuf& image)
+{
+    const OIIO::ImageSpec& spec = image.spec();
+    statmc::layers::layers_in(spec);
+    try {
+        const auto channels = statmc::layers::find_statistics(spec);
+        statmc::layers::validate_statistics(image, channels);
+    } catch (const statmc::layers::LayerError&) {
+    }
+    statmc::layers::find_guide_layer(spec, statmc::layers::kAlbedoLayer, true);
+    statmc::layers::find_guide_layer(spec, statmc::layers::kNormalLayer, false);
+}
+
+void denoise_with(const OIIO::ImageBuf& image, statmc::DenoiseImageOptions options)
+{
+    options.filter.radius = 3;  // the filter's logic, not its cost, is under test
+    options.nonfinite = statmc::NonfinitePolicy::Zero;
+    OIIO::ImageBuf result;
+    statmc::denoise(result, image, options, {}, 1);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+    static const bool single_threaded = OIIO::attribute("threads", 1);
+    (void)single_threaded;
+    statmc::layers::ReadOptions options;
+    options.max_memory = 16 << 20;  // small images only: a larger header is refused
+    std::vector<OIIO::ImageBuf> parts;
+    try {
+        parts = statmc::layers::read_image_subimages(statmc::fuzz::as_file(data, size, ".exr"),
+                                                     options);
+    } catch (const statmc::layers::FileError&) {
+        return 0;
+    }
+    for (const OIIO::ImageBuf& part : parts) {
+        look_up_layers(part);
+        denoise_with(part, statmc::DenoiseImageOptions{});
+        denoise_with(part, statmc::DenoiseImageOptions::paper());
+    }
+    return 0;
+}
