@@ -7,6 +7,7 @@ packages=(
   libopencolorio-dev libembree-dev libtbb-dev libboost-math-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev zlib1g-dev
   slurm-wlm slurmctld slurmd slurm-client munge
+  clang libclang-rt-14-dev
   python3-matplotlib python3-numpy python3-openimageio python3-venv
 )
 export DEBIAN_FRONTEND=noninteractive

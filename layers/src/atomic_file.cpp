@@ -1,7 +1,10 @@
 #include "statmc/layers/atomic_file.h"
 
+#include <array>
 #include <atomic>
 #include <cerrno>
+#include <climits>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -10,6 +13,8 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/resource.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include "statmc/layers/file_error.h"
@@ -20,16 +25,54 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Removes the temporary file unless the write got as far as renaming it.
+// The temporaries being written, where a signal handler can find them: fixed storage and
+// lock-free flags, since a handler may neither allocate nor lock. A write that finds the
+// table full (more than 64 at once) is not listed; the next write of its target still
+// removes what it leaves.
+struct PendingSlot {
+    std::atomic<bool> taken{false};
+    std::atomic<bool> listed{false};
+    char path[PATH_MAX] = {};
+};
+std::array<PendingSlot, 64> g_pending;
+
+PendingSlot* list_pending(const std::string& path)
+{
+    if (path.size() >= PATH_MAX)
+        return nullptr;
+    for (PendingSlot& slot : g_pending) {
+        bool expected = false;
+        if (slot.taken.compare_exchange_strong(expected, true)) {
+            std::memcpy(slot.path, path.c_str(), path.size() + 1);
+            slot.listed.store(true);
+            return &slot;
+        }
+    }
+    return nullptr;
+}
+
+void unlist_pending(PendingSlot* slot)
+{
+    if (!slot)
+        return;
+    slot->listed.store(false);
+    slot->taken.store(false);
+}
+
+// Removes the temporary file unless the write got as far as renaming it; listed while it
+// exists, so that a signal removes it too.
 class TemporaryFile {
 public:
-    explicit TemporaryFile(fs::path path) : path_(std::move(path)) {}
+    explicit TemporaryFile(fs::path path) : path_(std::move(path)), slot_(list_pending(path_))
+    {
+    }
     ~TemporaryFile()
     {
         if (!path_.empty()) {
             std::error_code ignored;
             fs::remove(path_, ignored);
         }
+        unlist_pending(slot_);
     }
     TemporaryFile(const TemporaryFile&) = delete;
     TemporaryFile& operator=(const TemporaryFile&) = delete;
@@ -39,6 +82,7 @@ public:
 
 private:
     fs::path path_;
+    PendingSlot* slot_;
 };
 
 [[noreturn]] void cannot_write(const std::string& path, const std::string& why)
@@ -123,6 +167,48 @@ void write_file_atomically(const std::string& target,
         cannot_write(target, ec.message());
     temporary.release();
     sync_path(directory_of(path), O_RDONLY | O_DIRECTORY);  // the rename itself; best effort
+}
+
+std::string storage_limit_reached(const std::string& path)
+{
+    // A write fails when the next block does not fit, so "full" is: less free than a block
+    // of pixels may take (a few MB), not zero.
+    constexpr std::uintmax_t kSlack = 4u << 20;
+    std::error_code ec;
+    const std::uintmax_t size = fs::exists(path, ec) ? fs::file_size(path, ec) : 0;
+    struct rlimit limit {};
+    if (::getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
+        size + kSlack >= limit.rlim_cur)
+        return std::string(std::strerror(EFBIG)) + " (this process may write files of at most " +
+               std::to_string(limit.rlim_cur) + " bytes: ulimit -f)";
+    struct statvfs disk {};
+    if (::statvfs(directory_of(fs::path(path)).c_str(), &disk) == 0) {
+        const std::uintmax_t free_bytes = std::uintmax_t(disk.f_bavail) * disk.f_frsize;
+        if (free_bytes < kSlack)
+            return std::string(std::strerror(ENOSPC)) + " (" + std::to_string(free_bytes / 1024) +
+                   " KB free)";
+    }
+    return {};
+}
+
+void remove_unfinished_temporaries() noexcept
+{
+    for (PendingSlot& slot : g_pending)
+        if (slot.listed.load())
+            ::unlink(slot.path);
+}
+
+extern "C" void remove_temporaries_and_end(int signal_number)
+{
+    remove_unfinished_temporaries();
+    std::signal(signal_number, SIG_DFL);
+    std::raise(signal_number);
+}
+
+void remove_temporaries_on_termination_signals()
+{
+    for (int signal_number : {SIGINT, SIGTERM, SIGHUP})
+        std::signal(signal_number, remove_temporaries_and_end);
 }
 
 void write_text_file_atomically(const std::string& target, const std::string& text)

@@ -70,6 +70,9 @@ void check_target(const std::string& path)
 std::unique_ptr<OIIO::ImageInput> open_checked(const std::string& path, int s, int& subimages,
                                                const ReadOptions& options)
 {
+    const bool openexr = is_openexr_file(path);
+    if (s == 0 && openexr)
+        check_openexr_headers(path);  // before OpenEXR parses them
     auto in = OIIO::ImageInput::open(path);
     if (!in)
         throw unreadable(path, OIIO::geterror());
@@ -86,11 +89,8 @@ std::unique_ptr<OIIO::ImageInput> open_checked(const std::string& path, int s, i
     check_read_budget(path, s, spec,
                       options.max_memory > 0 ? options.max_memory : default_read_budget());
     // The whole file once, after the header's own checks have had their say.
-    if (s == 0 && is_openexr_file(path)) {
-        check_openexr_headers(path);
-        if (options.check_structure)
-            check_openexr_structure(path);
-    }
+    if (s == 0 && openexr && options.check_structure)
+        check_openexr_structure(path);
     return in;
 }
 
@@ -207,23 +207,34 @@ void write_image_file(const std::vector<OIIO::ImageBuf>& subimages, const std::s
         specs.push_back(stored_spec(subimages[s].spec(), !levels_of(s).empty()));
 
     write_file_atomically(path, [&](const std::string& temporary) {
+        // The library's message, with the system's reason when it leaves it out (OpenEXR
+        // says "File output failed." on a full disk).
+        auto cannot_write = [&](std::string why) {
+            // The user knows the target, not the temporary the library names.
+            for (std::size_t at; (at = why.find(temporary)) != std::string::npos;)
+                why.replace(at, temporary.size(), path);
+            const std::string limit = storage_limit_reached(temporary);
+            if (!limit.empty())
+                why = limit + ": " + why;
+            ::statmc::layers::cannot_write(path, why);
+        };
         if (!out->open(temporary, int(specs.size()), specs.data()))
-            cannot_write(path, out->geterror());
+            cannot_write(out->geterror());
         for (std::size_t s = 0; s < subimages.size(); ++s) {
             if (s > 0 && !out->open(temporary, specs[s], OIIO::ImageOutput::AppendSubimage))
-                cannot_write(path, out->geterror());
+                cannot_write(out->geterror());
             if (!subimages[s].write(out.get()))
-                cannot_write(path, subimages[s].geterror());
+                cannot_write(subimages[s].geterror());
             for (const OIIO::ImageBuf& level : levels_of(s)) {
                 if (!out->open(temporary, stored_spec(level.spec(), true),
                                OIIO::ImageOutput::AppendMIPLevel))
-                    cannot_write(path, out->geterror());
+                    cannot_write(out->geterror());
                 if (!level.write(out.get()))
-                    cannot_write(path, level.geterror());
+                    cannot_write(level.geterror());
             }
         }
         if (!out->close())
-            cannot_write(path, out->geterror());
+            cannot_write(out->geterror());
         out.reset();
     });
     forget_cached(path);

@@ -3,10 +3,14 @@
 #include <string>
 #include <vector>
 
+#include "statmc/layers/atomic_file.h"
 #include "tool.h"
 
 int main(int argc, char* argv[])
 {
+    // Interrupted while writing, statmc leaves no temporary behind (the output keeps its
+    // previous contents) and still ends as the signal says.
+    statmc::layers::remove_temporaries_on_termination_signals();
     const std::vector<std::string> args(argv + 1, argv + argc);
     return statmc::tool::run_tool(args, std::cout, std::cerr);
 }

@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "statmc/denoise/denoise.h"
+#include "statmc/layers/atomic_file.h"
 #include "statmc/layers/file_error.h"
 #include "statmc/layers/layer_names.h"
 #include "statmc/merge/merge.h"
@@ -34,12 +35,12 @@ namespace {
 
 std::atomic<bool> g_interrupted{false};
 
-// SIGINT or SIGTERM. Async-signal-safe: sets a lock-free flag; a second signal gets the
-// default action.
+// SIGINT or SIGTERM. Async-signal-safe: sets a lock-free flag; a second signal ends the
+// process at once, removing the temporary of a write in progress.
 extern "C" void on_interrupt(int signal_number)
 {
     g_interrupted.store(true);
-    std::signal(signal_number, SIG_DFL);
+    std::signal(signal_number, statmc::layers::remove_temporaries_and_end);
 }
 
 /// "WxH" (or "WXH") with decimal W and H and nothing else; false otherwise.
@@ -315,8 +316,7 @@ int main(int argc, char** argv)
                     break;
                 parts.push_back(make_output_image(*film, info));
             }
-            std::signal(SIGINT, SIG_DFL);
-            std::signal(SIGTERM, SIG_DFL);
+            statmc::layers::remove_temporaries_on_termination_signals();
             if (int(parts.size()) < task_total) {
                 std::fprintf(stderr, "statmc-render: interrupted after %zu of %d tasks; %s not written\n",
                              parts.size(), task_total, output.c_str());
@@ -344,8 +344,7 @@ int main(int argc, char** argv)
                 };
             double before = 0;
             auto [film, share_stats, info] = render_share(task, after_iteration, before);
-            std::signal(SIGINT, SIG_DFL);
-            std::signal(SIGTERM, SIG_DFL);
+            statmc::layers::remove_temporaries_on_termination_signals();
             stats = share_stats;
             counts = info.spp;
             if (checkpoint_seconds > 0 && !stats.complete) {

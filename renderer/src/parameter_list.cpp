@@ -1,5 +1,7 @@
 #include "statmc/render/parameter_list.h"
 
+#include <cmath>
+#include <limits>
 #include <sstream>
 #include <utility>
 
@@ -100,7 +102,16 @@ std::optional<double> ParameterList::get_number(const std::string& type, const s
 std::optional<int> ParameterList::get_int(const std::string& name)
 {
     const auto v = get_number("integer", name);
-    return v ? std::optional<int>(int(*v)) : std::nullopt;
+    if (!v)
+        return std::nullopt;
+    // A whole number an int holds: 2.5, NaN or 5e9 would be truncated or undefined.
+    if (!(*v == std::floor(*v) && std::abs(*v) <= double(std::numeric_limits<int>::max()))) {
+        std::ostringstream text;
+        text << *v;
+        error(find("integer", name)->line,
+              "\"integer " + name + "\" needs a whole number that fits an int, got " + text.str());
+    }
+    return int(*v);
 }
 
 std::optional<float> ParameterList::get_float(const std::string& name)

@@ -1,6 +1,9 @@
 #include "statmc/render/ply_reader.h"
 
+#include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -74,8 +77,8 @@ int type_size(Type t)
 
 class Reader {
 public:
-    Reader(std::istream& in, Format format, const std::string& path)
-        : in_(in), format_(format), path_(path)
+    Reader(std::istream& in, Format format, const std::string& path, std::uintmax_t file_size)
+        : in_(in), format_(format), path_(path), file_size_(file_size)
     {
         // Binary bodies are read in one go and decoded from memory: per-value stream
         // reads dominated loading Veach Ajar's 17 meshes.
@@ -145,15 +148,51 @@ public:
         fail("invalid property type");
     }
 
+    /// Bytes not yet read: every value takes at least one, so no count may exceed it.
+    std::size_t remaining()
+    {
+        if (format_ != Format::Ascii)
+            return data_.size() - pos_;
+        const std::streamoff at = in_.tellg();
+        return at < 0 || std::uintmax_t(at) > file_size_ ? 0
+                                                          : std::size_t(file_size_ - std::uintmax_t(at));
+    }
+
+    /// A list's item count: a whole number the rest of the file can hold.
+    std::size_t read_count(Type type)
+    {
+        const double v = read(type);
+        if (!(v >= 0 && v == std::floor(v) && v <= double(remaining())))
+            fail("a list of " + number_text(v) + " items, more than the rest of the file holds");
+        return std::size_t(v);
+    }
+
+    /// A vertex index: a whole number in [0, 2^32).
+    std::uint32_t read_index(Type type)
+    {
+        const double v = read(type);
+        if (!(v >= 0 && v == std::floor(v) && v < 4294967296.0))
+            fail("face index " + number_text(v) + " out of range");
+        return std::uint32_t(v);
+    }
+
     [[noreturn]] void fail(const std::string& why) const
     {
         throw std::runtime_error("'" + path_ + "': " + why);
     }
 
 private:
+    static std::string number_text(double v)
+    {
+        std::ostringstream text;
+        text << v;
+        return text.str();
+    }
+
     std::istream& in_;
     Format format_;
     const std::string& path_;
+    std::uintmax_t file_size_;
     std::vector<char> data_;
     std::size_t pos_ = 0;
 };
@@ -225,8 +264,14 @@ TriangleMesh read_ply(const std::string& path)
         fail("no end_header");
 
     TriangleMesh mesh;
-    Reader reader(in, format, path);
+    std::error_code ec;
+    Reader reader(in, format, path, std::filesystem::file_size(path, ec));
     for (const Element& e : elements) {
+        if (e.properties.empty())
+            continue;  // nothing to read, however many it declares
+        if (e.count > reader.remaining())
+            fail("element '" + e.name + "' declares " + std::to_string(e.count) +
+                 " entries, more than the rest of the file holds");
         if (e.name == "vertex") {
             int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, iu = -1, iv = -1;
             for (int i = 0; i < int(e.properties.size()); ++i) {
@@ -256,7 +301,7 @@ TriangleMesh read_ply(const std::string& path)
                 for (std::size_t i = 0; i < e.properties.size(); ++i) {
                     const Property& p = e.properties[i];
                     if (p.is_list()) {
-                        const auto n = std::size_t(reader.read(p.count_type));
+                        const std::size_t n = reader.read_count(p.count_type);
                         for (std::size_t j = 0; j < n; ++j)
                             reader.read(p.type);
                         values[i] = 0;
@@ -282,10 +327,10 @@ TriangleMesh read_ply(const std::string& path)
                         reader.read(p.type);
                         continue;
                     }
-                    const auto n = std::size_t(reader.read(p.count_type));
+                    const std::size_t n = reader.read_count(p.count_type);
                     idx.resize(n);
                     for (std::size_t j = 0; j < n; ++j)
-                        idx[j] = std::uint32_t(reader.read(p.type));
+                        idx[j] = reader.read_index(p.type);
                     if (!is_face || (p.name != "vertex_indices" && p.name != "vertex_index"))
                         continue;
                     if (n < 3)

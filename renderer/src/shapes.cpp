@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <sstream>
 #include <utility>
 
 #include "statmc/render/parameter_list.h"
@@ -51,9 +52,13 @@ TriangleMesh trianglemesh(ParameterList& ps, std::vector<std::string>& warnings)
         if (idx->numbers.size() % 3 != 0 || idx->numbers.empty())
             ps.error(idx->line, "\"integer indices\" needs a positive multiple of 3 values");
         for (double v : idx->numbers) {
-            if (v < 0 || v >= double(mesh.positions.size()))
-                ps.error(idx->line, "index " + std::to_string(long(v)) + " out of range (" +
+            // NaN and fractions fail too: only a whole number names a vertex.
+            if (!(v >= 0 && v < double(mesh.positions.size()) && v == std::floor(v))) {
+                std::ostringstream text;
+                text << v;
+                ps.error(idx->line, "index " + text.str() + " out of range (" +
                                         std::to_string(mesh.positions.size()) + " vertices)");
+            }
             mesh.indices.push_back(std::uint32_t(v));
         }
     } else if (mesh.positions.size() == 3) {

@@ -1,14 +1,20 @@
 // Every bad input ends in one "statmc: error: ..." line naming the culprit, exit code 1,
 // no crash or hang, and no output or temporary file left behind.
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <limits>
+
+#include <sys/mount.h>
 
 #include <gtest/gtest.h>
 
 #include "cli_images.h"
 #include "cli_runner.h"
+#include "statmc/layers/statistics_layers.h"
 #include "temp_dir.h"
 #include "test_images.h"
 
@@ -221,6 +227,55 @@ TEST_F(CliError, UnwritableOutput)
     expect_failure({in, "-o", dir.file("out.png")},
                    "out.png: cannot write: statmc writes OpenEXR files only");
     expect_failure({in, "-o", dir.path().string()}, ": cannot write: it is a directory");
+}
+
+// A write that runs out of space: the previous output keeps its bytes, no temporary is
+// left, and the message names the output and the system's reason.
+void expect_kept_after_full_disk(const CliResult& r, const std::string& target,
+                                 const std::string& reason)
+{
+    EXPECT_FALSE(r.timed_out);
+    EXPECT_EQ(r.signal, 0) << "killed by signal " << r.signal;
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_EQ(r.err.rfind("statmc: error: " + target + ": cannot write: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(reason), std::string::npos) << r.err;
+    EXPECT_EQ(file_bytes(target), "the previous output");
+    const std::filesystem::path dir = std::filesystem::path(target).parent_path();
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+        EXPECT_EQ(entry.path().filename().string().find(".statmc-tmp-"), std::string::npos)
+            << "temporary left: " << entry.path();
+}
+
+TEST_F(CliError, AFullDiskKeepsThePreviousOutput)
+{
+    // About 750 KB of output: more than either limit below leaves room for.
+    const std::string in = input(
+        "big.exr", layers::make_statistics_image(noisy_statistics(128, 96, 8, 5), {"", 8, 5}));
+    const std::string target = out();
+    std::ofstream(target) << "the previous output";
+    inputs.push_back("out.exr");
+
+    // The write limit of the process (RLIMIT_FSIZE, with SIGXFSZ ignored so that the write
+    // fails instead of the process): a full disk as the writer sees it, on any machine.
+    const CliResult limited = run_program(
+        "/bin/sh", {"-c", "trap '' XFSZ; ulimit -f 64; exec \"$0\" \"$@\"", STATMC_CLI_PATH, in,
+                    "-o", target});
+    expect_kept_after_full_disk(limited, target, "File too large");
+
+    // A real full file system: a 256 KB tmpfs, where this machine lets the test mount one.
+    const std::string small = dir.file("small");
+    std::filesystem::create_directory(small);
+    inputs.push_back("small");
+    if (::mount("tmpfs", small.c_str(), "tmpfs", 0, "size=256k") != 0) {
+        std::cout << "tmpfs not mounted (" << std::strerror(errno)
+                  << "): the full disk was tested through the write limit only\n";
+        return;
+    }
+    const std::string on_tmpfs = small + "/out.exr";
+    std::ofstream(on_tmpfs) << "the previous output";
+    const CliResult full = run_cli({in, "-o", on_tmpfs});
+    expect_kept_after_full_disk(full, on_tmpfs, "No space left on device");
+    EXPECT_EQ(::umount2(small.c_str(), MNT_DETACH), 0) << std::strerror(errno);
 }
 
 TEST_F(CliError, OutOfRangeParameters)

@@ -180,6 +180,13 @@ void broken_files()
         expect(file, "error", "error", "error");
     }
 
+    {  // An attribute that declares nearly 2 GB in a 38 KB file (OpenEXR would allocate it).
+        std::string bytes = good;
+        put_int(bytes, attribute_value(bytes, "compression", "compression") - 4, 0x70000000);
+        write_bytes("attribute_larger_than_file.exr", bytes);
+        expect("attribute_larger_than_file.exr", "error", "error", "error");
+    }
+
     write_bytes("not_an_exr.exr", std::string(4096, '\x5a'));
     expect("not_an_exr.exr", "error", "error", "error");
 

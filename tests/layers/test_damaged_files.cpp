@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <csignal>
 #include <fstream>
 
 #include <sys/wait.h>
@@ -14,6 +15,7 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenImageIO/imagebuf.h>
 
+#include "statmc/layers/atomic_file.h"
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/file_error.h"
 #include "statmc/layers/statistics_layers.h"
@@ -108,6 +110,31 @@ TEST(InterruptedWrites, TemporariesOfKilledWritersAreRemovedByTheNextWrite)
     EXPECT_FALSE(std::filesystem::exists(stale));
     EXPECT_TRUE(std::filesystem::exists(alive)) << "a live writer's temporary is left alone";
     EXPECT_TRUE(error_of(out).empty()) << error_of(out);
+}
+
+TEST(InterruptedWrites, ASignalDuringAWriteRemovesTheTemporaryAndKeepsTheTarget)
+{
+    TempDir dir;
+    const std::string out = dir.file("out.txt");
+    layers::write_text_file_atomically(out, "the previous output\n");
+    for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+        // A child that is signalled half-way through its write, as statmc is by Ctrl-C.
+        const pid_t child = ::fork();
+        if (child == 0) {
+            layers::remove_temporaries_on_termination_signals();
+            layers::write_file_atomically(out, [&](const std::string& temporary) {
+                std::ofstream(temporary) << "half a file";
+                ::raise(signal_number);
+            });
+            ::_exit(0);  // not reached: the signal ends the child
+        }
+        int status = 0;
+        ASSERT_EQ(::waitpid(child, &status, 0), child);
+        ASSERT_TRUE(WIFSIGNALED(status)) << "the signal still ends the process";
+        EXPECT_EQ(WTERMSIG(status), signal_number);
+        EXPECT_EQ(dir.entries(), std::vector<std::string>{"out.txt"}) << "no temporary left";
+        EXPECT_EQ(file_bytes(out), "the previous output\n");
+    }
 }
 
 }  // namespace

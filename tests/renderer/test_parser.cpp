@@ -262,6 +262,18 @@ TEST(Parser, NonFiniteNumbersAreNamed)
     EXPECT_EQ(error_of("Scale 1 1e999 1\n"), "t.pbrt:1: number '1e999' is not finite");
 }
 
+TEST(Parser, IntegersMustBeWholeAndFitAnInt)
+{
+    EXPECT_EQ(error_of("Film \"image\" \"integer xresolution\" [ 5e9 ]\n"),
+              "t.pbrt:1: \"integer xresolution\" needs a whole number that fits an int, got 5e+09");
+    EXPECT_EQ(error_of("Sampler \"random\" \"integer pixelsamples\" 2.5\n"),
+              "t.pbrt:1: \"integer pixelsamples\" needs a whole number that fits an int, got 2.5");
+    EXPECT_NE(error_of("WorldBegin\nShape \"trianglemesh\" \"integer indices\" [0 1 1.5] "
+                       "\"point P\" [0 0 0 1 0 0 0 1 0]\n")
+                  .find("t.pbrt:2: index 1.5 out of range"),
+              std::string::npos);
+}
+
 TEST(Parser, DeepNestingIsNoProblem)
 {
     // The graphics-state stack is a vector, not the call stack.
@@ -393,6 +405,39 @@ TEST(Parser, PlyMeshBinaryBothEndiannesses)
         expect_near(m.normals[1], {0, 0, 1});
         EXPECT_EQ(m.indices, (std::vector<std::uint32_t>{0, 1, 2}));
     }
+}
+
+TEST(Parser, PlyCountsAndIndicesMustFitTheFile)
+{
+    ScratchDir dir("plycounts");
+    const std::string header = "ply\nformat binary_little_endian 1.0\n";
+    const std::string vertex = "property float x\nproperty float y\nproperty float z\n";
+    const std::string body(3 * 12, '\0');  // three vertices at the origin
+    auto ply_error = [&](const std::string& ply) {
+        dir.write("t.ply", ply);
+        return error_of("WorldBegin\nShape \"plymesh\" \"string filename\" \"t.ply\"\n",
+                        dir.file(""));
+    };
+    auto face = [](std::int32_t count, std::int32_t index) {
+        std::string f(reinterpret_cast<const char*>(&count), 4);
+        for (int k = 0; k < 3; ++k)
+            f.append(reinterpret_cast<const char*>(&index), 4);
+        return f;
+    };
+    const std::string faces =
+        "element face 1\nproperty list int int vertex_indices\nend_header\n";
+    // A billion vertices declared, 36 bytes given: refused before anything is allocated.
+    std::string e = ply_error(header + "element vertex 1000000000\n" + vertex + faces + body);
+    EXPECT_NE(e.find("element 'vertex' declares 1000000000 entries, more than the rest of the "
+                     "file holds"),
+              std::string::npos)
+        << e;
+    e = ply_error(header + "element vertex 3\n" + vertex + faces + body + face(2000000000, 0));
+    EXPECT_NE(e.find("a list of 2e+09 items, more than the rest of the file holds"),
+              std::string::npos)
+        << e;
+    e = ply_error(header + "element vertex 3\n" + vertex + faces + body + face(3, -1));
+    EXPECT_NE(e.find("face index -1 out of range"), std::string::npos) << e;
 }
 
 TEST(Parser, TruncatedPlyIsAnError)

@@ -17,6 +17,24 @@ namespace statmc::layers {
 void write_file_atomically(const std::string& target,
                            const std::function<void(const std::string& temporary)>& write);
 
+/// Removes the temporaries of every write in progress in this process. Async-signal-safe
+/// (unlink on names held in a fixed table): for signal handlers, so that an interrupted
+/// write leaves nothing behind.
+void remove_unfinished_temporaries() noexcept;
+
+/// A signal handler for a host that ends on the signal: remove_unfinished_temporaries(),
+/// then the signal's default action, so the process still ends as the signal says.
+extern "C" void remove_temporaries_and_end(int signal_number);
+
+/// Installs remove_temporaries_and_end for SIGINT, SIGTERM and SIGHUP.
+void remove_temporaries_on_termination_signals();
+
+/// What the system says about a write of `path` that just failed, when a library's own
+/// message does not: "No space left on device (12 KB free)" when its file system is (all
+/// but) full, "File too large (...)" when it has reached the process's file size limit
+/// (ulimit -f); "" when neither explains it.
+std::string storage_limit_reached(const std::string& path);
+
 /// write_file_atomically for a text file (a script, a record): `text` as its whole content.
 /// Throws FileError "<target>: cannot write: ..." on failure.
 void write_text_file_atomically(const std::string& target, const std::string& text);

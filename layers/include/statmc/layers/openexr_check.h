@@ -18,9 +18,11 @@ bool is_openexr_file(const std::string& path);
 /// FileError "<path>: damaged OpenEXR file: ..." when it finds the file unreadable.
 void check_openexr_structure(const std::string& path);
 
-/// Walks the headers of an OpenEXR file (they are small: no pixel is read) for what
-/// OpenEXR's own reader would pass over silently: a channel listed twice in one part, of
-/// which it keeps only one. Throws FileError "<path>: damaged OpenEXR file: ...".
+/// Walks the headers of an OpenEXR file (they are small: no pixel is read), before any
+/// library parses them, for what OpenEXR's own reader mishandles: an attribute that
+/// declares more bytes than the file holds (OpenEXR 3.1 allocates them first), and a
+/// channel listed twice in one part (it silently keeps one). Throws FileError
+/// "<path>: damaged OpenEXR file: ...".
 void check_openexr_headers(const std::string& path);
 
 /// Half of this machine's physical memory: the default budget of one input image.
