@@ -1,5 +1,6 @@
 #include "statmc/layers/openexr_check.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -154,6 +155,17 @@ void check_read_budget(const std::string& path, int subimage, const OIIO::ImageS
     // In double: width × height × channels of a hostile header overflows 64 bits.
     const double bytes = double(spec.width) * double(spec.height) * double(spec.depth) *
                          double(spec.nchannels) * sizeof(float);
+    // A reader allocates a whole tile at once: a tile of 16 x 20 000 000 pixels on a 32 x 32
+    // image (found by the fuzzer) took 3.9 GB. Tiles larger than the image are legal (64 x 64
+    // on 32 x 32), so only those larger than both the image and 4096 x 4096 are refused.
+    const double tile_pixels =
+        double(spec.tile_width) * double(spec.tile_height) * double(std::max(spec.tile_depth, 1));
+    if (spec.tile_width > 0 &&
+        tile_pixels > std::max(double(spec.width) * double(spec.height), 4096.0 * 4096.0))
+        throw FileError(path + ": subimage " + std::to_string(subimage) + " declares tiles of " +
+                        std::to_string(spec.tile_width) + "x" + std::to_string(spec.tile_height) +
+                        " pixels for a " + std::to_string(spec.width) + "x" +
+                        std::to_string(spec.height) + " image (a damaged header)");
     if (spec.width < 0 || spec.height < 0 || spec.nchannels < 0 || bytes > double(max_bytes)) {
         throw FileError(path + ": subimage " + std::to_string(subimage) + " declares " +
                         std::to_string(spec.width) + "x" + std::to_string(spec.height) +

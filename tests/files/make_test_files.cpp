@@ -187,6 +187,13 @@ void broken_files()
         expect("attribute_larger_than_file.exr", "error", "error", "error");
     }
 
+    {  // Tiles of 16 x 20 000 000 pixels on a 32 x 32 image (a reader allocates a whole tile).
+        std::string bytes = read_bytes("mipmapped.exr");
+        put_int(bytes, attribute_value(bytes, "tiles", "tiledesc") + 4, 20000000);
+        write_bytes("huge_tiles.exr", bytes);
+        expect("huge_tiles.exr", "error", "error", "error");
+    }
+
     write_bytes("not_an_exr.exr", std::string(4096, '\x5a'));
     expect("not_an_exr.exr", "error", "error", "error");
 
