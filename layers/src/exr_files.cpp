@@ -1,5 +1,6 @@
 #include "statmc/layers/exr_files.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <system_error>
@@ -131,6 +132,12 @@ void check_readable(const std::string& path)
 }
 
 }  // namespace
+
+void silence_library_debug_messages()
+{
+    if (!std::getenv("OPENIMAGEIO_DEBUG"))
+        OIIO::attribute("debug", 0);
+}
 
 void check_image_file(const std::string& path, const ReadOptions& options)
 {

@@ -17,6 +17,7 @@
 
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/atomic_file.h"
+#include "statmc/layers/exr_files.h"
 #include "statmc/layers/file_error.h"
 #include "statmc/layers/layer_names.h"
 #include "statmc/merge/merge.h"
@@ -105,6 +106,7 @@ OIIO::ImageBuf merge_tasks(const std::vector<OIIO::ImageBuf>& parts)
 int main(int argc, char** argv)
 {
     using namespace statmc::render;
+    statmc::layers::silence_library_debug_messages();
     CLI::App app{"statmc-render: path-trace a pbrt-v3 scene (Embree 3) into a statistics EXR\n"
                  "(mean, variance, Box-Cox moments, sample count, albedo/normal/depth guides)."};
     std::string scene_path, output;

@@ -11,6 +11,10 @@
 
 namespace statmc::layers {
 
+/// Turns off OIIO's "OIIO DEBUG:" lines (Debian's build prints them by default, before a
+/// host's own error) unless $OPENIMAGEIO_DEBUG asks for them. Hosts call it at start.
+void silence_library_debug_messages();
+
 /// What one read may take: a hostile header must not take the machine.
 struct ReadOptions {
     /// The most bytes one subimage may take as float pixels; 0: half of physical memory.
