@@ -33,8 +33,9 @@ for t in "${targets[@]}"; do
         -detect_leaks=0 -print_final_stats=1 -artifact_prefix="$artifacts/" >"$log" 2>&1; then
         status=1
         echo "$t: FOUND A PROBLEM (input in $artifacts/, log in $log):"
-        grep -E "ERROR|SUMMARY|Test unit written|terminate called|what\(\)" "$log" | head -20
+        grep -E "ERROR|SUMMARY|Test unit written|terminate called|what\(\)" "$log" | head -20 || true
     fi
-    grep -E "stat::number_of_executed_units|stat::peak_rss_mb|cov: " "$log" | tail -3 | sed "s/^/  $t: /"
+    grep -E "stat::number_of_executed_units|stat::peak_rss_mb|cov: " "$log" | tail -3 |
+        sed "s/^/  $t: /" || true
 done
 exit $status

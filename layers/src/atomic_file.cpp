@@ -1,5 +1,6 @@
 #include "statmc/layers/atomic_file.h"
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
@@ -28,7 +29,9 @@ namespace {
 // The temporaries being written, where a signal handler can find them: fixed storage and
 // lock-free flags, since a handler may neither allocate nor lock. A write that finds the
 // table full (more than 64 at once) is not listed; the next write of its target still
-// removes what it leaves.
+// removes what it leaves. A slot is marked listed only after its path is complete; a
+// handler running while another thread reuses a slot could read a half-copied name and
+// unlink nothing (hosts write one file at a time, so this stays theoretical).
 struct PendingSlot {
     std::atomic<bool> taken{false};
     std::atomic<bool> listed{false};
@@ -175,10 +178,14 @@ std::string storage_limit_reached(const std::string& path)
     // of pixels may take (a few MB), not zero.
     constexpr std::uintmax_t kSlack = 4u << 20;
     std::error_code ec;
-    const std::uintmax_t size = fs::exists(path, ec) ? fs::file_size(path, ec) : 0;
+    std::uintmax_t size = fs::file_size(path, ec);
+    if (ec)
+        size = 0;
+    // A write past the limit fills the file up to it; a file well short of it failed for
+    // another reason.
     struct rlimit limit {};
     if (::getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
-        size + kSlack >= limit.rlim_cur)
+        size >= limit.rlim_cur - std::min<std::uintmax_t>(limit.rlim_cur / 2, 65536))
         return std::string(std::strerror(EFBIG)) + " (this process may write files of at most " +
                std::to_string(limit.rlim_cur) + " bytes: ulimit -f)";
     struct statvfs disk {};
@@ -205,10 +212,15 @@ extern "C" void remove_temporaries_and_end(int signal_number)
     std::raise(signal_number);
 }
 
-void remove_temporaries_on_termination_signals()
+void install_write_signal_handlers()
 {
-    for (int signal_number : {SIGINT, SIGTERM, SIGHUP})
+    for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+        struct sigaction current {};
+        if (::sigaction(signal_number, nullptr, &current) == 0 && current.sa_handler == SIG_IGN)
+            continue;  // nohup, or a background job of a shell: keep ignoring it
         std::signal(signal_number, remove_temporaries_and_end);
+    }
+    std::signal(SIGXFSZ, SIG_IGN);
 }
 
 void write_text_file_atomically(const std::string& target, const std::string& text)

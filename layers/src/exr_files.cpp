@@ -1,5 +1,6 @@
 #include "statmc/layers/exr_files.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -118,9 +119,21 @@ OIIO::ImageBuf read_subimage(const std::string& path, int s, int& subimages,
 std::vector<OIIO::ImageBuf> read_coarser_levels(const std::string& path, int s,
                                                 const OIIO::ImageBuf& first)
 {
+    // Each level halves the one before (rounded down or up). A rip map's levels do not
+    // (OIIO lists them as levels of the full size): written back as a MIP map they would
+    // not be what was read, so such a file is refused rather than changed.
+    auto halves = [](int size, int previous) {
+        return size == std::max(1, previous / 2) || size == std::max(1, (previous + 1) / 2);
+    };
     std::vector<OIIO::ImageBuf> levels;
-    for (int m = 1; m < first.nmiplevels(); ++m)
+    for (int m = 1; m < first.nmiplevels(); ++m) {
         levels.push_back(read_level(path, s, m));
+        const OIIO::ImageSpec& previous = m == 1 ? first.spec() : levels[levels.size() - 2].spec();
+        const OIIO::ImageSpec& level = levels.back().spec();
+        if (!halves(level.width, previous.width) || !halves(level.height, previous.height))
+            throw FileError(path + ": subimage " + std::to_string(s) + " has levels that are " +
+                            "not a MIP map (a rip map?), which statmc cannot keep");
+    }
     return levels;
 }
 
@@ -186,6 +199,14 @@ void write_image_file(const std::vector<OIIO::ImageBuf>& subimages, const std::s
     if (!mip_levels.empty() && mip_levels.size() != subimages.size())
         cannot_write(path, "MIP levels given for " + std::to_string(mip_levels.size()) +
                                " subimages of " + std::to_string(subimages.size()));
+    // OIIO 2.4 writes MIP levels into single-part files only; dropping them would lose
+    // what was read.
+    for (std::size_t s = 0; s < mip_levels.size() && subimages.size() > 1; ++s)
+        if (!mip_levels[s].empty())
+            cannot_write(path, "subimage " + std::to_string(s) + " has " +
+                                   std::to_string(mip_levels[s].size() + 1) +
+                                   " MIP levels, which statmc cannot write into a multi-part "
+                                   "file (keep one part with --subimage, or write each alone)");
     auto out = exr_writer(path);
     static const std::vector<OIIO::ImageBuf> none;
     auto levels_of = [&](std::size_t s) -> const std::vector<OIIO::ImageBuf>& {
@@ -216,32 +237,33 @@ void write_image_file(const std::vector<OIIO::ImageBuf>& subimages, const std::s
     write_file_atomically(path, [&](const std::string& temporary) {
         // The library's message, with the system's reason when it leaves it out (OpenEXR
         // says "File output failed." on a full disk).
-        auto cannot_write = [&](std::string why) {
+        auto fail = [&](std::string why) {
             // The user knows the target, not the temporary the library names.
-            for (std::size_t at; (at = why.find(temporary)) != std::string::npos;)
+            for (std::size_t at = 0; (at = why.find(temporary, at)) != std::string::npos;
+                 at += path.size())
                 why.replace(at, temporary.size(), path);
             const std::string limit = storage_limit_reached(temporary);
             if (!limit.empty())
                 why = limit + ": " + why;
-            ::statmc::layers::cannot_write(path, why);
+            cannot_write(path, why);
         };
         if (!out->open(temporary, int(specs.size()), specs.data()))
-            cannot_write(out->geterror());
+            fail(out->geterror());
         for (std::size_t s = 0; s < subimages.size(); ++s) {
             if (s > 0 && !out->open(temporary, specs[s], OIIO::ImageOutput::AppendSubimage))
-                cannot_write(out->geterror());
+                fail(out->geterror());
             if (!subimages[s].write(out.get()))
-                cannot_write(subimages[s].geterror());
+                fail(subimages[s].geterror());
             for (const OIIO::ImageBuf& level : levels_of(s)) {
                 if (!out->open(temporary, stored_spec(level.spec(), true),
                                OIIO::ImageOutput::AppendMIPLevel))
-                    cannot_write(out->geterror());
+                    fail(out->geterror());
                 if (!level.write(out.get()))
-                    cannot_write(level.geterror());
+                    fail(level.geterror());
             }
         }
         if (!out->close())
-            cannot_write(out->geterror());
+            fail(out->geterror());
         out.reset();
     });
     forget_cached(path);

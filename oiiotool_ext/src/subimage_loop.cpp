@@ -71,10 +71,14 @@ void apply_to_subimages(ToolContext& ctx, const Invocation& inv, std::size_t cou
                                 " subimages but " + in.label + " has " +
                                 std::to_string(in.subimages.size()));
     std::vector<OIIO::ImageBuf> results;
+    // A subimage that passes through keeps its MIP levels; a computed one has one level.
+    layers::MipLevels levels(n);
+    inputs[0].mip_levels.resize(inputs[0].subimages.size());
     for (std::size_t s = 0; s < n; ++s) {
         if (!selected.empty() && !selected[s]) {
             // inputs is ours (popped) and subimage s is read no more: moved, not copied.
             results.push_back(std::move(inputs[0].subimages[s]));
+            levels[s] = std::move(inputs[0].mip_levels[s]);
             continue;
         }
         std::vector<const OIIO::ImageBuf*> images;
@@ -85,7 +89,9 @@ void apply_to_subimages(ToolContext& ctx, const Invocation& inv, std::size_t cou
             throw ToolError(inv.name + ": " + inputs[0].label + ": " + result.geterror());
         results.push_back(std::move(result));
     }
-    ctx.stack.push({std::move(results), inputs[0].label + " (" + inv.name + ")"});
+    StackImage result{std::move(results), inputs[0].label + " (" + inv.name + ")"};
+    result.mip_levels = std::move(levels);
+    ctx.stack.push(std::move(result));
 }
 
 }  // namespace statmc::tool

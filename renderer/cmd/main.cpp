@@ -107,6 +107,7 @@ int main(int argc, char** argv)
 {
     using namespace statmc::render;
     statmc::layers::silence_library_debug_messages();
+    statmc::layers::install_write_signal_handlers();
     CLI::App app{"statmc-render: path-trace a pbrt-v3 scene (Embree 3) into a statistics EXR\n"
                  "(mean, variance, Box-Cox moments, sample count, albedo/normal/depth guides)."};
     std::string scene_path, output;
@@ -318,7 +319,7 @@ int main(int argc, char** argv)
                     break;
                 parts.push_back(make_output_image(*film, info));
             }
-            statmc::layers::remove_temporaries_on_termination_signals();
+            statmc::layers::install_write_signal_handlers();
             if (int(parts.size()) < task_total) {
                 std::fprintf(stderr, "statmc-render: interrupted after %zu of %d tasks; %s not written\n",
                              parts.size(), task_total, output.c_str());
@@ -346,7 +347,7 @@ int main(int argc, char** argv)
                 };
             double before = 0;
             auto [film, share_stats, info] = render_share(task, after_iteration, before);
-            statmc::layers::remove_temporaries_on_termination_signals();
+            statmc::layers::install_write_signal_handlers();
             stats = share_stats;
             counts = info.spp;
             if (checkpoint_seconds > 0 && !stats.complete) {

@@ -158,11 +158,13 @@ public:
                                                           : std::size_t(file_size_ - std::uintmax_t(at));
     }
 
-    /// A list's item count: a whole number the rest of the file can hold.
+    /// A list's item count: a whole number the rest of the file can hold (for ASCII, the
+    /// whole file: asking the stream for its position per list would cost a system call).
     std::size_t read_count(Type type)
     {
         const double v = read(type);
-        if (!(v >= 0 && v == std::floor(v) && v <= double(remaining())))
+        const double bound = double(format_ == Format::Ascii ? file_size_ : remaining());
+        if (!(v >= 0 && v == std::floor(v) && v <= bound))
             fail("a list of " + number_text(v) + " items, more than the rest of the file holds");
         return std::size_t(v);
     }
@@ -328,11 +330,14 @@ TriangleMesh read_ply(const std::string& path)
                         continue;
                     }
                     const std::size_t n = reader.read_count(p.count_type);
+                    if (!is_face || (p.name != "vertex_indices" && p.name != "vertex_index")) {
+                        for (std::size_t j = 0; j < n; ++j)  // texcoords and the like: skipped
+                            reader.read(p.type);
+                        continue;
+                    }
                     idx.resize(n);
                     for (std::size_t j = 0; j < n; ++j)
                         idx[j] = reader.read_index(p.type);
-                    if (!is_face || (p.name != "vertex_indices" && p.name != "vertex_index"))
-                        continue;
                     if (n < 3)
                         fail("a face with fewer than 3 vertices");
                     for (std::size_t j = 1; j + 1 < n; ++j) {  // fan: triangles and quads

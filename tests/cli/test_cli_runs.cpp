@@ -1,6 +1,7 @@
 // statmc runs that succeed: outputs equal the operators' results on the same files.
 #include <algorithm>
 #include <array>
+#include <filesystem>
 
 #include <gtest/gtest.h>
 
@@ -150,6 +151,21 @@ TEST(CliRun, CopiesKeepMipLevels)
     ASSERT_EQ(rg.size(), 6u);
     for (int m = 0; m < 6; ++m)
         EXPECT_EQ(rg[std::size_t(m)], (std::array<float, 3>{float(32 >> m), 2.f, m + 0.5f}));
+    // Parts joined and deleted keep the levels of the parts they keep; a multi-part file
+    // with MIP levels cannot be written (OIIO 2.4), and says so rather than drop them.
+    const CliResult two = run_cli({in, in, "--siappend", "-o", dir.file("two.exr")});
+    EXPECT_EQ(two.exit_code, 1);
+    EXPECT_NE(two.err.find("subimage 0 has 6 MIP levels, which statmc cannot write into a "
+                           "multi-part file"),
+              std::string::npos)
+        << two.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("two.exr")));
+    expect_success(
+        run_cli({in, in, "--siappend", "--subimage:delete=1", "0", "-o", dir.file("one.exr")}));
+    EXPECT_EQ(mip_levels_of(dir.file("one.exr")), want);
+    // An operator's result is one level, as in oiiotool.
+    expect_success(run_cli({in, "--mulc", "2", "-o", dir.file("twice.exr")}));
+    EXPECT_EQ(mip_levels_of(dir.file("twice.exr")).size(), 1u);
 }
 
 TEST(CliRun, PassesThenDenoise)

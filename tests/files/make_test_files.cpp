@@ -15,7 +15,9 @@
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfTiledOutputFile.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
@@ -136,6 +138,23 @@ void valid_files()
     }
     mip_out->close();
     expect("mipmapped.exr", "ok", "error", "ok", "mipmapped.exr");
+
+    {  // A rip map: levels that shrink in x and y separately, which a copy cannot keep.
+        Imf::Header header(32, 16);
+        header.channels().insert("Y", Imf::Channel(Imf::HALF));
+        header.setTileDescription(Imf::TileDescription(16, 16, Imf::RIPMAP_LEVELS));
+        Imf::TiledOutputFile rip(path_of("ripmap.exr").c_str(), header);
+        std::vector<half> pixels(32 * 16, half(0.5f));
+        for (int ly = 0; ly < rip.numYLevels(); ++ly)
+            for (int lx = 0; lx < rip.numXLevels(); ++lx) {
+                Imf::FrameBuffer frame;
+                frame.insert("Y", Imf::Slice(Imf::HALF, reinterpret_cast<char*>(pixels.data()),
+                                             sizeof(half), sizeof(half) * rip.levelWidth(lx)));
+                rip.setFrameBuffer(frame);
+                rip.writeTiles(0, rip.numXTiles(lx) - 1, 0, rip.numYTiles(ly) - 1, lx, ly);
+            }
+    }
+    expect("ripmap.exr", "error", "error", "error");
 
     // A plain half RGB beauty: copies, but has no statistics to denoise.
     write(beauty, "rgb_half.exr");

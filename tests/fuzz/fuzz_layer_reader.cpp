@@ -1,5 +1,5 @@
 // Bytes as an EXR → the layer contract's reader (OpenEXR's check, the header budget, every
-// part) → the statistics, guide and AOV lookups → the denoise operator, in its default
+// part and MIP level) → the statistics, guide and AOV lookups → the denoise operator, in its default
 // and in the paper's form. Every failure must be a FileError or LayerError, or an error
 // on the destination image; a crash, a hang or a runaway allocation is a finding.
 #include <cstdint>
@@ -48,9 +48,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     statmc::layers::ReadOptions options;
     options.max_memory = 16 << 20;  // small images only: a larger header is refused
     std::vector<OIIO::ImageBuf> parts;
+    statmc::layers::MipLevels mip_levels;  // read as a copy reads them
     try {
         parts = statmc::layers::read_image_subimages(statmc::fuzz::as_file(data, size, ".exr"),
-                                                     options);
+                                                     options, &mip_levels);
     } catch (const statmc::layers::FileError&) {
         return 0;
     }

@@ -121,7 +121,7 @@ TEST(InterruptedWrites, ASignalDuringAWriteRemovesTheTemporaryAndKeepsTheTarget)
         // A child that is signalled half-way through its write, as statmc is by Ctrl-C.
         const pid_t child = ::fork();
         if (child == 0) {
-            layers::remove_temporaries_on_termination_signals();
+            layers::install_write_signal_handlers();
             layers::write_file_atomically(out, [&](const std::string& temporary) {
                 std::ofstream(temporary) << "half a file";
                 ::raise(signal_number);
@@ -135,6 +135,21 @@ TEST(InterruptedWrites, ASignalDuringAWriteRemovesTheTemporaryAndKeepsTheTarget)
         EXPECT_EQ(dir.entries(), std::vector<std::string>{"out.txt"}) << "no temporary left";
         EXPECT_EQ(file_bytes(out), "the previous output\n");
     }
+    // A signal the parent set to be ignored (nohup) stays ignored: the write completes.
+    const pid_t child = ::fork();
+    if (child == 0) {
+        std::signal(SIGHUP, SIG_IGN);
+        layers::install_write_signal_handlers();
+        layers::write_file_atomically(out, [&](const std::string& temporary) {
+            std::ofstream(temporary) << "written despite SIGHUP\n";
+            ::raise(SIGHUP);
+        });
+        ::_exit(0);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+    EXPECT_EQ(file_bytes(out), "written despite SIGHUP\n");
 }
 
 }  // namespace

@@ -26,13 +26,15 @@ void remove_unfinished_temporaries() noexcept;
 /// then the signal's default action, so the process still ends as the signal says.
 extern "C" void remove_temporaries_and_end(int signal_number);
 
-/// Installs remove_temporaries_and_end for SIGINT, SIGTERM and SIGHUP.
-void remove_temporaries_on_termination_signals();
+/// For a host that writes files: SIGINT, SIGTERM and SIGHUP run remove_temporaries_and_end
+/// (unless the caller's parent set them to be ignored, as nohup does), and SIGXFSZ is
+/// ignored, so that a write past `ulimit -f` fails with an error instead of a core dump.
+void install_write_signal_handlers();
 
 /// What the system says about a write of `path` that just failed, when a library's own
 /// message does not: "No space left on device (12 KB free)" when its file system is (all
-/// but) full, "File too large (...)" when it has reached the process's file size limit
-/// (ulimit -f); "" when neither explains it.
+/// but) full, "File too large (...)" when the file has reached the process's file size
+/// limit (ulimit -f); "" when neither explains it.
 std::string storage_limit_reached(const std::string& path);
 
 /// write_file_atomically for a text file (a script, a record): `text` as its whole content.

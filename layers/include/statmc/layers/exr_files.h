@@ -55,7 +55,8 @@ void write_image_file(const OIIO::ImageBuf& image, const std::string& path);
 
 /// Writes `subimages` (at least one) as the parts of one OpenEXR file, atomically as
 /// above, with `options` overriding the pixel type and compression. A subimage with
-/// `mip_levels` (empty, or one entry per subimage) is written as a tiled MIP map.
+/// `mip_levels` (empty, or one entry per subimage) is written as a tiled MIP map; MIP
+/// levels in a file of several subimages are refused (OIIO 2.4 cannot write them).
 void write_image_file(const std::vector<OIIO::ImageBuf>& subimages, const std::string& path,
                       const WriteOptions& options, const MipLevels& mip_levels = {});
 

@@ -30,7 +30,7 @@ std::uint64_t default_read_budget();
 
 /// Throws FileError naming the file, subimage, size and the limit when the pixels `spec`
 /// declares would take more than `max_bytes` as float (`--max-memory` sets it), or when
-/// its tiles are larger than both the image and 4096 x 4096 pixels.
+/// its tiles are larger than both 4 times the image and 8192 x 8192 pixels.
 void check_read_budget(const std::string& path, int subimage, const OIIO::ImageSpec& spec,
                        std::uint64_t max_bytes);
 
