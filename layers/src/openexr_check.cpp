@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 
 #include <unistd.h>
@@ -66,19 +67,55 @@ struct HeaderBytes {
     bool skip(std::int32_t bytes) { return bytes >= 0 && bool(in.seekg(bytes, std::ios::cur)); }
 };
 
-// The channel named twice in one chlist value of `size` bytes, or "".
-std::string repeated_channel(HeaderBytes& bytes, std::int32_t size)
+// The bytes OpenEXR 3.1 reads for a value of a fixed-size type, whatever size the header
+// declares (it reads these types by their layout, not by the declared size); 0 for the
+// types it reads by the declared size.
+int fixed_value_size(const std::string& type)
+{
+    static const std::map<std::string, int> sizes = {
+        {"box2i", 16},  {"box2f", 16},   {"chromaticities", 32}, {"compression", 1},
+        {"double", 8},  {"envmap", 1},   {"float", 4},           {"int", 4},
+        {"keycode", 28}, {"lineOrder", 1}, {"m33f", 36},         {"m33d", 72},
+        {"m44f", 64},   {"m44d", 128},   {"rational", 8},        {"tiledesc", 9},
+        {"timecode", 8}, {"v2i", 8},     {"v2f", 8},             {"v2d", 16},
+        {"v3i", 12},    {"v3f", 12},     {"v3d", 24},            {"deepImageState", 1}};
+    const auto it = sizes.find(type);
+    return it == sizes.end() ? 0 : it->second;
+}
+
+// Whether each string of a stringvector value (length, then bytes) fits in its declared
+// `size`: OpenEXR allocates each length before reading it. Leaves the stream where it was.
+bool strings_fit(HeaderBytes& bytes, std::int32_t size)
+{
+    const std::streamoff start = bytes.in.tellg();
+    std::int64_t read = 0;
+    bool fit = true;
+    while (read < size) {
+        std::int32_t length = 0;
+        if (!bytes.int32(length) || length < 0 || length > size - read - 4) {
+            fit = false;
+            break;
+        }
+        read += 4 + length;
+        bytes.skip(length);
+    }
+    bytes.in.clear();
+    bytes.in.seekg(start);
+    return fit;
+}
+
+// A chlist value, read as OpenEXR reads it (entries up to an empty name, whatever size
+// was declared): the channel named twice, or "".
+std::string repeated_channel(HeaderBytes& bytes)
 {
     std::set<std::string> names;
-    const std::streamoff end = bytes.in.tellg() + std::streamoff(size);
     std::string name;
-    while (bytes.in.tellg() < end && bytes.text(name) && !name.empty()) {
+    while (bytes.text(name) && !name.empty()) {
         if (!names.insert(name).second)
             return name;
         if (!bytes.skip(16))  // pixel type, pLinear + reserved, x and y sampling
             break;
     }
-    bytes.in.seekg(end);
     return {};
 }
 
@@ -105,20 +142,40 @@ void check_openexr_headers(const std::string& path)
             std::int32_t size = 0;
             if (!bytes.text(type) || !bytes.int32(size) || size < 0)
                 return;
-            // OpenEXR 3.1 allocates what an attribute declares before it reads it: a
-            // 700-byte file may ask for gigabytes.
-            if (size > bytes.remaining())
+            // OpenEXR 3.1 allocates what a string, vector, preview or unknown attribute
+            // declares before it reads it: a 700-byte file may ask for gigabytes.
+            auto refuse_size = [&](double declared) {
                 throw FileError(path + ": damaged OpenEXR file: attribute '" + name + "' of part " +
-                                std::to_string(part) + " declares " + std::to_string(size) +
+                                std::to_string(part) + " declares " +
+                                std::to_string(std::int64_t(declared)) +
                                 " bytes, more than the rest of the file holds");
-            if (name == "channels" && type == "chlist") {
-                const std::string twice = repeated_channel(bytes, size);
+            };
+            // Walk as OpenEXR reads, so that the next attribute is the one it sees.
+            if (const int fixed = fixed_value_size(type); fixed > 0) {
+                if (!bytes.skip(fixed))
+                    return;
+            } else if (type == "chlist") {
+                const std::string twice = repeated_channel(bytes);
                 if (!twice.empty())
                     throw FileError(path + ": damaged OpenEXR file: part " + std::to_string(part) +
                                     " lists channel '" + twice + "' twice (a reader would "
                                     "silently keep only one of them)");
-            } else if (!bytes.skip(size)) {
-                return;
+            } else if (type == "preview") {
+                std::int32_t width = 0, height = 0;
+                if (!bytes.int32(width) || !bytes.int32(height))
+                    return;
+                const double pixels = 4.0 * double(std::uint32_t(width)) * double(std::uint32_t(height));
+                if (pixels > double(bytes.remaining()))
+                    refuse_size(pixels);
+                if (!bytes.skip(std::int32_t(pixels)))
+                    return;
+            } else {
+                if (size > bytes.remaining())
+                    refuse_size(size);
+                if (type == "stringvector" && !strings_fit(bytes, size))
+                    refuse_size(size);
+                if (!bytes.skip(size))
+                    return;
             }
         } while (bytes.text(name) && !name.empty());
         if (!multipart)
