@@ -3,6 +3,7 @@
 // and in the paper's form. Every failure must be a FileError or LayerError, or an error
 // on the destination image; a crash, a hang or a runaway allocation is a finding.
 #include <cstdint>
+#include <utility>
 
 #include <OpenImageIO/imageio.h>
 
@@ -22,13 +23,20 @@ void look_up_layers(const OIIO::ImageBuf& image)
 {
     const OIIO::ImageSpec& spec = image.spec();
     statmc::layers::layers_in(spec);
+    // Each lookup on its own: an incomplete layer is a LayerError, which the operators turn
+    // into an error on their destination.
     try {
         const auto channels = statmc::layers::find_statistics(spec);
         statmc::layers::validate_statistics(image, channels);
     } catch (const statmc::layers::LayerError&) {
     }
-    statmc::layers::find_guide_layer(spec, statmc::layers::kAlbedoLayer, true);
-    statmc::layers::find_guide_layer(spec, statmc::layers::kNormalLayer, false);
+    for (const auto& [layer, colour] : {std::pair{statmc::layers::kAlbedoLayer, true},
+                                         std::pair{statmc::layers::kNormalLayer, false}}) {
+        try {
+            statmc::layers::find_guide_layer(spec, layer, colour);
+        } catch (const statmc::layers::LayerError&) {
+        }
+    }
 }
 
 void denoise_with(const OIIO::ImageBuf& image, statmc::DenoiseImageOptions options)
