@@ -7,6 +7,14 @@
 
 namespace statmc::render {
 
+std::string number_text(double value)
+{
+    std::ostringstream text;
+    text << value;
+    return text.str();
+}
+
+
 ParameterList::ParameterList(std::string file, int line, std::vector<Parameter> parameters)
     : file_(std::move(file)), line_(line), params_(std::move(parameters))
 {
@@ -106,10 +114,9 @@ std::optional<int> ParameterList::get_int(const std::string& name)
         return std::nullopt;
     // A whole number an int holds: 2.5, NaN or 5e9 would be truncated or undefined.
     if (!(*v == std::floor(*v) && std::abs(*v) <= double(std::numeric_limits<int>::max()))) {
-        std::ostringstream text;
-        text << *v;
         error(find("integer", name)->line,
-              "\"integer " + name + "\" needs a whole number that fits an int, got " + text.str());
+              "\"integer " + name + "\" needs a whole number that fits an int, got " +
+                  number_text(*v));
     }
     return int(*v);
 }

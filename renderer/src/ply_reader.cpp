@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "statmc/layers/input_path.h"
+#include "statmc/render/parameter_list.h"
 
 namespace statmc::render {
 
@@ -184,13 +185,6 @@ public:
     }
 
 private:
-    static std::string number_text(double v)
-    {
-        std::ostringstream text;
-        text << v;
-        return text.str();
-    }
-
     std::istream& in_;
     Format format_;
     const std::string& path_;

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <sstream>
 #include <utility>
 
 #include "statmc/render/parameter_list.h"
@@ -53,12 +52,9 @@ TriangleMesh trianglemesh(ParameterList& ps, std::vector<std::string>& warnings)
             ps.error(idx->line, "\"integer indices\" needs a positive multiple of 3 values");
         for (double v : idx->numbers) {
             // NaN and fractions fail too: only a whole number names a vertex.
-            if (!(v >= 0 && v < double(mesh.positions.size()) && v == std::floor(v))) {
-                std::ostringstream text;
-                text << v;
-                ps.error(idx->line, "index " + text.str() + " out of range (" +
+            if (!(v >= 0 && v < double(mesh.positions.size()) && v == std::floor(v)))
+                ps.error(idx->line, "index " + number_text(v) + " out of range (" +
                                         std::to_string(mesh.positions.size()) + " vertices)");
-            }
             mesh.indices.push_back(std::uint32_t(v));
         }
     } else if (mesh.positions.size() == 3) {

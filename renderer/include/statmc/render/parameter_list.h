@@ -16,6 +16,10 @@
 
 namespace statmc::render {
 
+/// A number as messages show it: "5e+09", "2.5", "-1" (the stream's shortest form).
+std::string number_text(double value);
+
+
 /// One "type name" [values] parameter. Types are canonical (point3 → point, normal3 →
 /// normal, color → rgb); string, texture and bool values are in `strings`, the others in
 /// `numbers`.
