@@ -115,9 +115,10 @@ void require_mergeable(const StatisticsView& view, const char* caller)
         throw std::invalid_argument(std::string(caller) + ": Box-Cox planes are missing");
 }
 
-// The accumulator a stored pixel stands for (M2 = s²(n − 1), Mk = n·mk).
+}  // namespace
+
 template <int C>
-PixelMoments<C, double> pixel_of(const StatisticsView& view, int x, int y)
+PixelMoments<C, double> stored_pixel(const StatisticsView& view, int x, int y)
 {
     const bool moments = view.has_moments(), bc_moment4 = view.has_box_cox_moment4();
     PixelMoments<C, double> px;
@@ -140,9 +141,8 @@ PixelMoments<C, double> pixel_of(const StatisticsView& view, int x, int y)
     return px;
 }
 
-// The position co-moments a stored pixel stands for (sums = n · stored per-sample values).
 template <int C>
-PositionMoments<C, double> position_of(const StatisticsView& view, int x, int y)
+PositionMoments<C, double> stored_position(const StatisticsView& view, int x, int y)
 {
     PositionMoments<C, double> q;
     const double n = view.count(x, y);
@@ -160,7 +160,16 @@ PositionMoments<C, double> position_of(const StatisticsView& view, int x, int y)
     return q;
 }
 
-}  // namespace
+StatisticsView with_stand_in_box_cox(StatisticsView view, const ConstPlane& zero)
+{
+    for (int c = 0; c < view.channels; ++c)
+        if (!view.bc_mean[c] || !view.bc_variance[c] || !view.bc_moment3[c]) {
+            view.bc_mean[c] = view.mean[c];
+            view.bc_variance[c] = view.variance[c];
+            view.bc_moment3[c] = zero;
+        }
+    return view;
+}
 
 template <int C>
 StatisticsImage<C> StatisticsImage<C>::from_view(const StatisticsView& view)
@@ -169,9 +178,9 @@ StatisticsImage<C> StatisticsImage<C>::from_view(const StatisticsView& view)
     StatisticsImage img(view.width, view.height, view.has_box_cox_positions());
     for (int y = 0; y < view.height; ++y)
         for (int x = 0; x < view.width; ++x) {
-            img.at(x, y) = pixel_of<C>(view, x, y);
+            img.at(x, y) = stored_pixel<C>(view, x, y);
             if (img.tracks_positions())
-                img.positions_[std::size_t(y) * img.width_ + x] = position_of<C>(view, x, y);
+                img.positions_[std::size_t(y) * img.width_ + x] = stored_position<C>(view, x, y);
         }
     return img;
 }
@@ -194,16 +203,16 @@ StatisticsImage<C> StatisticsImage<C>::merged(const std::vector<StatisticsView>&
     run_with_threads(nthreads, [&] {
         tbb::parallel_for(0, img.height_, [&](int y) {
             for (int x = 0; x < img.width_; ++x) {
-                Pixel px = pixel_of<C>(views[0], x, y);
+                Pixel px = stored_pixel<C>(views[0], x, y);
                 if (!positions) {
                     for (std::size_t k = 1; k < views.size(); ++k)
-                        px.merge(pixel_of<C>(views[k], x, y));
+                        px.merge(stored_pixel<C>(views[k], x, y));
                     img.at(x, y) = px;
                     continue;
                 }
-                Position q = position_of<C>(views[0], x, y);
+                Position q = stored_position<C>(views[0], x, y);
                 for (std::size_t k = 1; k < views.size(); ++k)
-                    px.merge(pixel_of<C>(views[k], x, y), q, position_of<C>(views[k], x, y));
+                    px.merge(stored_pixel<C>(views[k], x, y), q, stored_position<C>(views[k], x, y));
                 img.at(x, y) = px;
                 img.positions_[std::size_t(y) * img.width_ + x] = q;
             }
@@ -212,8 +221,14 @@ StatisticsImage<C> StatisticsImage<C>::merged(const std::vector<StatisticsView>&
     return img;
 }
 
-template class StatisticsImage<1>;
-template class StatisticsImage<3>;
-template class StatisticsImage<4>;
+#define STATMC_STORED(C)                                                                   \
+    template PixelMoments<C, double> stored_pixel<C>(const StatisticsView&, int, int);     \
+    template PositionMoments<C, double> stored_position<C>(const StatisticsView&, int, int); \
+    template class StatisticsImage<C>;
+STATMC_STORED(1)
+STATMC_STORED(3)
+STATMC_STORED(4)
+#undef STATMC_STORED
+
 
 }  // namespace statmc

@@ -53,19 +53,6 @@ void check_format_version(const Parts& parts, std::size_t k)
                                        label(parts, k), label(parts, 0), va, vb));
 }
 
-// A view whose absent Box-Cox planes stand in with the untransformed ones, so that core's
-// merge runs on images without them; the stand-ins are dropped from the result.
-StatisticsView complete_view(StatisticsView view, const ConstPlane& zero)
-{
-    for (int c = 0; c < view.channels; ++c)
-        if (!view.bc_mean[c] || !view.bc_variance[c] || !view.bc_moment3[c]) {
-            view.bc_mean[c] = view.mean[c];
-            view.bc_variance[c] = view.variance[c];
-            view.bc_moment3[c] = zero;
-        }
-    return view;
-}
-
 template <int C>
 StatisticsPlanes merge_views(const std::vector<StatisticsView>& views, int nthreads)
 {
@@ -170,7 +157,7 @@ OIIO::ImageBuf merge_parts(const Parts& parts, const MergeOptions& options, int 
             moments = moments && ch.has(layers::Statistic::Moment4);
             box_cox_moment4 =
                 box_cox_moment4 && ch.has_box_cox() && ch.has(layers::Statistic::BoxCoxMoment4);
-            views.push_back(complete_view(layers::statistics_view(*floats[k], ch),
+            views.push_back(with_stand_in_box_cox(layers::statistics_view(*floats[k], ch),
                                           dense_plane(zeros.data(), first.width)));
         } catch (const layers::LayerError& e) {
             throw std::invalid_argument(label(parts, k) + ": " + e.what());

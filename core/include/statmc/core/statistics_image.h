@@ -29,6 +29,20 @@ struct StatisticsPlanes {
     StatisticsView view() const;
 };
 
+/// The accumulator a stored pixel of `view` stands for (M2 = s²(n − 1), Mk = n·mk); the
+/// view needs its Box-Cox planes. Higher moments it lacks come back as 0.
+template <int C>
+PixelMoments<C, double> stored_pixel(const StatisticsView& view, int x, int y);
+/// The position co-moments a stored pixel stands for (sums = n · stored per-sample values);
+/// the view needs has_box_cox_positions().
+template <int C>
+PositionMoments<C, double> stored_position(const StatisticsView& view, int x, int y);
+
+/// `view` with the untransformed mean and variance standing in for absent Box-Cox planes
+/// (and `zero` for M3), so that exact merging runs on images without them; whoever merges
+/// drops the stand-ins from the result.
+StatisticsView with_stand_in_box_cox(StatisticsView view, const ConstPlane& zero);
+
 template <int C>
 class StatisticsImage {
 public:
