@@ -60,4 +60,13 @@ std::array<ConstPlane, 3> guide_planes(const OIIO::ImageBuf& buf, const std::vec
             channel_plane(buf, indices[2])};
 }
 
+std::array<ConstPlane, 2> motion_planes(const OIIO::ImageBuf& buf)
+{
+    static const std::vector<std::string> kSuffixes = {"X", "Y"};
+    const std::vector<int> indices = optional_layer(buf.spec(), kMotionLayer, kSuffixes);
+    if (indices.empty())
+        return {};
+    return {channel_plane(buf, indices[0]), channel_plane(buf, indices[1])};
+}
+
 }  // namespace statmc::layers

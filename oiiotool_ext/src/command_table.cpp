@@ -51,7 +51,8 @@ const std::vector<Command>& command_table()
         crop_command(),        resize_command(),        info_command(),
         verbose_command(),     stats_command(),         diff_command(),
         echo_command(),        threads_command(),       max_memory_command(),
-        check_inputs_command(), list_ops_command(),     help_command(),
+        check_inputs_command(), frames_command(),       skip_missing_command(),
+        list_ops_command(),    help_command(),
         version_command(),
     };
     return table;

@@ -3,11 +3,13 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <OpenImageIO/imagebuf.h>
 
+#include "frame_sequence.h"
 #include "statmc/layers/exr_files.h"
 
 namespace statmc::tool {
@@ -32,6 +34,11 @@ struct StackImage {
     /// The coarser MIP levels of each subimage as read (empty, or one entry per subimage):
     /// a copy writes them back. Results of operators are single-level images.
     layers::MipLevels mip_levels;
+    /// Set when the image is frame `frame` of `sequence` exactly as read (-i of a frame
+    /// pattern): what an operator looking across frames reads the others from. A command
+    /// that changes the image drops it.
+    std::shared_ptr<FrameSequence> sequence;
+    int frame = 0;
 
     /// Subimage 0: what a command reads unless -a is given.
     const OIIO::ImageBuf& image() const { return subimages.front(); }

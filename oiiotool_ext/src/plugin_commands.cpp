@@ -102,6 +102,16 @@ void run_operator(const statmc::OperatorSpec& op, ToolContext& ctx, const Invoca
         images.push_back(&s.image());
         run_context.input_labels.push_back(s.label);
     }
+    // The input as read, for the sequence to keep when it asks for its neighbours; in
+    // place, the operator's own image until it writes.
+    const OIIO::ImageBuf* centre = popped.empty() ? nullptr : &popped[0].image();
+    if (popped.size() == 1 && popped[0].sequence) {
+        run_context.sequence_frames = [&, seq = popped[0].sequence,
+                                       frame = popped[0].frame](const std::vector<int>& offsets) {
+            seq->remember(frame, *centre);
+            return seq->around(frame, offsets, ctx.input);
+        };
+    }
     // One input is named in the message; several are named by the operator itself.
     const std::string where = popped.size() == 1 ? popped[0].label + ": " : "";
     StackImage result;
@@ -109,6 +119,7 @@ void run_operator(const statmc::OperatorSpec& op, ToolContext& ctx, const Invoca
         // The popped image is the stack's own, so the operator may reuse it (statmc's
         // operators read subimage 0 and push a one-part image either way).
         OIIO::ImageBuf image = std::move(popped[0].subimages.front());
+        centre = &image;
         guarded(op, where,
                 [&] { return op.run_in_place(image, inv.modifiers.values(), run_context); });
         result = StackImage{std::move(image), ""};

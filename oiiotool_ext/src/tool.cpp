@@ -1,8 +1,11 @@
 #include "tool.h"
 
+#include <algorithm>
 #include <new>
+#include <string>
 
 #include "plugin_commands.h"
+#include "sequence_run.h"
 #include "statmc/layers/file_error.h"
 #include "statmc/tool/command_line.h"
 #include "statmc/tool/command_table.h"
@@ -13,7 +16,28 @@ namespace statmc::tool {
 
 namespace {
 
-int run_program(const std::vector<std::string>& args, ToolContext& ctx)
+// Each frame runs the program on a fresh stack; an error stops the run, naming the frame
+// (the frames before it are written, its own output is not).
+int run_frames(const SequenceRun& run, std::ostream& out)
+{
+    int exit_code = 0;
+    for (int frame : run.frames()) {
+        run.advance_to(frame);
+        ToolContext ctx(out);
+        try {
+            for (const Invocation& inv : run.program_for(frame, ctx))
+                inv.command->run(ctx, inv);
+        } catch (const ToolError& e) {
+            throw ToolError("frame " + std::to_string(frame) + ": " + e.what());
+        } catch (const layers::FileError& e) {
+            throw ToolError("frame " + std::to_string(frame) + ": " + e.what());
+        }
+        exit_code = std::max(exit_code, ctx.exit_code);
+    }
+    return exit_code;
+}
+
+int run_program(const std::vector<std::string>& args, ToolContext& ctx, std::ostream& err)
 {
     plugin_commands();  // a broken module is reported before anything else
     if (args.empty()) {
@@ -26,7 +50,10 @@ int run_program(const std::vector<std::string>& args, ToolContext& ctx)
         program.back().command->run(ctx, program.back());
         return 0;
     }
-    for (const Invocation& inv : program)
+    const SequenceRun run(program, err);
+    if (run.active())
+        return run_frames(run, ctx.out);
+    for (const Invocation& inv : run.program())
         inv.command->run(ctx, inv);
     return ctx.exit_code;
 }
@@ -37,7 +64,7 @@ int run_tool(const std::vector<std::string>& args, std::ostream& out, std::ostre
 {
     ToolContext ctx(out);
     try {
-        return run_program(args, ctx);
+        return run_program(args, ctx, err);
     } catch (const ToolError& e) {
         err << "statmc: error: " << e.what() << "\n";
     } catch (const layers::FileError& e) {

@@ -1,6 +1,7 @@
 // The state commands share while the program runs.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -32,6 +33,14 @@ struct ToolContext {
     /// The loaded colorconfig: made by --colorconfig, else by the first colour command
     /// (not const: ImageBufAlgo 2.4 takes a ColorConfig*).
     std::shared_ptr<OIIO::ColorConfig> color_config;
+
+    /// In a sequence run (sequence_run.h): the frame's input files and the sequences they
+    /// belong to, which -i links to the images it reads.
+    struct SequenceInput {
+        std::shared_ptr<FrameSequence> sequence;
+        int frame = 0;
+    };
+    std::map<std::string, SequenceInput> sequence_inputs;
 };
 
 }  // namespace statmc::tool

@@ -131,6 +131,13 @@ Command input_command()
                        ctx.all_subimages);
         if (ctx.print_stats)
             print_all_stats(ctx.out, image, ctx.all_subimages, ctx.nthreads);
+        // Linked to its sequence only as read: a channel selection would differ from the
+        // neighbours an operator reads.
+        if (const auto it = ctx.sequence_inputs.find(path);
+            it != ctx.sequence_inputs.end() && !inv.modifiers.has("ch")) {
+            image.sequence = it->second.sequence;
+            image.frame = it->second.frame;
+        }
         if (inv.modifiers.has("ch")) {
             auto keep_channels = [&](OIIO::ImageBuf& buf) {
                 buf = select_channels(buf, inv.modifiers.get_string("ch"), path + ": -i:ch",

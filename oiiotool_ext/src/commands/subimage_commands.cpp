@@ -45,6 +45,7 @@ Command subimage_command()
             }
         }
         image.label += " (" + inv.name + " " + inv.args[0] + ")";
+        image.sequence.reset();
         ctx.stack.push(std::move(image));
     };
     return c;

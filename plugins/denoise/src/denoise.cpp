@@ -12,8 +12,10 @@
 #include "statmc/core/filter.h"
 #include "statmc/core/harm_guard.h"
 #include "statmc/core/radius_ladder.h"
+#include "statmc/core/temporal_merge.h"
 #include "statmc/core/variance_filter.h"
 #include "statmc/layers/float_pixels.h"
+#include "statmc/layers/frame_match.h"
 #include "statmc/layers/guide_layers.h"
 #include "statmc/layers/imagebufalgo_forms.h"
 #include "statmc/layers/layer_error.h"
@@ -374,8 +376,145 @@ std::vector<Plane> dense_planes(std::vector<float>& data, const StatisticsView& 
     return planes;
 }
 
-bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseImageOptions& opt,
-                  const OIIO::ROI& roi, int nthreads)
+// "frame t−2 (shot.0003.exr)": a neighbour as messages name it.
+std::string frame_label(int offset, const OIIO::ImageBuf& frame)
+{
+    std::string text = offset < 0 ? "frame t−" + std::to_string(-offset)
+                                  : "frame t+" + std::to_string(offset);
+    if (!frame.name().empty())
+        text += " (" + std::string(frame.name()) + ")";
+    return text;
+}
+
+// The statistics of a neighbour that `centre` (the channels the stages read) selects:
+// each of them must be there too.
+StatisticsChannels same_statistics(const OIIO::ImageSpec& spec, const StatisticsChannels& centre)
+{
+    StatisticsChannels ch = layers::find_statistics(spec, centre.aov);
+    if (ch.channels() != centre.channels())
+        throw LayerError("its " + layers::describe_layer(centre.aov, ch.suffixes) +
+                         " differs in channels from the frame denoised");
+    for (Statistic stat : layers::all_statistics()) {
+        if (centre.has(stat))
+            layers::require_statistic(spec, ch, stat);
+        else
+            ch.indices(stat).clear();
+    }
+    if (!centre.subpixel.empty() && ch.subpixel.empty())
+        throw LayerError(layers::missing_layer_message(spec, layers::kSubpixelLayer,
+                                                       layers::subpixel_suffixes()));
+    if (centre.subpixel.empty())
+        ch.subpixel.clear();
+    return ch;
+}
+
+// `src` followed by its neighbours, in time order, as the temporal merge takes them.
+struct Sequence {
+    std::vector<const OIIO::ImageBuf*> frames;  // float pixels
+    std::vector<int> offsets;                   // relative to the centre
+    int centre = 0;
+    std::vector<OIIO::ImageBuf> scratch;        // float copies of non-float neighbours
+};
+
+Sequence sequence_of(const OIIO::ImageBuf& in, const FrameNeighbours& neighbours, int reach)
+{
+    Sequence seq;
+    const int before = std::min<int>(reach, int(neighbours.previous.size()));
+    const int after = std::min<int>(reach, int(neighbours.next.size()));
+    seq.scratch.resize(before + after + 1);
+    auto add = [&](const OIIO::ImageBuf* frame, int offset) {
+        if (offset == 0) {
+            seq.centre = int(seq.frames.size());
+            seq.frames.push_back(&in);
+        } else {
+            if (!frame)
+                throw std::invalid_argument(frame_label(offset, OIIO::ImageBuf()) + " is null");
+            try {
+                check_input(*frame);
+            } catch (const std::invalid_argument& e) {
+                throw std::invalid_argument(frame_label(offset, *frame) + ": " + e.what());
+            }
+            seq.frames.push_back(&layers::local_float_pixels(*frame, seq.scratch[seq.frames.size()]));
+        }
+        seq.offsets.push_back(offset);
+    };
+    for (int k = before; k >= 1; --k)
+        add(neighbours.previous[k - 1], -k);
+    add(nullptr, 0);
+    for (int k = 1; k <= after; ++k)
+        add(neighbours.next[k - 1], k);
+    return seq;
+}
+
+// The centre's statistics with the members of its neighbours merged in, over the whole
+// data window (a member's correspondence may lie anywhere in it).
+StatisticsPlanes merged_over_time(const OIIO::ImageBuf& in, const StatisticsChannels& ch,
+                                  TestDomain domain, const FrameNeighbours& neighbours,
+                                  const DenoiseImageOptions& opt, int nthreads)
+{
+    const Sequence seq = sequence_of(in, neighbours, opt.temporal.frames);
+    std::vector<TemporalFrame> frames;
+    for (std::size_t k = 0; k < seq.frames.size(); ++k) {
+        const OIIO::ImageBuf& frame = *seq.frames[k];
+        const int offset = seq.offsets[k];
+        StatisticsChannels frame_ch = ch;
+        try {
+            if (offset != 0) {
+                layers::require_same_frame(frame.spec(), in.spec(),
+                                           frame_label(offset, frame) + " and the frame denoised");
+                frame_ch = same_statistics(frame.spec(), ch);
+                check_statistics(frame, frame_ch, opt, {});
+            }
+            const std::array<ConstPlane, 2> motion = layers::motion_planes(frame);
+            frames.push_back({layers::statistics_view(frame, frame_ch), motion[0], motion[1]});
+        } catch (const LayerError& e) {
+            throw LayerError(offset == 0 ? e.what() : frame_label(offset, frame) + ": " + e.what());
+        }
+        if (frames.back().has_motion() != frames.front().has_motion()) {
+            const std::size_t with = frames.back().has_motion() ? k : 0, without = k - with;
+            throw LayerError(
+                "the motion layer (motion.X, motion.Y) is in " +
+                (seq.offsets[with] == 0 ? std::string("the frame denoised")
+                                        : frame_label(seq.offsets[with], *seq.frames[with])) +
+                " but not in " +
+                (seq.offsets[without] == 0 ? std::string("the frame denoised")
+                                           : frame_label(seq.offsets[without], *seq.frames[without])) +
+                ": temporal denoising follows it in every frame or in none");
+        }
+    }
+    return merge_temporal_members(frames, seq.centre, domain, opt.temporal, opt.filter,
+                                  layers::thread_count(nthreads));
+}
+
+// `shape` (the planes the stages read) with each plane taken from `values`.
+StatisticsView with_planes_of(StatisticsView shape, const StatisticsView& values)
+{
+    auto take = [](ConstPlane& to, const ConstPlane& from) {
+        if (to && !from)
+            throw std::logic_error("temporal merge lost a plane");
+        if (to)
+            to = from;
+    };
+    take(shape.count, values.count);
+    for (int c = 0; c < shape.channels; ++c) {
+        for (auto member : {&StatisticsView::mean, &StatisticsView::variance,
+                            &StatisticsView::bc_mean, &StatisticsView::bc_variance,
+                            &StatisticsView::bc_moment3, &StatisticsView::moment3,
+                            &StatisticsView::moment4, &StatisticsView::bc_moment4,
+                            &StatisticsView::cov_u, &StatisticsView::cov_v,
+                            &StatisticsView::bc_cov_u, &StatisticsView::bc_cov_v})
+            take((shape.*member)[c], (values.*member)[c]);
+    }
+    for (auto member : {&StatisticsView::subpixel_u, &StatisticsView::subpixel_v,
+                        &StatisticsView::subpixel_uu, &StatisticsView::subpixel_vv,
+                        &StatisticsView::subpixel_uv})
+        take(shape.*member, values.*member);
+    shape.variance_of_mean = values.variance_of_mean;
+    return shape;
+}
+
+bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNeighbours& neighbours,
+                  const DenoiseImageOptions& opt, const OIIO::ROI& roi, int nthreads)
 {
     check_input(src);
     if (const std::string why = opt.validate(); !why.empty())
@@ -398,10 +537,16 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
     guides.albedo = guide(in, opt.guides.albedo, opt.guides.albedo_layer, true);
     guides.normal = guide(in, opt.guides.normal, opt.guides.normal_layer, false);
 
+    StatisticsView full = layers::statistics_view(in, ch);
+    StatisticsPlanes merged;
+    if (opt.temporal.frames > 0 && (!neighbours.previous.empty() || !neighbours.next.empty())) {
+        merged = merged_over_time(in, ch, domain, neighbours, opt, nthreads);
+        full = with_planes_of(full, merged.view());
+    }
     const int x0 = regions.input.xbegin - spec.x;
     const int y0 = regions.input.ybegin - spec.y;
-    StatisticsView window = layers::view_window(layers::statistics_view(in, ch), x0, y0,
-                                                regions.input.width(), regions.input.height());
+    StatisticsView window =
+        layers::view_window(full, x0, y0, regions.input.width(), regions.input.height());
     const Guides window_guides{layers::shifted(guides.albedo, x0, y0),
                                layers::shifted(guides.normal, x0, y0)};
     ExplainedVariance explained;
@@ -457,8 +602,22 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseI
 bool denoise(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseImageOptions& opt,
              OIIO::ROI roi, int nthreads)
 {
-    return layers::errors_on(dst, "denoise",
-                             [&] { return denoise_impl(dst, src, opt, roi, nthreads); });
+    return denoise(dst, src, FrameNeighbours{}, opt, roi, nthreads);
+}
+
+bool denoise(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNeighbours& neighbours,
+             const DenoiseImageOptions& opt, OIIO::ROI roi, int nthreads)
+{
+    return layers::errors_on(
+        dst, "denoise", [&] { return denoise_impl(dst, src, neighbours, opt, roi, nthreads); });
+}
+
+OIIO::ImageBuf denoise(const OIIO::ImageBuf& src, const FrameNeighbours& neighbours,
+                       const DenoiseImageOptions& opt, OIIO::ROI roi, int nthreads)
+{
+    return layers::returned_image("denoise", [&](OIIO::ImageBuf& dst) {
+        return denoise(dst, src, neighbours, opt, roi, nthreads);
+    });
 }
 
 OIIO::ImageBuf denoise(const OIIO::ImageBuf& src, const DenoiseImageOptions& opt, OIIO::ROI roi,

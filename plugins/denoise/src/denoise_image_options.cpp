@@ -6,6 +6,8 @@ std::string DenoiseImageOptions::validate() const
 {
     if (std::string why = filter.validate(); !why.empty())
         return why;
+    if (std::string why = temporal.validate(); !why.empty())
+        return why;
     if (guides.albedo != GuideUse::Off && guides.albedo_layer.empty())
         return "the albedo guide needs a layer name";
     if (guides.normal != GuideUse::Off && guides.normal_layer.empty())

@@ -99,6 +99,8 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
         opt.optional_stages = false;
     opt.explained_alpha = p.get_float("explained_variance", opt.explained_alpha);
     opt.variance_prior_dof = p.get_float("variance_dof", opt.variance_prior_dof);
+    opt.temporal.frames = p.get_int("temporal", opt.temporal.frames);
+    opt.temporal.radius = p.get_int("temporal_radius", opt.temporal.radius);
     return opt;
 }
 
@@ -173,6 +175,16 @@ std::vector<statmc::ParameterSpec> parameters()
                         "neighbourhood's (docs/method.md §10); 0 = off." +
                             only_in_the_default(kDefaults.variance_prior_dof))
             .between(0, 1000),
+        int_parameter("temporal", kDefaults.temporal.frames,
+                      "frame sequences: merge the members that the K frames before and after "
+                      "offer (a pixel of another frame joins when the t-test cannot tell it "
+                      "from this one, following motion.X/Y when every frame has it; "
+                      "docs/method.md §13). Cut at the sequence's ends; 0 = off")
+            .between(0, 16),
+        int_parameter("temporal_radius", kDefaults.temporal.radius,
+                      "with temporal: also offer the pixels within this radius of the "
+                      "corresponding pixel in each other frame; 0 = that pixel only")
+            .between(0, 8),
         bool_parameter("diagnostics", kDefaults.diagnostics,
                        "add [<aov>.]diagnostics.members and .effectiveSamples: per pixel, the "
                        "pixels averaged and the effective sample count (Σw)²/Σ(w²/n)"),
@@ -203,6 +215,33 @@ void note_lossy_storage(const OIIO::ImageBuf& input, const statmc::RunContext& c
               << "contract stores them lossless)\n";
 }
 
+// The neighbours the host can lend, up to `reach` on each side; a sequence needed and not
+// given is an error before any work.
+statmc::FrameNeighbours neighbours_from(const statmc::RunContext& ctx, int reach)
+{
+    statmc::FrameNeighbours neighbours;
+    if (reach == 0)
+        return neighbours;
+    if (!ctx.sequence_frames)
+        throw std::invalid_argument(
+            "temporal=" + std::to_string(reach) +
+            " needs a frame sequence: read the input with a frame pattern (shot.#.exr, "
+            "shot.%04d.exr) and denoise it as read, e.g. statmc shot.#.exr --frames 1-48 "
+            "--denoise:temporal=" + std::to_string(reach) + " -o out.#.exr");
+    std::vector<int> offsets;
+    for (int k = 1; k <= reach; ++k)
+        offsets.insert(offsets.end(), {-k, k});
+    const std::vector<const OIIO::ImageBuf*> frames = ctx.sequence_frames(offsets);
+    // Nearest first on each side, up to the sequence's end.
+    for (std::size_t i = 0; i < offsets.size(); ++i) {
+        std::vector<const OIIO::ImageBuf*>& side =
+            offsets[i] < 0 ? neighbours.previous : neighbours.next;
+        if (frames[i] && int(side.size()) == std::abs(offsets[i]) - 1)
+            side.push_back(frames[i]);
+    }
+    return neighbours;
+}
+
 void register_denoise(statmc::PluginRegistry& registry)
 {
     statmc::OperatorSpec op;
@@ -216,14 +255,28 @@ void register_denoise(statmc::PluginRegistry& registry)
     op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs, const ParameterValues& p,
                 const statmc::RunContext& ctx) {
         note_lossy_storage(*inputs[0], ctx);
-        OIIO::ImageBuf result = statmc::denoise(*inputs[0], options_from(p), {}, ctx.nthreads);
+        const statmc::DenoiseImageOptions opt = options_from(p);
+        OIIO::ImageBuf result;
+        try {
+            result = statmc::denoise(*inputs[0], neighbours_from(ctx, opt.temporal.frames), opt,
+                                     {}, ctx.nthreads);
+        } catch (const std::exception& e) {
+            result.errorfmt("denoise: {}", e.what());
+        }
         note_skipped_stages(result, ctx);
         return result;
     };
     op.run_in_place = [](OIIO::ImageBuf& image, const ParameterValues& p,
                          const statmc::RunContext& ctx) {
         note_lossy_storage(image, ctx);
-        const bool ok = statmc::denoise(image, image, options_from(p), {}, ctx.nthreads);
+        const statmc::DenoiseImageOptions opt = options_from(p);
+        bool ok = false;
+        try {
+            ok = statmc::denoise(image, image, neighbours_from(ctx, opt.temporal.frames), opt, {},
+                                 ctx.nthreads);
+        } catch (const std::exception& e) {
+            image.errorfmt("denoise: {}", e.what());
+        }
         if (ok)
             note_skipped_stages(image, ctx);
         return ok;

@@ -38,4 +38,8 @@ std::vector<int> require_guide_layer(const OIIO::ImageSpec& spec, std::string_vi
 /// The three planes at `indices` of `buf` (local float pixels, see float_pixels.h).
 std::array<ConstPlane, 3> guide_planes(const OIIO::ImageBuf& buf, const std::vector<int>& indices);
 
+/// The planes of the motion layer (motion.X, motion.Y) of `buf` (local float pixels); both
+/// null when the layer is absent. Throws LayerError when it is only partly present.
+std::array<ConstPlane, 2> motion_planes(const OIIO::ImageBuf& buf);
+
 }  // namespace statmc::layers

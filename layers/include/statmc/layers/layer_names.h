@@ -79,6 +79,9 @@ inline constexpr const char* kSubpixelLayer = "subpixel";
 inline constexpr const char* kAlbedoLayer = "albedo";  // albedo.R/G/B
 inline constexpr const char* kNormalLayer = "normal";  // normal.X/Y/Z
 inline constexpr const char* kDepthLayer = "depth";    // depth.Z
+/// Screen-space motion to the previous frame in pixels, at the first hit (motion.X/Y):
+/// what temporal denoising follows from frame to frame (docs/exr-layers.md).
+inline constexpr const char* kMotionLayer = "motion";
 
 /// What `--denoise:diagnostics=1` adds under `[<aov>.]diagnostics` (FilterDiagnostics):
 /// per pixel, the filter's members (the centre included) and its effective sample count

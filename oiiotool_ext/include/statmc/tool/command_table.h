@@ -26,6 +26,8 @@ Command output_command();
 Command data_format_command();
 Command compression_command();
 Command max_memory_command();
+Command frames_command();
+Command skip_missing_command();
 Command check_inputs_command();
 // channel_commands.cpp
 Command ch_command();

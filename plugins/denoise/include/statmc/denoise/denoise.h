@@ -2,6 +2,8 @@
 // statistics (docs/exr-layers.md) in, the same image with its mean denoised out.
 #pragma once
 
+#include <vector>
+
 #include <OpenImageIO/imagebuf.h>
 
 #include "statmc/denoise/denoise_image_options.h"
@@ -36,5 +38,25 @@ bool denoise(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseImageO
 /// The return-value form: check `has_error()` on the result.
 OIIO::ImageBuf denoise(const OIIO::ImageBuf& src, const DenoiseImageOptions& opt,
                        OIIO::ROI roi = {}, int nthreads = 0);
+
+/// The frames around `src` in a sequence, nearest first: previous[0] is frame t − 1,
+/// next[0] frame t + 1. At a sequence's ends one side is shorter or empty.
+struct FrameNeighbours {
+    std::vector<const OIIO::ImageBuf*> previous;
+    std::vector<const OIIO::ImageBuf*> next;
+};
+
+/// Temporal denoising (docs/method.md §13): the same, but first the members that the
+/// nearest `opt.temporal.frames` frames on each side offer are merged into `src`'s
+/// statistics (core/temporal_merge.h), following the motion layer (motion.X/Y) when
+/// every frame has it. Fewer neighbours than asked for (a sequence's ends) use those
+/// given. Every neighbour must be the same frame (resolution, data window) with every
+/// statistic that `src` is denoised from; a motion layer in only some frames is an error.
+/// `dst` keeps `src`'s own statistics: only the mean is replaced. With
+/// opt.temporal.frames = 0 or no neighbours it is the single-frame denoise.
+bool denoise(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNeighbours& neighbours,
+             const DenoiseImageOptions& opt, OIIO::ROI roi = {}, int nthreads = 0);
+OIIO::ImageBuf denoise(const OIIO::ImageBuf& src, const FrameNeighbours& neighbours,
+                       const DenoiseImageOptions& opt, OIIO::ROI roi = {}, int nthreads = 0);
 
 }  // namespace statmc

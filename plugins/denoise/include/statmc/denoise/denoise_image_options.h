@@ -5,6 +5,7 @@
 #include <string>
 
 #include "statmc/core/denoise_options.h"
+#include "statmc/core/temporal_merge.h"
 #include "statmc/layers/layer_names.h"
 
 namespace statmc {
@@ -78,6 +79,10 @@ struct DenoiseImageOptions {
     /// result's statmc:denoiseSkipped attribute says which and why. false: either is an
     /// error. The presets keep it true; a stage asked for by name sets it false.
     bool optional_stages = true;
+    /// Frame sequences (core/temporal_merge.h, docs/method.md §13): before everything
+    /// else, the members that up to `temporal.frames` frames on each side offer are merged
+    /// into the frame's statistics. 0 = off; the frames come with denoise()'s neighbours.
+    TemporalOptions temporal;
 
     /// The default before the radius ladder: the 2024 filter with the firefly guard.
     static DenoiseImageOptions classic();

@@ -24,6 +24,13 @@ struct RunContext {
     std::ostream* out = nullptr;            ///< for reports (compare's table); may be null
     std::vector<std::string> input_labels;  ///< names of the inputs for messages (file names)
     std::string module;                     ///< the operator's module file: data ships beside it
+    /// In a frame sequence (`statmc shot.#.exr --frames 1-48 …`): input 0's file at frames
+    /// t + offset for each offset (≠ 0), in the frame list's order, read on demand (in
+    /// parallel where the memory budget allows) and valid while the operator runs; null
+    /// past the sequence's ends. May throw (an unreadable file, the budget). Empty outside
+    /// a sequence, or when input 0 is not a frame of one as read.
+    std::function<std::vector<const OIIO::ImageBuf*>(const std::vector<int>& offsets)>
+        sequence_frames;
 };
 
 /// Inputs bottom of the stack first. Returns the image to push; on failure the result

@@ -1,0 +1,151 @@
+#include "frame_sequence.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <OpenImageIO/filesystem.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "statmc/layers/openexr_check.h"
+#include "statmc/tool/tool_error.h"
+
+namespace statmc::tool {
+
+std::string frame_pattern(const std::string& text, std::string* framespec)
+{
+    std::string pattern, spec;
+    if (!OIIO::Filesystem::parse_pattern(text.c_str(), 0, pattern, spec))
+        return "";
+    if (framespec)
+        *framespec = spec;
+    return pattern;
+}
+
+std::string frame_path(const std::string& pattern, int frame)
+{
+    std::vector<std::string> names;
+    OIIO::Filesystem::enumerate_file_sequence(pattern, {frame}, names);
+    return names.empty() ? "" : names.front();
+}
+
+std::vector<int> parse_frame_list(const std::string& spec)
+{
+    std::vector<int> frames;
+    if (spec.empty() || !OIIO::Filesystem::enumerate_sequence(spec, frames) || frames.empty())
+        throw ToolError("--frames: cannot read '" + spec +
+                        "' as frames (e.g. 1-48, 1-48x2, 3,5,10-20)");
+    for (std::size_t k = 1; k < frames.size(); ++k)
+        if (std::find(frames.begin(), frames.begin() + std::ptrdiff_t(k), frames[k]) !=
+            frames.begin() + std::ptrdiff_t(k))
+            throw ToolError("--frames " + spec + ": frame " + std::to_string(frames[k]) +
+                            " is listed twice");
+    return frames;
+}
+
+std::vector<int> frames_on_disk(const std::string& text, const std::string& pattern)
+{
+    std::vector<int> frames;
+    std::vector<std::string> names;
+    OIIO::Filesystem::scan_for_matching_filenames(pattern, frames, names);
+    if (frames.empty())
+        throw ToolError(text + ": the frame pattern matches no file (looked for " +
+                        frame_path(pattern, 1) + " and the like); give --frames to name them");
+    std::sort(frames.begin(), frames.end());
+    return frames;
+}
+
+FrameSequence::FrameSequence(std::string pattern, std::vector<int> frames)
+    : pattern_(std::move(pattern)), frames_(std::move(frames))
+{
+}
+
+void FrameSequence::remember(int frame, const OIIO::ImageBuf& image)
+{
+    position(frame);
+    if (read_.count(frame))
+        return;
+    auto copy = std::make_shared<OIIO::ImageBuf>();
+    if (!copy->copy(image))
+        throw ToolError(frame_path(pattern_, frame) + ": cannot keep a copy: " + copy->geterror());
+    read_[frame] = std::move(copy);
+}
+
+int FrameSequence::position(int frame) const
+{
+    const auto it = std::find(frames_.begin(), frames_.end(), frame);
+    if (it == frames_.end())
+        throw ToolError(frame_path(pattern_, frame) + ": frame " + std::to_string(frame) +
+                        " is not in the sequence");
+    return int(it - frames_.begin());
+}
+
+std::vector<const OIIO::ImageBuf*> FrameSequence::around(int frame, const std::vector<int>& offsets,
+                                                         const layers::ReadOptions& options)
+{
+    const int at = position(frame);
+    std::vector<int> wanted, missing;
+    for (int offset : offsets) {
+        reach_ = std::max(reach_, std::abs(offset));
+        const int k = at + offset;
+        wanted.push_back(k >= 0 && k < int(frames_.size()) ? frames_[k] : 0);
+        if (k >= 0 && k < int(frames_.size()) && !read_.count(frames_[k]) &&
+            std::find(missing.begin(), missing.end(), frames_[k]) == missing.end())
+            missing.push_back(frames_[k]);
+    }
+    read_missing(missing, options);
+    std::vector<const OIIO::ImageBuf*> images;
+    for (std::size_t i = 0; i < offsets.size(); ++i) {
+        const int k = at + offsets[i];
+        images.push_back(k >= 0 && k < int(frames_.size()) ? read_.at(wanted[i]).get() : nullptr);
+    }
+    return images;
+}
+
+// The first missing frame is read alone and sets the size of one; the rest are read as
+// many at a time as the budget has room for beside the frames held, and all of them must
+// fit: the temporal merge holds them together.
+void FrameSequence::read_missing(const std::vector<int>& frames,
+                                 const layers::ReadOptions& options)
+{
+    if (frames.empty())
+        return;
+    auto read = [&](int frame) {
+        return std::make_shared<OIIO::ImageBuf>(
+            layers::read_image_file(frame_path(pattern_, frame), options));
+    };
+    std::size_t first = 0;
+    if (read_.empty())
+        read_[frames[first++]] = read(frames.front());
+    const OIIO::ImageBuf& sample = *read_.begin()->second;
+    const std::uint64_t bytes =
+        std::max<std::uint64_t>(1, std::uint64_t(sample.spec().image_pixels()) *
+                                       std::uint64_t(sample.spec().nchannels) * sizeof(float));
+    const std::uint64_t budget =
+        options.max_memory > 0 ? options.max_memory : layers::default_read_budget();
+    const std::uint64_t held = read_.size() + (frames.size() - first);
+    if (held * bytes > budget)
+        throw ToolError(frame_path(pattern_, frames.front()) + ": the " + std::to_string(held) +
+                        " frames held at once (" + std::to_string(bytes >> 20) +
+                        " MiB each) exceed the memory budget of " +
+                        std::to_string(budget >> 20) + " MiB (--max-memory)");
+    const int room = int(std::min<std::uint64_t>(budget / bytes - read_.size(), 64));
+    std::vector<std::shared_ptr<OIIO::ImageBuf>> images(frames.size());
+    tbb::task_arena arena(std::max(1, std::min(room, int(frames.size() - first))));
+    arena.execute([&] {
+        tbb::parallel_for(first, frames.size(), [&](std::size_t k) { images[k] = read(frames[k]); });
+    });
+    for (std::size_t k = first; k < frames.size(); ++k)
+        read_[frames[k]] = std::move(images[k]);
+}
+
+void FrameSequence::forget_beyond_reach(int frame)
+{
+    const int at = position(frame);
+    for (auto it = read_.begin(); it != read_.end();) {
+        const int k = position(it->first);
+        it = std::abs(k - at) > reach_ ? read_.erase(it) : std::next(it);
+    }
+}
+
+}  // namespace statmc::tool

@@ -1,0 +1,66 @@
+// Frame sequences as oiiotool spells them: a file name with a frame pattern (shot.#.exr,
+// shot.@@@.exr, shot.%04d.exr) and a frame list (--frames 1-48, or the files on disk).
+// The program runs once per frame; an input read from a pattern keeps a link to its
+// sequence so that an operator can ask for the frames around it (--denoise:temporal).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/imagebuf.h>
+
+#include "statmc/layers/exr_files.h"
+
+namespace statmc::tool {
+
+/// The printf form of `text`'s frame pattern ("shot.%04d.exr" for shot.#.exr), or "" when
+/// it has none. `framespec` receives a range written into the pattern (shot.1-10#.exr).
+std::string frame_pattern(const std::string& text, std::string* framespec = nullptr);
+
+/// The file of `frame` under a printf pattern.
+std::string frame_path(const std::string& pattern, int frame);
+
+/// "1-48", "1-48x2", "3,5,10-20": the frames, in order. Throws ToolError naming `spec`.
+std::vector<int> parse_frame_list(const std::string& spec);
+
+/// The frames whose files exist under `pattern`, ascending; throws ToolError naming the
+/// pattern when none does.
+std::vector<int> frames_on_disk(const std::string& text, const std::string& pattern);
+
+/// One input pattern of a sequence run: the frames it has and the ones read so far. The
+/// frames an operator asks for are read in parallel as far as the memory budget allows,
+/// and kept while they are within reach of the frame being processed.
+class FrameSequence {
+public:
+    FrameSequence(std::string pattern, std::vector<int> frames);
+
+    const std::string& pattern() const { return pattern_; }
+    const std::vector<int>& frames() const { return frames_; }
+
+    /// The frames `offsets` positions away from `frame` in the frame list (null past either
+    /// end), reading those not yet read with `options`. Throws FileError for a file that
+    /// cannot be read and ToolError when the frames held would exceed the memory budget.
+    std::vector<const OIIO::ImageBuf*> around(int frame, const std::vector<int>& offsets,
+                                              const layers::ReadOptions& options);
+
+    /// Keeps a copy of `image`, frame `frame` as read, so that it is not read again when
+    /// it becomes a neighbour.
+    void remember(int frame, const OIIO::ImageBuf& image);
+
+    /// Drops the frames out of reach of `frame` (further than the widest request so far).
+    void forget_beyond_reach(int frame);
+
+private:
+    int position(int frame) const;
+    void read_missing(const std::vector<int>& frames, const layers::ReadOptions& options);
+
+    std::string pattern_;
+    std::vector<int> frames_;
+    int reach_ = 0;
+    std::map<int, std::shared_ptr<OIIO::ImageBuf>> read_;
+};
+
+}  // namespace statmc::tool
