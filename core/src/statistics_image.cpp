@@ -120,23 +120,20 @@ void require_mergeable(const StatisticsView& view, const char* caller)
 template <int C>
 PixelMoments<C, double> stored_pixel(const StatisticsView& view, int x, int y)
 {
-    const bool moments = view.has_moments(), bc_moment4 = view.has_box_cox_moment4();
+    auto at = [x, y](const ConstPlane& plane) { return plane ? double(plane(x, y)) : 0.0; };
     PixelMoments<C, double> px;
     px.n = view.count(x, y);
     const double to_mean_variance = view.variance_of_mean ? px.n : 1.0;
     const double m2_scale = px.n > 1 ? px.n - 1 : 0.0;
     for (int c = 0; c < C; ++c) {
         px.raw[c].mean = view.mean[c](x, y);
-        px.raw[c].m2 = view.variance[c](x, y) * to_mean_variance * m2_scale;
-        px.box_cox[c].mean = view.bc_mean[c](x, y);
-        px.box_cox[c].m2 = view.bc_variance[c](x, y) * m2_scale;
-        px.box_cox[c].m3 = view.bc_moment3[c](x, y) * px.n;
-        if (moments) {
-            px.raw[c].m3 = view.moment3[c](x, y) * px.n;
-            px.raw[c].m4 = view.moment4[c](x, y) * px.n;
-        }
-        if (bc_moment4)
-            px.box_cox[c].m4 = view.bc_moment4[c](x, y) * px.n;
+        px.raw[c].m2 = at(view.variance[c]) * to_mean_variance * m2_scale;
+        px.raw[c].m3 = at(view.moment3[c]) * px.n;
+        px.raw[c].m4 = at(view.moment4[c]) * px.n;
+        px.box_cox[c].mean = at(view.bc_mean[c]);
+        px.box_cox[c].m2 = at(view.bc_variance[c]) * m2_scale;
+        px.box_cox[c].m3 = at(view.bc_moment3[c]) * px.n;
+        px.box_cox[c].m4 = at(view.bc_moment4[c]) * px.n;
     }
     return px;
 }

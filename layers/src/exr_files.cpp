@@ -159,6 +159,16 @@ void check_image_file(const std::string& path, const ReadOptions& options)
     open_checked(path, 0, subimages, options);
 }
 
+OIIO::ImageSpec read_image_header(const std::string& path, const ReadOptions& options)
+{
+    check_readable(path);
+    const ForgetOnExit forget{path};
+    ReadOptions headers_only = options;
+    headers_only.check_structure = false;
+    int subimages = 0;
+    return open_checked(path, 0, subimages, headers_only)->spec();
+}
+
 OIIO::ImageBuf read_image_file(const std::string& path, const ReadOptions& options)
 {
     check_readable(path);

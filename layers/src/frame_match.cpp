@@ -41,21 +41,23 @@ std::string missing_from(const std::vector<std::string>& a, const std::vector<st
 
 }  // namespace
 
+void require_matching_specs(const OIIO::ImageSpec& a, const std::string& a_label,
+                            const OIIO::ImageSpec& b, const std::string& b_label)
+{
+    require_same_frame(a, b, a_label + " and " + b_label);
+    const std::string only_a = missing_from(a.channelnames, b.channelnames);
+    const std::string only_b = missing_from(b.channelnames, a.channelnames);
+    if (only_a != "none" || only_b != "none")
+        throw LayerError(a_label + " and " + b_label + " differ in channels: only in " + a_label +
+                         ": " + only_a + "; only in " + b_label + ": " + only_b);
+}
+
 void require_matching_inputs(const std::vector<const OIIO::ImageBuf*>& inputs,
                              std::string_view noun)
 {
-    for (std::size_t k = 1; k < inputs.size(); ++k) {
-        const OIIO::ImageSpec& a = inputs[k]->spec();
-        const OIIO::ImageSpec& b = inputs[0]->spec();
-        const std::string these_k = input_label(noun, k, inputs[k]);
-        const std::string first = input_label(noun, 0, inputs[0]);
-        require_same_frame(a, b, these_k + " and " + first);
-        const std::string only_a = missing_from(a.channelnames, b.channelnames);
-        const std::string only_b = missing_from(b.channelnames, a.channelnames);
-        if (only_a != "none" || only_b != "none")
-            throw LayerError(these_k + " and " + first + " differ in channels: only in " + these_k +
-                             ": " + only_a + "; only in " + first + ": " + only_b);
-    }
+    for (std::size_t k = 1; k < inputs.size(); ++k)
+        require_matching_specs(inputs[k]->spec(), input_label(noun, k, inputs[k]),
+                               inputs[0]->spec(), input_label(noun, 0, inputs[0]));
 }
 
 }  // namespace statmc::layers

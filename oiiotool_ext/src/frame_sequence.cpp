@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "statmc/layers/frame_match.h"
 #include "statmc/layers/openexr_check.h"
 #include "statmc/tool/tool_error.h"
 
@@ -84,6 +85,7 @@ std::vector<const OIIO::ImageBuf*> FrameSequence::around(int frame, const std::v
                                                          const layers::ReadOptions& options)
 {
     const int at = position(frame);
+    check_frames_match(options);
     std::vector<int> wanted, missing;
     for (int offset : offsets) {
         reach_ = std::max(reach_, std::abs(offset));
@@ -100,6 +102,22 @@ std::vector<const OIIO::ImageBuf*> FrameSequence::around(int frame, const std::v
         images.push_back(k >= 0 && k < int(frames_.size()) ? read_.at(wanted[i]).get() : nullptr);
     }
     return images;
+}
+
+// Before any pixels are read, so that a mismatch late in the sequence stops the run before
+// its first output rather than at that frame.
+void FrameSequence::check_frames_match(const layers::ReadOptions& options)
+{
+    if (frames_checked_)
+        return;
+    const std::string first = frame_path(pattern_, frames_.front());
+    const OIIO::ImageSpec spec = layers::read_image_header(first, options);
+    for (std::size_t k = 1; k < frames_.size(); ++k) {
+        const std::string path = frame_path(pattern_, frames_[k]);
+        layers::require_matching_specs(layers::read_image_header(path, options), path, spec,
+                                       first);
+    }
+    frames_checked_ = true;
 }
 
 // The first missing frame is read alone and sets the size of one; the rest are read as

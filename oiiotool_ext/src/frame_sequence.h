@@ -41,8 +41,10 @@ public:
     const std::vector<int>& frames() const { return frames_; }
 
     /// The frames `offsets` positions away from `frame` in the frame list (null past either
-    /// end), reading those not yet read with `options`. Throws FileError for a file that
-    /// cannot be read and ToolError when the frames held would exceed the memory budget.
+    /// end), reading those not yet read with `options`. The first call compares the headers
+    /// of every frame: one data window and one set of channels, or a LayerError naming the
+    /// first frame that differs. Throws FileError for a file that cannot be read and
+    /// ToolError when the frames held would exceed the memory budget.
     std::vector<const OIIO::ImageBuf*> around(int frame, const std::vector<int>& offsets,
                                               const layers::ReadOptions& options);
 
@@ -55,11 +57,13 @@ public:
 
 private:
     int position(int frame) const;
+    void check_frames_match(const layers::ReadOptions& options);
     void read_missing(const std::vector<int>& frames, const layers::ReadOptions& options);
 
     std::string pattern_;
     std::vector<int> frames_;
     int reach_ = 0;
+    bool frames_checked_ = false;
     std::map<int, std::shared_ptr<OIIO::ImageBuf>> read_;
 };
 

@@ -29,8 +29,9 @@ struct StatisticsPlanes {
     StatisticsView view() const;
 };
 
-/// The accumulator a stored pixel of `view` stands for (M2 = s²(n − 1), Mk = n·mk); the
-/// view needs its Box-Cox planes. Higher moments it lacks come back as 0.
+/// The accumulator a stored pixel of `view` stands for (M2 = s²(n − 1), Mk = n·mk). Every
+/// plane but the count and the mean may be absent: its moments come back as 0, and a
+/// merge of such pixels is exact only in the planes present.
 template <int C>
 PixelMoments<C, double> stored_pixel(const StatisticsView& view, int x, int y);
 /// The position co-moments a stored pixel stands for (sums = n · stored per-sample values);

@@ -33,6 +33,11 @@ OIIO::ImageBuf read_image_file(const std::string& path, const ReadOptions& optio
 /// reads the file another way (a texture through OIIO). Throws FileError "<path>: ...".
 void check_image_file(const std::string& path, const ReadOptions& options = {});
 
+/// The header of subimage 0 of `path`, after the checks read_image_file makes of headers
+/// (OpenEXR's check of the whole file excepted): what a host compares across the frames
+/// of a sequence before reading their pixels. Throws FileError "<path>: ...".
+OIIO::ImageSpec read_image_header(const std::string& path, const ReadOptions& options = {});
+
 /// The MIP levels below the full resolution, per subimage (empty for a subimage that has
 /// none): what a copy writes back so that a MIP-mapped file stays whole.
 using MipLevels = std::vector<std::vector<OIIO::ImageBuf>>;

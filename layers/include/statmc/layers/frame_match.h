@@ -18,6 +18,11 @@ void require_same_frame(const OIIO::ImageSpec& a, const OIIO::ImageSpec& b,
 /// "render 2 (b.exr)": input `k` named by `noun`, with its file name when it has one.
 std::string input_label(std::string_view noun, std::size_t k, const OIIO::ImageBuf* input);
 
+/// Throws LayerError unless `a` and `b` have the same frame (require_same_frame) and channel
+/// names (in any order); the message names both and the channels only one side has.
+void require_matching_specs(const OIIO::ImageSpec& a, const std::string& a_label,
+                            const OIIO::ImageSpec& b, const std::string& b_label);
+
 /// Throws LayerError unless every input has the frame (require_same_frame) and the channel
 /// names (in any order) of input 0; the message names the channels only one side has.
 /// The inputs must be initialized.
