@@ -118,7 +118,8 @@ StatisticsPlanes merge_members(const std::vector<TemporalFrame>& frames, int cen
     std::vector<StatisticsView> views;
     bool positions = true;
     for (const TemporalFrame& f : frames) {
-        views.push_back(box_cox ? f.stats : with_stand_in_box_cox(f.stats, dense_plane(zeros.data(), w)));
+        views.push_back(box_cox ? f.stats
+                                : with_stand_in_box_cox(f.stats, dense_plane(zeros.data(), w)));
         positions = positions && views.back().has_box_cox_positions();
     }
 

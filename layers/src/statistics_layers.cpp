@@ -219,6 +219,10 @@ Channels layout_channels(const StatisticsView& stats, const StatisticsMetadata& 
     add_guide(kNormalLayer, vector_suffixes(), guides.normal);
     if (guides.depth)
         out.emplace_back(channel_name(kDepthLayer, "Z"), guides.depth);
+    if (guides.motion[0] && guides.motion[1]) {
+        out.emplace_back(channel_name(kMotionLayer, "X"), guides.motion[0]);
+        out.emplace_back(channel_name(kMotionLayer, "Y"), guides.motion[1]);
+    }
     return out;
 }
 

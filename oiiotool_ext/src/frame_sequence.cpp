@@ -114,8 +114,7 @@ void FrameSequence::check_frames_match(const layers::ReadOptions& options)
     const OIIO::ImageSpec spec = layers::read_image_header(first, options);
     for (std::size_t k = 1; k < frames_.size(); ++k) {
         const std::string path = frame_path(pattern_, frames_[k]);
-        layers::require_matching_specs(layers::read_image_header(path, options), path, spec,
-                                       first);
+        layers::require_matching_specs(layers::read_image_header(path, options), path, spec, first);
     }
     frames_checked_ = true;
 }
@@ -123,8 +122,7 @@ void FrameSequence::check_frames_match(const layers::ReadOptions& options)
 // The first missing frame is read alone and sets the size of one; the rest are read as
 // many at a time as the budget has room for beside the frames held, and all of them must
 // fit: the temporal merge holds them together.
-void FrameSequence::read_missing(const std::vector<int>& frames,
-                                 const layers::ReadOptions& options)
+void FrameSequence::read_missing(const std::vector<int>& frames, const layers::ReadOptions& options)
 {
     if (frames.empty())
         return;
@@ -145,13 +143,14 @@ void FrameSequence::read_missing(const std::vector<int>& frames,
     if (held * bytes > budget)
         throw ToolError(frame_path(pattern_, frames.front()) + ": the " + std::to_string(held) +
                         " frames held at once (" + std::to_string(bytes >> 20) +
-                        " MiB each) exceed the memory budget of " +
-                        std::to_string(budget >> 20) + " MiB (--max-memory)");
+                        " MiB each) exceed the memory budget of " + std::to_string(budget >> 20) +
+                        " MiB (--max-memory)");
     const int room = int(std::min<std::uint64_t>(budget / bytes - read_.size(), 64));
     std::vector<std::shared_ptr<OIIO::ImageBuf>> images(frames.size());
     tbb::task_arena arena(std::max(1, std::min(room, int(frames.size() - first))));
     arena.execute([&] {
-        tbb::parallel_for(first, frames.size(), [&](std::size_t k) { images[k] = read(frames[k]); });
+        tbb::parallel_for(first, frames.size(),
+                          [&](std::size_t k) { images[k] = read(frames[k]); });
     });
     for (std::size_t k = first; k < frames.size(); ++k)
         read_[frames[k]] = std::move(images[k]);

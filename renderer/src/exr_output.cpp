@@ -23,6 +23,10 @@ OIIO::ImageBuf make_output_image(const Film& film, const OutputInfo& info)
         guides.normal[c] = dense_plane(normal.data() + c * n, film.width);
     }
     guides.depth = dense_plane(depth.data(), film.width);
+    const std::vector<float> motion = film.motion();
+    if (!motion.empty())
+        guides.motion = {dense_plane(motion.data(), film.width),
+                         dense_plane(motion.data() + n, film.width)};
     layers::StatisticsMetadata meta;
     if (info.spp.uniform)
         meta.spp = info.spp.min;
@@ -43,6 +47,8 @@ OIIO::ImageBuf make_output_image(const Film& film, const OutputInfo& info)
     layers::write_sample_provenance(image.specmod(), info.provenance);
     image.specmod().attribute(layers::attr::kRenderTime, info.render_seconds);
     image.specmod().attribute(layers::attr::kScene, info.scene);
+    if (info.frame)
+        image.specmod().attribute(layers::attr::kFrame, *info.frame);
     return image;
 }
 

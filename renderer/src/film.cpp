@@ -39,6 +39,10 @@ std::vector<float> average(const std::vector<double>& sums, int channels, const 
 std::vector<float> Film::albedo() const { return average(albedo_sum, 3, *this); }
 std::vector<float> Film::normal() const { return average(normal_sum, 3, *this); }
 std::vector<float> Film::depth() const { return average(depth_sum, 1, *this); }
+std::vector<float> Film::motion() const
+{
+    return motion_sum.empty() ? std::vector<float>{} : average(motion_sum, 2, *this);
+}
 
 Film::SampleCounts Film::sample_counts() const
 {

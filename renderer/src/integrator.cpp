@@ -54,8 +54,11 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
             record->throughput.push_back(beta);
             record->roulette_weight.push_back(roulette_weight);
         }
-        if (bounce == 0)
+        if (bounce == 0) {
             guide.depth = hit->t;
+            guide.first_hit = hit->p;
+            guide.hit = true;
+        }
 
         // Emission seen by this ray: in full after the camera or a specular bounce (no
         // light sample could have found it), else MIS-weighted against light sampling.

@@ -65,6 +65,20 @@ BounceLayout bounce_layout_for(const IntegratorSettings& settings, bool record_a
 
 namespace {
 
+// One sample's motion to the previous frame: where the previous camera saw the sample's
+// first hit (a miss: a point far along the ray, i.e. the direction), minus where the sample
+// is now. A point behind the previous camera has no defined motion and adds 0.
+void add_motion(Film& film, std::size_t pixel, std::size_t npix, const Camera& previous,
+                const Ray& ray, const GuideSample& guide, float x, float y)
+{
+    const Vec3 p = guide.hit ? guide.first_hit : ray.origin + ray.direction * 1e7f;
+    float px = 0, py = 0;
+    if (!previous.raster(p, px, py))
+        return;
+    film.motion_sum[pixel] += double(px) - x;
+    film.motion_sum[npix + pixel] += double(py) - y;
+}
+
 // Flush-to-zero and denormals-are-zero for the scope's lifetime; the caller's mode after.
 class FlushDenormals {
 public:
@@ -172,6 +186,9 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
                             film.normal_sum[c * npix + pixel] += guide.normal[c];
                         }
                         film.depth_sum[pixel] += guide.depth;
+                        if (!film.motion_sum.empty())
+                            add_motion(film, pixel, npix, *settings.previous_camera, ray, guide,
+                                       float(x) + jx, float(y) + jy);
                     }
                 }
             const std::uint64_t n = std::uint64_t(x1 - x0) * (y1 - y0) * spp;
@@ -285,6 +302,8 @@ RenderStats render(const Scene& scene, const Camera& camera, const RenderSetting
                    Film& film, const std::atomic<bool>* cancel,
                    const IterationCallback& after_iteration, const CheckpointCallback& checkpoint)
 {
+    if (!film.motion_sum.empty() && !settings.previous_camera)
+        throw std::invalid_argument("render: a film that tracks motion needs the previous camera");
     // An arena, not tbb::global_control: the limit holds for this render only, never for
     // the rest of the process (a host may render and denoise side by side).
     RenderStats stats;

@@ -22,7 +22,11 @@ namespace {
 namespace fs = std::filesystem;
 
 struct GraphicsState {
-    Transform ctm;
+    // pbrt-v3 keeps two transformation matrices, for the start and the end of the shutter
+    // (ActiveTransform picks which the transform directives change); only the camera's may
+    // differ (docs/exr-layers.md: camera animation for sequences).
+    Transform ctm, ctm_end;
+    bool active_start = true, active_end = true;
     int material = 0;
     std::optional<Rgb> emission;
     bool two_sided = false;
@@ -173,7 +177,20 @@ private:
         return p.is_absolute() ? name : (fs::path(dir_) / p).string();
     }
 
-    void apply(const Transform& t) { gs_.ctm = gs_.ctm * t; }
+    void apply(const Transform& t)
+    {
+        if (gs_.active_start)
+            gs_.ctm = gs_.ctm * t;
+        if (gs_.active_end)
+            gs_.ctm_end = gs_.ctm_end * t;
+    }
+    void set(const Transform& t)
+    {
+        if (gs_.active_start)
+            gs_.ctm = t;
+        if (gs_.active_end)
+            gs_.ctm_end = t;
+    }
 
     // ---- directives ----
     void directive()
@@ -187,7 +204,7 @@ private:
         if (d == "LookAt") {
             look_at(line);
         } else if (d == "Transform") {
-            gs_.ctm = Transform::from_pbrt(numbers(16, "Transform").data());
+            set(Transform::from_pbrt(numbers(16, "Transform").data()));
         } else if (d == "ConcatTransform") {
             apply(Transform::from_pbrt(numbers(16, "ConcatTransform").data()));
         } else if (d == "Translate") {
@@ -200,7 +217,7 @@ private:
             const auto v = numbers(4, "Rotate");
             apply(Transform::rotate(v[0], {float(v[1]), float(v[2]), float(v[3])}));
         } else if (d == "Identity") {
-            gs_.ctm = Transform::identity();
+            set(Transform::identity());
         } else if (d == "ReverseOrientation") {
             gs_.reverse_orientation = !gs_.reverse_orientation;
         } else if (d == "Camera") {
@@ -222,7 +239,7 @@ private:
             warn(line, d + " ignored");
         } else if (d == "WorldBegin") {
             in_world_ = true;
-            gs_.ctm = Transform::identity();
+            gs_.ctm = gs_.ctm_end = Transform::identity();
         } else if (d == "WorldEnd") {
             in_world_ = false;
         } else if (d == "AttributeBegin" || d == "TransformBegin") {
@@ -252,11 +269,19 @@ private:
                  "unsupported: LightSource \"" + type + "\" (only area lights are supported)");
         } else if (d == "Shape") {
             shape(line);
+        } else if (d == "ActiveTransform") {
+            active_transform(line);
+        } else if (d == "TransformTimes") {
+            const auto v = numbers(2, "TransformTimes");
+            if (!(std::isfinite(v[0]) && std::isfinite(v[1]) && v[0] < v[1]))
+                fail(line, "TransformTimes: the start time must be below the end time");
+            scene_.camera.start_time = v[0];
+            scene_.camera.end_time = v[1];
         } else if (d == "Include" || d == "Import") {
             include(d, line);
         } else if (d == "ObjectBegin" || d == "ObjectEnd" || d == "ObjectInstance" ||
                    d == "MakeNamedMedium" || d == "MediumInterface" || d == "CoordinateSystem" ||
-                   d == "CoordSysTransform" || d == "ActiveTransform" || d == "TransformTimes") {
+                   d == "CoordSysTransform") {
             fail(line, "unsupported: " + d);
         } else {
             warn(line, "unknown directive '" + d + "' ignored");
@@ -302,6 +327,19 @@ private:
         pos_ = 0;
     }
 
+    /// ActiveTransform StartTime | EndTime | All: which of the two matrices the transform
+    /// directives that follow change.
+    void active_transform(int line)
+    {
+        if (at_end() || peek().kind != Token::Kind::Identifier)
+            fail(line, "ActiveTransform: expected StartTime, EndTime or All");
+        const std::string which = tokens_[pos_++].text;
+        if (which != "StartTime" && which != "EndTime" && which != "All")
+            fail(line, "ActiveTransform: expected StartTime, EndTime or All, got '" + which + "'");
+        gs_.active_start = which != "EndTime";
+        gs_.active_end = which != "StartTime";
+    }
+
     void look_at(int line)
     {
         const auto v = numbers(9, "LookAt");
@@ -321,9 +359,12 @@ private:
         if (stack_.back().second != (d == "TransformEnd"))
             fail(line,
                  d + " closes a " + (stack_.back().second ? "TransformBegin" : "AttributeBegin"));
-        if (stack_.back().second)
+        if (stack_.back().second) {
             gs_.ctm = stack_.back().first.ctm;
-        else
+            gs_.ctm_end = stack_.back().first.ctm_end;
+            gs_.active_start = stack_.back().first.active_start;
+            gs_.active_end = stack_.back().first.active_end;
+        } else
             gs_ = stack_.back().first;
         stack_.pop_back();
     }
@@ -387,6 +428,10 @@ private:
             fail(line, "unsupported: Camera \"" + type + "\" (only \"perspective\")");
         saw_camera_ = true;
         scene_.camera.world_to_camera = gs_.ctm;
+        scene_.camera.world_to_camera_end = gs_.ctm_end;
+        if (scene_.camera.animated() && !camera_motion_is_rigid(scene_.camera))
+            fail(line, "Camera: its start and end transforms (ActiveTransform) must differ by a "
+                       "rotation and a translation only");
         scene_.camera.fov_degrees = ps.get_float("fov").value_or(90.f);
         if (!(scene_.camera.fov_degrees > 0 && scene_.camera.fov_degrees < 180))
             fail(line, "Camera fov must be in (0, 180) degrees");
@@ -449,6 +494,9 @@ private:
         auto ps = params(line);
         if (!in_world_)
             fail(line, "Shape outside WorldBegin/WorldEnd");
+        if (!(gs_.ctm == gs_.ctm_end))
+            warn(line, "Shape: animated transforms are not supported; the start transform is "
+                       "used");
         ShapeDesc s = read_shape(type, ps, gs_.ctm, gs_.reverse_orientation, ply_loader(line),
                                  scene_.warnings);
         warn_all(ps.unused_warnings("Shape \"" + type + "\""));

@@ -27,8 +27,8 @@ protected:
             char name[256];
             std::snprintf(name, sizeof name, printf_name.c_str(), f);
             const StatisticsPlanes stats = noisy_statistics(kCliWidth, kCliHeight, 8, 300 + f);
-            write_exr(layers::make_statistics_image(stats, {}, make_guides(kCliWidth, kCliHeight, 9)
-                                                                    .planes()),
+            write_exr(layers::make_statistics_image(stats, {},
+                                                    make_guides(kCliWidth, kCliHeight, 9).planes()),
                       dir.file(name));
             paths.push_back(dir.file(name));
         }
@@ -45,8 +45,7 @@ protected:
     {
         EXPECT_EQ(r.exit_code, 1) << r.err;
         EXPECT_EQ(r.err.rfind("statmc: error: ", 0), 0u) << r.err;
-        EXPECT_NE(r.err.find(message), std::string::npos) << "expected \"" << message
-                                                          << "\" in:\n"
+        EXPECT_NE(r.err.find(message), std::string::npos) << "expected \"" << message << "\" in:\n"
                                                           << r.err;
     }
 
@@ -76,8 +75,8 @@ TEST_F(CliSequence, HashAtAndPrintfPatternsRunEachFrame)
 TEST_F(CliSequence, TemporalDenoiseReadsTheFramesAround)
 {
     const auto paths = write_frames("shot.%04d.exr", {1, 2, 3, 4});
-    expect_ok(run_cli({dir.file("shot.#.exr"), "--frames", "1-4", "--denoise:temporal=1",
-                       "-o", dir.file("out.#.exr")}));
+    expect_ok(run_cli({dir.file("shot.#.exr"), "--frames", "1-4", "--denoise:temporal=1", "-o",
+                       dir.file("out.#.exr")}));
     // Frame 2 is what the API makes of frames 1..3, frame 4 of 3..4 (the sequence's end).
     std::vector<OIIO::ImageBuf> in;
     for (const std::string& p : paths)
@@ -108,9 +107,8 @@ TEST_F(CliSequence, AMissingFrameIsAnErrorUnlessSkipped)
     expect_error(r, "shot.0003.exr: frame 3 of the sequence does not exist");
     EXPECT_FALSE(has("out.0001.exr"));  // checked before any frame runs
 
-    const CliResult skipped =
-        run_cli({dir.file("shot.#.exr"), "--frames", "1-4", "--skip-missing",
-                 "--denoise:temporal=1", "-o", dir.file("out.#.exr")});
+    const CliResult skipped = run_cli({dir.file("shot.#.exr"), "--frames", "1-4", "--skip-missing",
+                                       "--denoise:temporal=1", "-o", dir.file("out.#.exr")});
     expect_ok(skipped);
     EXPECT_NE(skipped.err.find("skipping frame 3"), std::string::npos) << skipped.err;
     EXPECT_TRUE(has("out.0004.exr"));
@@ -130,8 +128,8 @@ TEST_F(CliSequence, BadSequencesAreClearErrorsWithNoOutput)
         run_cli({dir.file("shot.0001.exr"), "--denoise:temporal=1", "-o", dir.file("o.exr")}),
         "temporal=1 needs a frame sequence");
     // A changed image is no longer the frame as read: its neighbours would not match it.
-    expect_error(run_cli({dir.file("shot.#.exr"), "--subimage", "0", "--denoise:temporal=1",
-                          "-o", dir.file("o.#.exr")}),
+    expect_error(run_cli({dir.file("shot.#.exr"), "--subimage", "0", "--denoise:temporal=1", "-o",
+                          dir.file("o.#.exr")}),
                  "temporal=1 needs a frame sequence");
     EXPECT_FALSE(has("o.exr"));
     EXPECT_FALSE(has("o.0001.exr"));
@@ -148,16 +146,16 @@ TEST_F(CliSequence, FramesThatDoNotMatchStopTheRunBeforeAnyOutput)
     OIIO::ImageBufAlgo::zero(motion);
     write_exr(OIIO::ImageBufAlgo::channel_append(odd, motion), dir.file("shot.0003.exr"));
 
-    const CliResult r = run_cli({dir.file("shot.#.exr"), "--frames", "1-3",
-                                 "--denoise:temporal=1", "-o", dir.file("out.#.exr")});
+    const CliResult r = run_cli({dir.file("shot.#.exr"), "--frames", "1-3", "--denoise:temporal=1",
+                                 "-o", dir.file("out.#.exr")});
     expect_error(r, "only in " + dir.file("shot.0003.exr") + ": motion.X, motion.Y");
     EXPECT_FALSE(has("out.0001.exr"));
 
     // Another resolution.
     write_exr(layers::make_statistics_image(noisy_statistics(kCliWidth + 1, kCliHeight, 8, 1)),
               dir.file("shot.0003.exr"));
-    expect_error(run_cli({dir.file("shot.#.exr"), "--frames", "1-3", "--denoise:temporal=2",
-                          "-o", dir.file("out.#.exr")}),
+    expect_error(run_cli({dir.file("shot.#.exr"), "--frames", "1-3", "--denoise:temporal=2", "-o",
+                          dir.file("out.#.exr")}),
                  "differ in resolution");
     EXPECT_FALSE(has("out.0001.exr"));
 }

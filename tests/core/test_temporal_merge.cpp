@@ -129,11 +129,10 @@ StatisticsPlanes shifted(const StatisticsPlanes& p, int sx, int sy)
                         in ? from[c * n + std::size_t(v) * p.width + u] : 0.f;
                 }
     };
-    for (auto member : {&StatisticsPlanes::count, &StatisticsPlanes::mean,
-                        &StatisticsPlanes::variance, &StatisticsPlanes::bc_mean,
-                        &StatisticsPlanes::bc_variance, &StatisticsPlanes::bc_moment3,
-                        &StatisticsPlanes::moment3, &StatisticsPlanes::moment4,
-                        &StatisticsPlanes::bc_moment4})
+    for (auto member :
+         {&StatisticsPlanes::count, &StatisticsPlanes::mean, &StatisticsPlanes::variance,
+          &StatisticsPlanes::bc_mean, &StatisticsPlanes::bc_variance, &StatisticsPlanes::bc_moment3,
+          &StatisticsPlanes::moment3, &StatisticsPlanes::moment4, &StatisticsPlanes::bc_moment4})
         move(p.*member, out.*member);
     return out;
 }
@@ -202,10 +201,7 @@ TEST(TemporalMerge, ForwardMotionThatDoesNotLandBackIsADisocclusion)
 // A bright region whose edge moves 4 px per frame over a darker one (dark enough to differ
 // by many standard errors, bright enough that normal samples are never negative, which
 // the accumulators would count as 0).
-float edge_truth(int frame, int x, int c)
-{
-    return x < 20 + 4 * frame ? 4.f + 0.1f * c : 0.5f;
-}
+float edge_truth(int frame, int x, int c) { return x < 20 + 4 * frame ? 4.f + 0.1f * c : 0.5f; }
 
 TEST(TemporalMerge, WrongMotionVectorsGhostNothing)
 {
@@ -216,8 +212,8 @@ TEST(TemporalMerge, WrongMotionVectorsGhostNothing)
     std::vector<StatisticsPlanes> seq;
     for (int k = 0; k < frames_n; ++k)
         seq.push_back(sample_statistics(
-            kW, kH, spp, [k](int x, int, int c) { return edge_truth(k, x, c); },
-            draw_known_normal, 77 + k));
+            kW, kH, spp, [k](int x, int, int c) { return edge_truth(k, x, c); }, draw_known_normal,
+            77 + k));
     const std::vector<float> zero(std::size_t(kW) * kH, 0.f);
     std::vector<TemporalFrame> frames;
     for (const StatisticsPlanes& p : seq)
@@ -240,7 +236,6 @@ TEST(TemporalMerge, WrongMotionVectorsGhostNothing)
                 const double se = sigma_of(float(t)) / std::sqrt(double(merged.count[i]));
                 ++checked;
                 ghosts += std::abs(merged.mean[c * n + i] - t) > 3 * se;
-
             }
         }
     // Legitimate merges exceed 3 SE with probability 0.27% each: ~0.3% of the checks.
@@ -310,17 +305,17 @@ TEST(TemporalMerge, MismatchedFramesAreRefused)
                                         TestDomain::BoxCox, {1, 0}, test_options(), 0),
                  std::invalid_argument);
     const std::vector<float> zero(std::size_t(kW) * kH, 0.f);
-    EXPECT_THROW(merge_temporal_members({{seq[0].view(), dense_plane(zero.data(), kW),
-                                          dense_plane(zero.data(), kW)},
-                                         {seq[1].view(), {}, {}}},
-                                        0, TestDomain::BoxCox, {1, 0}, test_options(), 0),
+    EXPECT_THROW(merge_temporal_members(
+                     {{seq[0].view(), dense_plane(zero.data(), kW), dense_plane(zero.data(), kW)},
+                      {seq[1].view(), {}, {}}},
+                     0, TestDomain::BoxCox, {1, 0}, test_options(), 0),
                  std::invalid_argument);
-    EXPECT_THROW(merge_temporal_members(frames_of(seq), 2, TestDomain::BoxCox, {1, 0},
-                                        test_options(), 0),
-                 std::invalid_argument);
-    EXPECT_THROW(merge_temporal_members(frames_of(seq), 0, TestDomain::BoxCox, {-1, 0},
-                                        test_options(), 0),
-                 std::invalid_argument);
+    EXPECT_THROW(
+        merge_temporal_members(frames_of(seq), 2, TestDomain::BoxCox, {1, 0}, test_options(), 0),
+        std::invalid_argument);
+    EXPECT_THROW(
+        merge_temporal_members(frames_of(seq), 0, TestDomain::BoxCox, {-1, 0}, test_options(), 0),
+        std::invalid_argument);
 }
 
 }  // namespace

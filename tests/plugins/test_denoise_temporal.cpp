@@ -90,8 +90,8 @@ TEST(DenoiseTemporal, DenoisesWhatCoreMergesBitwise)
     for (const char* name : {"R", "G", "B"})
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x)
-                ASSERT_TRUE(same_bits(channel_value(out, name, x, y),
-                                      channel_value(expected, name, x, y)))
+                ASSERT_TRUE(
+                    same_bits(channel_value(out, name, x, y), channel_value(expected, name, x, y)))
                     << name << " at " << x << "," << y;
     // Only the mean changes: the frame keeps its own statistics.
     for (int y = 0; y < kH; ++y)
@@ -164,11 +164,10 @@ StatisticsPlanes moved_right(const StatisticsPlanes& p, int shift)
                     to[c * n + std::size_t(y) * kW + x] =
                         from[c * n + std::size_t(y) * kW + std::max(0, x - shift)];
     };
-    for (auto member : {&StatisticsPlanes::count, &StatisticsPlanes::mean,
-                        &StatisticsPlanes::variance, &StatisticsPlanes::bc_mean,
-                        &StatisticsPlanes::bc_variance, &StatisticsPlanes::bc_moment3,
-                        &StatisticsPlanes::moment3, &StatisticsPlanes::moment4,
-                        &StatisticsPlanes::bc_moment4})
+    for (auto member :
+         {&StatisticsPlanes::count, &StatisticsPlanes::mean, &StatisticsPlanes::variance,
+          &StatisticsPlanes::bc_mean, &StatisticsPlanes::bc_variance, &StatisticsPlanes::bc_moment3,
+          &StatisticsPlanes::moment3, &StatisticsPlanes::moment4, &StatisticsPlanes::bc_moment4})
         move(p.*member, out.*member);
     return out;
 }
@@ -186,10 +185,10 @@ TEST(DenoiseTemporal, FollowsTheMotionLayer)
     const OIIO::ImageBuf centre_still = seq.images[0];
     const OIIO::ImageBuf centre_moving = with_motion(seq.images[0], 0.f, 0.f);
 
-    const OIIO::ImageBuf a = denoise(centre_still, FrameNeighbours{{}, {&still_next}},
-                                     temporal_options(1));
-    const OIIO::ImageBuf b = denoise(centre_moving, FrameNeighbours{{}, {&moved_next}},
-                                     temporal_options(1));
+    const OIIO::ImageBuf a =
+        denoise(centre_still, FrameNeighbours{{}, {&still_next}}, temporal_options(1));
+    const OIIO::ImageBuf b =
+        denoise(centre_moving, FrameNeighbours{{}, {&moved_next}}, temporal_options(1));
     ASSERT_FALSE(a.has_error()) << a.geterror();
     ASSERT_FALSE(b.has_error()) << b.geterror();
     const int reach = temporal_options(1).filter.radius;
@@ -237,9 +236,9 @@ TEST(DenoiseTemporal, MismatchedFramesAreErrorsNamingTheFrame)
     expect_error(seq.images[0], {{}, {&moving}}, "motion layer (motion.X, motion.Y) is in");
 
     const OIIO::ImageBuf lacking = test::without_channels(
-        seq.images[1], {"boxcoxMean.R", "boxcoxMean.G", "boxcoxMean.B", "boxcoxVariance.R",
-                        "boxcoxVariance.G", "boxcoxVariance.B", "boxcoxM3.R", "boxcoxM3.G",
-                        "boxcoxM3.B"});
+        seq.images[1],
+        {"boxcoxMean.R", "boxcoxMean.G", "boxcoxMean.B", "boxcoxVariance.R", "boxcoxVariance.G",
+         "boxcoxVariance.B", "boxcoxM3.R", "boxcoxM3.G", "boxcoxM3.B"});
     expect_error(seq.images[0], {{}, {&lacking}}, "boxcox");
 }
 

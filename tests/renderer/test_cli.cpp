@@ -219,3 +219,37 @@ INSTANTIATE_TEST_SUITE_P(Cli, Interrupt, ::testing::Values(SIGINT, SIGTERM),
                          [](const ::testing::TestParamInfo<int>& info) {
                              return std::string(info.param == SIGINT ? "SIGINT" : "SIGTERM");
                          });
+
+TEST(Cli, FramesRenderASequenceWithMotionLayersAndIndependentNoise)
+{
+    ScratchDir dir("cli-frames");
+    const std::string scene = dir.write("s.pbrt", kScene);
+    const ProgramRun r = run("\"" + scene + "\" -o \"" + dir.file("shot.#.exr") +
+                                 "\" --frames 3-4 --fps 24 --quiet",
+                             dir);
+    ASSERT_EQ(r.status, 0) << r.output;
+    std::vector<std::vector<float>> red;
+    for (int frame : {3, 4}) {
+        OIIO::ImageBuf img(dir.file("shot.000" + std::to_string(frame) + ".exr"));
+        ASSERT_TRUE(img.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << img.geterror();
+        EXPECT_EQ(img.spec().get_int_attribute("statmc:frame", -1), frame);
+        EXPECT_GE(img.spec().channelindex("motion.X"), 0);
+        EXPECT_GE(img.spec().channelindex("motion.Y"), 0);
+        std::vector<float> r_channel(32 * 16);
+        img.get_pixels(OIIO::ROI(0, 32, 0, 16, 0, 1, 0, 1), OIIO::TypeDesc::FLOAT,
+                       r_channel.data());
+        red.push_back(r_channel);
+    }
+    EXPECT_NE(red[0], red[1]) << "the frames' seeds must differ";
+
+    const ProgramRun no_pattern = run("\"" + scene + "\" -o \"" + dir.file("still.exr") +
+                                          "\" --frames 1-2 --quiet",
+                                      dir);
+    EXPECT_NE(no_pattern.status, 0);
+    EXPECT_NE(no_pattern.output.find("--frames needs a frame pattern"), std::string::npos)
+        << no_pattern.output;
+    const ProgramRun with_tasks = run("\"" + scene + "\" -o \"" + dir.file("t.#.exr") +
+                                          "\" --frames 1-2 --tasks 2 --quiet",
+                                      dir);
+    EXPECT_NE(with_tasks.status, 0);
+}

@@ -379,8 +379,8 @@ std::vector<Plane> dense_planes(std::vector<float>& data, const StatisticsView& 
 // "frame t−2 (shot.0003.exr)": a neighbour as messages name it.
 std::string frame_label(int offset, const OIIO::ImageBuf& frame)
 {
-    std::string text = offset < 0 ? "frame t−" + std::to_string(-offset)
-                                  : "frame t+" + std::to_string(offset);
+    std::string text =
+        offset < 0 ? "frame t−" + std::to_string(-offset) : "frame t+" + std::to_string(offset);
     if (!frame.name().empty())
         text += " (" + std::string(frame.name()) + ")";
     return text;
@@ -413,7 +413,7 @@ struct Sequence {
     std::vector<const OIIO::ImageBuf*> frames;  // float pixels
     std::vector<int> offsets;                   // relative to the centre
     int centre = 0;
-    std::vector<OIIO::ImageBuf> scratch;        // float copies of non-float neighbours
+    std::vector<OIIO::ImageBuf> scratch;  // float copies of non-float neighbours
 };
 
 Sequence sequence_of(const OIIO::ImageBuf& in, const FrameNeighbours& neighbours, int reach)
@@ -434,7 +434,8 @@ Sequence sequence_of(const OIIO::ImageBuf& in, const FrameNeighbours& neighbours
             } catch (const std::invalid_argument& e) {
                 throw std::invalid_argument(frame_label(offset, *frame) + ": " + e.what());
             }
-            seq.frames.push_back(&layers::local_float_pixels(*frame, seq.scratch[seq.frames.size()]));
+            seq.frames.push_back(
+                &layers::local_float_pixels(*frame, seq.scratch[seq.frames.size()]));
         }
         seq.offsets.push_back(offset);
     };
@@ -472,14 +473,15 @@ StatisticsPlanes merged_over_time(const OIIO::ImageBuf& in, const StatisticsChan
         }
         if (frames.back().has_motion() != frames.front().has_motion()) {
             const std::size_t with = frames.back().has_motion() ? k : 0, without = k - with;
-            throw LayerError(
-                "the motion layer (motion.X, motion.Y) is in " +
-                (seq.offsets[with] == 0 ? std::string("the frame denoised")
-                                        : frame_label(seq.offsets[with], *seq.frames[with])) +
-                " but not in " +
-                (seq.offsets[without] == 0 ? std::string("the frame denoised")
-                                           : frame_label(seq.offsets[without], *seq.frames[without])) +
-                ": temporal denoising follows it in every frame or in none");
+            throw LayerError("the motion layer (motion.X, motion.Y) is in " +
+                             (seq.offsets[with] == 0
+                                  ? std::string("the frame denoised")
+                                  : frame_label(seq.offsets[with], *seq.frames[with])) +
+                             " but not in " +
+                             (seq.offsets[without] == 0
+                                  ? std::string("the frame denoised")
+                                  : frame_label(seq.offsets[without], *seq.frames[without])) +
+                             ": temporal denoising follows it in every frame or in none");
         }
     }
     return merge_temporal_members(frames, seq.centre, domain, opt.temporal, opt.filter,
@@ -497,17 +499,16 @@ StatisticsView with_planes_of(StatisticsView shape, const StatisticsView& values
     };
     take(shape.count, values.count);
     for (int c = 0; c < shape.channels; ++c) {
-        for (auto member : {&StatisticsView::mean, &StatisticsView::variance,
-                            &StatisticsView::bc_mean, &StatisticsView::bc_variance,
-                            &StatisticsView::bc_moment3, &StatisticsView::moment3,
-                            &StatisticsView::moment4, &StatisticsView::bc_moment4,
-                            &StatisticsView::cov_u, &StatisticsView::cov_v,
-                            &StatisticsView::bc_cov_u, &StatisticsView::bc_cov_v})
+        for (auto member :
+             {&StatisticsView::mean, &StatisticsView::variance, &StatisticsView::bc_mean,
+              &StatisticsView::bc_variance, &StatisticsView::bc_moment3, &StatisticsView::moment3,
+              &StatisticsView::moment4, &StatisticsView::bc_moment4, &StatisticsView::cov_u,
+              &StatisticsView::cov_v, &StatisticsView::bc_cov_u, &StatisticsView::bc_cov_v})
             take((shape.*member)[c], (values.*member)[c]);
     }
-    for (auto member : {&StatisticsView::subpixel_u, &StatisticsView::subpixel_v,
-                        &StatisticsView::subpixel_uu, &StatisticsView::subpixel_vv,
-                        &StatisticsView::subpixel_uv})
+    for (auto member :
+         {&StatisticsView::subpixel_u, &StatisticsView::subpixel_v, &StatisticsView::subpixel_uu,
+          &StatisticsView::subpixel_vv, &StatisticsView::subpixel_uv})
         take(shape.*member, values.*member);
     shape.variance_of_mean = values.variance_of_mean;
     return shape;

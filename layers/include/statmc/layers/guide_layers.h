@@ -18,6 +18,7 @@ struct GuidePlanes {
     std::array<ConstPlane, 3> albedo{};
     std::array<ConstPlane, 3> normal{};
     ConstPlane depth{};
+    std::array<ConstPlane, 2> motion{};  ///< motion.X, motion.Y (kMotionLayer)
 
     /// The guides the core filter takes.
     Guides core() const { return {albedo, normal}; }

@@ -30,6 +30,7 @@ inline constexpr const char* kDenoised = "statmc:denoised";  // int 1
 inline constexpr const char* kDenoiseSkipped = "statmc:denoiseSkipped";
 inline constexpr const char* kRenderTime = "statmc:renderTime";  // float seconds (statmc-render)
 inline constexpr const char* kScene = "statmc:scene";  // string: the scene file (statmc-render)
+inline constexpr const char* kFrame = "statmc:frame";  // int: the frame of a sequence (statmc-render)
 // Where the samples came from (sample_provenance.h): sample indices [begin, end) of every
 // pixel's stream, and the farm task that drew them.
 inline constexpr const char* kSampleBegin = "statmc:sampleBegin";    // int

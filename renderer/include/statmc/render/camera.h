@@ -17,10 +17,13 @@ public:
 
     /// The ray through raster position (x, y) in pixels, (0, 0) the top-left corner.
     Ray generate(float x, float y) const;
+    /// Where this camera sees world point `p`, in raster pixels (generate's inverse);
+    /// false when p is not in front of it.
+    bool raster(Vec3 p, float& x, float& y) const;
     Vec3 forward() const { return forward_; }
 
 private:
-    Transform camera_to_world_;
+    Transform camera_to_world_, world_to_camera_;
     Vec3 origin_, forward_;
     float tan_half_fov_;
     float screen_x_, screen_y_;  ///< half extents of the screen window

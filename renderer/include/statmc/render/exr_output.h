@@ -2,6 +2,7 @@
 // (built by layers/, never by hand), plus the render's own header attributes.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include <OpenImageIO/imagebuf.h>
@@ -19,6 +20,7 @@ struct OutputInfo {
     layers::SampleProvenance provenance;
     float render_seconds = 0;
     std::string scene;
+    std::optional<int> frame;  ///< statmc:frame, in a sequence
 };
 
 /// Mean, variance, Box-Cox statistics, sampleCount, the per-bounce AOVs the film tracks

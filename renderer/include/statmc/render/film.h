@@ -18,12 +18,17 @@ struct Film {
     int width, height;
     StatisticsImage<3> stats;
     std::vector<double> albedo_sum, normal_sum, depth_sum;  ///< channel-major sums
+    /// Σ of the samples' motion to the previous frame (X then Y), empty unless tracked.
+    std::vector<double> motion_sum;
     std::unique_ptr<BounceStatistics> bounces;              ///< null when nothing is tracked
 
     /// Guide averages as dense channel-major float planes (3, 3 and 1 channels).
     std::vector<float> albedo() const;
     std::vector<float> normal() const;
     std::vector<float> depth() const;
+    /// Motion averages (X then Y), empty unless tracked.
+    std::vector<float> motion() const;
+    void track_motion() { motion_sum.assign(std::size_t(width) * height * 2, 0.0); }
     /// The per-pixel sample counts: smallest, mean, and whether every pixel has the same.
     struct SampleCounts {
         int min = 0;

@@ -23,6 +23,8 @@ struct GuideSample {
     Rgb albedo;
     Vec3 normal;
     float depth = 0;
+    Vec3 first_hit;  ///< where the camera ray first hits, when `hit`
+    bool hit = false;
 };
 
 /// What one camera path did, vertex by vertex, for the per-bounce statistics of ACRR

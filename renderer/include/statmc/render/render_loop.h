@@ -53,6 +53,10 @@ struct RenderSettings {
     /// checkpoint callback when this many seconds have passed since the last one and when
     /// it stops early.
     double checkpoint_seconds = 0;
+    /// The camera of the previous frame of a sequence: with it, and a film that tracks
+    /// motion, each sample adds the screen-space offset from where its first hit is to where
+    /// that point was seen in the previous frame (the motion layer, docs/exr-layers.md).
+    const Camera* previous_camera = nullptr;
 };
 
 /// What one progressive iteration cost.

@@ -39,11 +39,23 @@ struct ShapeDesc {
 };
 
 struct CameraDesc {
-    Transform world_to_camera;
+    Transform world_to_camera;      ///< at start_time
+    Transform world_to_camera_end;  ///< at end_time (ActiveTransform EndTime)
+    double start_time = 0, end_time = 1;  ///< TransformTimes
     float fov_degrees = 90;  ///< on the shorter image axis, as pbrt-v3
     int width = 640;
     int height = 480;
+
+    bool animated() const { return !(world_to_camera == world_to_camera_end); }
+    /// The camera at `time`: the start and end poses interpolated rigidly (the rotation
+    /// between them at a constant angular rate, the position linearly), held before
+    /// start_time and after end_time.
+    CameraDesc at_time(double time) const;
 };
+
+/// Whether the camera's end pose is its start pose moved by a rotation and a translation
+/// (what at_time can interpolate).
+bool camera_motion_is_rigid(const CameraDesc& camera);
 
 struct SceneDescription {
     std::string file;

@@ -77,6 +77,8 @@ struct Transform {
         return camera_to_world.inverse();
     }
 
+    bool operator==(const Transform& o) const { return m == o.m; }
+
     Transform operator*(const Transform& o) const
     {
         Transform r;
