@@ -4,6 +4,7 @@
 // n = 64, r = 20; medians over 5 repetitions.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 
@@ -77,6 +78,49 @@ void BM_DenoiseOperatorInPlace(benchmark::State& state)
         (state.range(1) ? ", in place, albedo + normal guides" : ", in place, no guides"));
 }
 
+// Frame t of a static shot with its neighbours t−2 … t+2 (other seeds), built once.
+struct Shot {
+    std::vector<OIIO::ImageBuf> frames;
+    Shot()
+    {
+        static const bench::GuidePlanes guides;
+        layers::GuidePlanes planes;
+        planes.albedo = guides.guides.albedo;
+        planes.normal = guides.guides.normal;
+        for (std::uint64_t seed = 2; seed <= 5; ++seed)
+            frames.push_back(
+                layers::make_statistics_image(bench::make_frame(false, seed), {}, planes));
+    }
+    FrameNeighbours around(int reach) const
+    {
+        FrameNeighbours n;
+        for (int k = 0; k < reach; ++k) {
+            n.previous.push_back(&frames[std::size_t(2 * k)]);
+            n.next.push_back(&frames[std::size_t(2 * k + 1)]);
+        }
+        return n;
+    }
+};
+
+// Temporal denoising (temporal = K) against K = 0, the per-frame cost; the default method,
+// albedo + normal guides, all cores. What the tool adds besides is reading the neighbours.
+void BM_DenoiseTemporal(benchmark::State& state)
+{
+    static const Shot shot;
+    DenoiseImageOptions opt = method(state.range(1));
+    opt.guides.albedo = opt.guides.normal = GuideUse::Required;
+    opt.temporal.frames = int(state.range(0));
+    const FrameNeighbours neighbours = shot.around(opt.temporal.frames);
+    OIIO::ImageBuf out;
+    for (auto _ : state) {
+        if (!denoise(out, image(), neighbours, opt))
+            state.SkipWithError(out.geterror().c_str());
+        benchmark::DoNotOptimize(out.localpixels());
+    }
+    state.SetLabel(std::string(method_label(state.range(1))) + ", temporal " +
+                   std::to_string(opt.temporal.frames));
+}
+
 // The stages outside the filter, on all cores.
 void BM_StageValidate(benchmark::State& state)
 {
@@ -115,6 +159,14 @@ BENCHMARK(BM_DenoiseOperatorInPlace)
     ->Args({0, 1, 0})
     ->Args({0, 0, 1})
     ->Args({0, 1, 1})
+    ->Apply(median_of_5);
+// Args: temporal K, method (0 classic, 1 default).
+BENCHMARK(BM_DenoiseTemporal)
+    ->Args({0, 1})
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->Args({0, 0})
+    ->Args({2, 0})
     ->Apply(median_of_5);
 BENCHMARK(BM_StageValidate)->Apply(median_of_5);
 BENCHMARK(BM_StageEstimators)->Apply(median_of_5);

@@ -14,10 +14,10 @@ constexpr int kWidth = 1280, kHeight = 720, kSamples = 64;
 
 // A render-like frame: smooth shading, a few hard edges, exponential noise. With
 // fireflies, one pixel in 500 has one sample 1000× brighter, so the firefly guard has
-// work to do in most chunks.
-inline StatisticsPlanes make_frame(bool fireflies)
+// work to do in most chunks. `seed` draws another frame of the same (static) shot.
+inline StatisticsPlanes make_frame(bool fireflies, std::uint64_t seed = 1)
 {
-    std::mt19937_64 rng(1);
+    std::mt19937_64 rng(seed);
     std::uniform_int_distribution<int> one_in_500(0, 499);
     StatisticsImage<3> img(kWidth, kHeight);
     for (int y = 0; y < kHeight; ++y)

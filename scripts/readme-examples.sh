@@ -22,6 +22,9 @@ oiiotool --pattern "$gradient" 64x48 3 -d float -o reference.exr
 statmc render5.exr render6.exr render7.exr render8.exr --passes -o frameB.exr
 statmc render1.exr render2.exr --passes -o task1.exr
 statmc render3.exr render4.exr --passes -o task2.exr
+for f in 1 2 3 4; do  # a four-frame "sequence" of a static shot, two renders per frame
+  statmc render$((2 * f - 1)).exr render$((2 * f)).exr --passes -o "shot.000$f.exr"
+done
 
 run() { echo "+ $*"; "$@"; }
 
@@ -42,6 +45,9 @@ run statmc aovs-denoised.exr --ch R=diffuse.R,G=diffuse.G,B=diffuse.B \
 run statmc task1.exr task2.exr --merge -o merged.exr
 run statmc merged.exr frame.exr --diff
 run statmc merged.exr --denoise -o merged-denoised.exr
+# Frame sequences, denoised with their neighbours
+run statmc shot.#.exr --frames 1-4 --denoise:temporal=2 -o shot-denoised.#.exr
+run statmc shot.%04d.exr --denoise -o shot-per-frame.%04d.exr
 # Compare against a reference and view the error
 run statmc frame-denoised.exr reference.exr --compare -o error.exr
 run statmc frame-denoised.exr reference.exr --compare --mulc 10 --display -o error-view.exr
