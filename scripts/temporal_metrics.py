@@ -66,8 +66,8 @@ def tonemap(x):
 def write_png(path, image):
     h, w, _ = image.shape
     buf = oiio.ImageBuf(oiio.ImageSpec(w, h, 3, oiio.UINT8))
-    buf.set_pixels(oiio.ROI(0, w, 0, h, 0, 1, 0, 3), image)
-    if not buf.write(path):
+    if not buf.set_pixels(oiio.ROI(0, w, 0, h, 0, 1, 0, 3), np.ascontiguousarray(image)) or \
+            not buf.write(path):
         raise SystemExit(buf.geterror())
 
 

@@ -99,6 +99,19 @@ void check_frames(const std::vector<TemporalFrame>& frames, int centre, TestDoma
     }
 }
 
+// The firefly guard for a temporal member: the largest noise level the centre accepts from
+// another frame. A member is the same pixel seen again, so its level is compared with the
+// centre's own (when it has one), not with the larger of its own and its neighbourhood's
+// that spatial members face: a pixel beside a light whose edge moves by a fraction of a
+// pixel between frames sees, in another frame, the light straddling it (mean and variance
+// up a hundredfold), and the symmetric test alone lets that in. A centre with no noise
+// keeps the spatial rule (a black one in a sparsely lit region still takes any level).
+float temporal_noise_limit(const NoiseLevels& noise, std::size_t pixel, float ratio)
+{
+    const float own = noise.level[pixel];
+    return ratio > 0 && own > 0 ? std::min(noise.limit[pixel], ratio * own) : noise.limit[pixel];
+}
+
 // Each frame's estimators and firefly levels, computed once and shared by every pixel.
 struct FrameTests {
     EstimatorImage est;
@@ -152,7 +165,9 @@ StatisticsPlanes merge_members(const std::vector<TemporalFrame>& frames, int cen
                 int joined = 0;
                 const bool testable = ce.testable(x, y);
                 const double gi = testable ? gamma2(ce, x, y) : 0.0;
-                const float limit = tests[centre].noise.limit[std::size_t(y) * w + x];
+                const float limit = temporal_noise_limit(tests[centre].noise,
+                                                         std::size_t(y) * w + x,
+                                                         filter.firefly_ratio);
                 for (int k = 0; k < int(frames.size()) && testable; ++k) {
                     int ox, oy;
                     if (std::abs(k - centre) > temporal.frames ||

@@ -42,18 +42,17 @@ const std::vector<Command>& command_table()
 {
     // In the order --help shows them.
     static const std::vector<Command> table = {
-        input_command(),       output_command(),        data_format_command(),
-        compression_command(), all_subimages_command(), ch_command(),
-        chnames_command(),     chappend_command(),      subimage_command(),
-        siappend_command(),    add_command(),           sub_command(),
-        mul_command(),         addc_command(),          mulc_command(),
-        colorconfig_command(), colorconvert_command(),  ociodisplay_command(),
-        crop_command(),        resize_command(),        info_command(),
-        verbose_command(),     stats_command(),         diff_command(),
-        echo_command(),        threads_command(),       max_memory_command(),
-        check_inputs_command(), frames_command(),       skip_missing_command(),
-        list_ops_command(),    help_command(),
-        version_command(),
+        input_command(),        output_command(),        data_format_command(),
+        compression_command(),  all_subimages_command(), ch_command(),
+        chnames_command(),      chappend_command(),      subimage_command(),
+        siappend_command(),     add_command(),           sub_command(),
+        mul_command(),          addc_command(),          mulc_command(),
+        colorconfig_command(),  colorconvert_command(),  ociodisplay_command(),
+        crop_command(),         resize_command(),        info_command(),
+        verbose_command(),      stats_command(),         diff_command(),
+        echo_command(),         threads_command(),       max_memory_command(),
+        check_inputs_command(), frames_command(),        skip_missing_command(),
+        list_ops_command(),     help_command(),          version_command(),
     };
     return table;
 }

@@ -126,7 +126,8 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
 
     const std::uint64_t schedule_total = schedule_samples(settings.schedule);
     if (settings.samples_done > schedule_total)
-        throw std::invalid_argument("render: the film already holds more samples than the schedule");
+        throw std::invalid_argument(
+            "render: the film already holds more samples than the schedule");
     Progress progress((schedule_total - settings.samples_done) * npix, settings.progress);
 
     const BounceLayout needed = bounce_layout_for(settings.integrator);
@@ -143,8 +144,7 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
 
     // Samples [first, first + spp) of every pixel, tile by tile. A skippable pass leaves
     // out the tiles not yet started once `cancel` is set. Returns the samples taken.
-    auto render_pass = [&](std::uint64_t first, int spp, bool skippable,
-                           std::uint64_t& cycle_sum) {
+    auto render_pass = [&](std::uint64_t first, int spp, bool skippable, std::uint64_t& cycle_sum) {
         std::atomic<std::uint64_t> samples{0}, cycles{0};
         tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
             if (skippable && cancel && cancel->load())
@@ -308,8 +308,7 @@ RenderStats render(const Scene& scene, const Camera& camera, const RenderSetting
     // the rest of the process (a host may render and denoise side by side).
     RenderStats stats;
     run_with_threads(settings.threads, [&] {
-        stats = render_in_arena(scene, camera, settings, film, cancel, after_iteration,
-                                checkpoint);
+        stats = render_in_arena(scene, camera, settings, film, cancel, after_iteration, checkpoint);
     });
     return stats;
 }

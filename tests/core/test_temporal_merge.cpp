@@ -2,11 +2,14 @@
 // neighbouring frames, following motion vectors, and refusing what it tells apart.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <stdexcept>
 
 #include "estimator_fixtures.h"
+#include "shifted_statistics.h"
 #include "statmc/core/temporal_merge.h"
 
 namespace statmc {
@@ -110,33 +113,6 @@ TEST(TemporalMerge, KZeroChangesNothing)
     EXPECT_EQ(merged.bc_variance, seq[1].bc_variance);
 }
 
-// `p` translated by (sx, sy): pixel (x, y) of the result is (x − sx, y − sy) of `p`;
-// pixels from outside have no samples.
-StatisticsPlanes shifted(const StatisticsPlanes& p, int sx, int sy)
-{
-    StatisticsPlanes out = p;
-    const std::size_t n = std::size_t(p.width) * p.height;
-    auto move = [&](const std::vector<float>& from, std::vector<float>& to) {
-        if (from.empty())
-            return;
-        const std::size_t planes = from.size() / n;
-        for (std::size_t c = 0; c < planes; ++c)
-            for (int y = 0; y < p.height; ++y)
-                for (int x = 0; x < p.width; ++x) {
-                    const int u = x - sx, v = y - sy;
-                    const bool in = u >= 0 && v >= 0 && u < p.width && v < p.height;
-                    to[c * n + std::size_t(y) * p.width + x] =
-                        in ? from[c * n + std::size_t(v) * p.width + u] : 0.f;
-                }
-    };
-    for (auto member :
-         {&StatisticsPlanes::count, &StatisticsPlanes::mean, &StatisticsPlanes::variance,
-          &StatisticsPlanes::bc_mean, &StatisticsPlanes::bc_variance, &StatisticsPlanes::bc_moment3,
-          &StatisticsPlanes::moment3, &StatisticsPlanes::moment4, &StatisticsPlanes::bc_moment4})
-        move(p.*member, out.*member);
-    return out;
-}
-
 TEST(TemporalMerge, ShiftedFramesWithTheirMotionMergeAsTheUnshiftedOnes)
 {
     const auto seq = static_sequence(3, 8, smooth_truth);
@@ -148,7 +124,7 @@ TEST(TemporalMerge, ShiftedFramesWithTheirMotionMergeAsTheUnshiftedOnes)
     const int sx = 3, sy = -2;
     std::vector<StatisticsPlanes> moved;
     for (int k = 0; k < 3; ++k)
-        moved.push_back(shifted(seq[k], k * sx, k * sy));
+        moved.push_back(test::shifted(seq[k], k * sx, k * sy, test::Entering::Empty));
     const std::vector<float> mx(std::size_t(kW) * kH, float(-sx)), my(mx.size(), float(-sy));
     std::vector<TemporalFrame> frames;
     for (const StatisticsPlanes& p : moved)
@@ -268,6 +244,42 @@ TEST(TemporalMerge, TheFireflyGuardKeepsAFireflyOut)
     const StatisticsPlanes paper =
         merge_temporal_members(frames, 0, TestDomain::BoxCox, {1, 0}, unguarded, 0);
     EXPECT_EQ(paper.count[i], 2 * spp + 1);  // its huge variance passes the plain test
+}
+
+TEST(TemporalMerge, AMovingLightEdgeDoesNotStraddleIntoADarkPixel)
+{
+    // Pixel (8, 8) is dark in frame 0 (n = 16, a little noise), between pixels that straddle
+    // a light (a quarter of their samples 17, the rest dark), so its neighbourhood's noise
+    // level is high and the spatial guard would take almost anything. In frame 1 the
+    // light's edge has moved by a fraction of a pixel and (8, 8) straddles it too. The
+    // symmetric test passes (the straddle's variance covers the difference); the temporal
+    // guard, against the centre's own level, must refuse it.
+    const int n = 16;
+    std::mt19937_64 rng(5);
+    std::normal_distribution<float> dark_noise(0.006f, 0.002f);
+    auto dark = [&] {
+        const float v = std::max(0.f, dark_noise(rng));
+        return std::array<float, 3>{v, v, v};
+    };
+    StatisticsImage<3> f0(kW, kH), f1(kW, kH);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            for (int i = 0; i < n; ++i) {
+                const bool straddles0 = (x != 8 || y != 8) && std::abs(x - 8) + std::abs(y - 8) <= 2;
+                const bool straddles1 = std::abs(x - 8) + std::abs(y - 8) <= 2;
+                const std::array<float, 3> light{17.f, 17.f, 17.f};
+                f0.add(x, y, (straddles0 && i % 4 == 0 ? light : dark()).data());
+                f1.add(x, y, (straddles1 && i % 4 == 0 ? light : dark()).data());
+            }
+    const StatisticsPlanes p0 = f0.planes(), p1 = f1.planes();
+    const std::vector<TemporalFrame> frames = {{p0.view(), {}, {}}, {p1.view(), {}, {}}};
+    const StatisticsPlanes merged =
+        merge_temporal_members(frames, 0, TestDomain::BoxCox, {1, 0}, test_options(), 0);
+    const std::size_t i = std::size_t(8) * kW + 8;
+    EXPECT_EQ(merged.count[i], n);
+    EXPECT_LT(merged.mean[i], 0.05f);
+    // Far from the light, dark pixels still merge.
+    EXPECT_EQ(merged.count[std::size_t(30) * kW + 40], 2 * n);
 }
 
 TEST(TemporalMerge, BitwiseTheSameForAnyThreadCount)

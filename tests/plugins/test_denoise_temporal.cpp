@@ -6,6 +6,7 @@
 
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "shifted_statistics.h"
 #include "statmc/core/temporal_merge.h"
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/statistics_layers.h"
@@ -151,27 +152,6 @@ OIIO::ImageBuf with_motion(const OIIO::ImageBuf& image, float mx, float my)
     return OIIO::ImageBufAlgo::channel_append(image, motion);
 }
 
-// Frame statistics moved right by `shift` columns (the pixels entering have no samples
-// worth testing: they repeat the edge column).
-StatisticsPlanes moved_right(const StatisticsPlanes& p, int shift)
-{
-    StatisticsPlanes out = p;
-    const std::size_t n = std::size_t(kW) * kH;
-    auto move = [&](const std::vector<float>& from, std::vector<float>& to) {
-        for (std::size_t c = 0; c < from.size() / n; ++c)
-            for (int y = 0; y < kH; ++y)
-                for (int x = 0; x < kW; ++x)
-                    to[c * n + std::size_t(y) * kW + x] =
-                        from[c * n + std::size_t(y) * kW + std::max(0, x - shift)];
-    };
-    for (auto member :
-         {&StatisticsPlanes::count, &StatisticsPlanes::mean, &StatisticsPlanes::variance,
-          &StatisticsPlanes::bc_mean, &StatisticsPlanes::bc_variance, &StatisticsPlanes::bc_moment3,
-          &StatisticsPlanes::moment3, &StatisticsPlanes::moment4, &StatisticsPlanes::bc_moment4})
-        move(p.*member, out.*member);
-    return out;
-}
-
 TEST(DenoiseTemporal, FollowsTheMotionLayer)
 {
     // Frame t+1 is another render moved 3 px right, its motion layer saying so; the
@@ -179,9 +159,11 @@ TEST(DenoiseTemporal, FollowsTheMotionLayer)
     const Sequence seq(2);
     const int shift = 3;
     const OIIO::ImageBuf still_next = seq.images[1];
-    const OIIO::ImageBuf moved_next = with_motion(
-        layers::make_statistics_image(moved_right(seq.stats[1], shift), {}, seq.guides.planes()),
-        float(-shift), 0.f);
+    const OIIO::ImageBuf moved_next =
+        with_motion(layers::make_statistics_image(
+                        test::shifted(seq.stats[1], shift, 0, test::Entering::EdgeCopy), {},
+                        seq.guides.planes()),
+                    float(-shift), 0.f);
     const OIIO::ImageBuf centre_still = seq.images[0];
     const OIIO::ImageBuf centre_moving = with_motion(seq.images[0], 0.f, 0.f);
 
@@ -200,8 +182,8 @@ TEST(DenoiseTemporal, FollowsTheMotionLayer)
     EXPECT_GT(compared, kW * kH / 2);
     // Without the motion layer the moved frame's edge lands 3 px off and is refused, so
     // the results differ there.
-    const OIIO::ImageBuf moved_unlabelled =
-        layers::make_statistics_image(moved_right(seq.stats[1], shift), {}, seq.guides.planes());
+    const OIIO::ImageBuf moved_unlabelled = layers::make_statistics_image(
+        test::shifted(seq.stats[1], shift, 0, test::Entering::EdgeCopy), {}, seq.guides.planes());
     const OIIO::ImageBuf c =
         denoise(centre_still, FrameNeighbours{{}, {&moved_unlabelled}}, temporal_options(1));
     int differ = 0;

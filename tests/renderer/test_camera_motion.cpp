@@ -105,8 +105,8 @@ TEST(CameraMotion, ParserReadsActiveTransformAndTransformTimes)
     const SceneDescription desc = parse_scene_string(head, "t.pbrt");
     EXPECT_TRUE(desc.camera.animated());
     EXPECT_EQ(desc.camera.end_time, 2);
-    expect_near(desc.camera.world_to_camera,
-                *Transform::look_at({0, 0, 10}, {0, 0, 0}, {0, 1, 0}), 1e-12);
+    expect_near(desc.camera.world_to_camera, *Transform::look_at({0, 0, 10}, {0, 0, 0}, {0, 1, 0}),
+                1e-12);
     expect_near(desc.camera.world_to_camera_end,
                 *Transform::look_at({2, 0, 10}, {2, 0, 0}, {0, 1, 0}), 1e-12);
 
@@ -120,8 +120,7 @@ TEST(CameraMotion, ParserReadsActiveTransformAndTransformTimes)
     };
     EXPECT_NE(error_of("ActiveTransform Sometimes\n").find("expected StartTime, EndTime or All"),
               std::string::npos);
-    EXPECT_NE(error_of("TransformTimes 1 0\n").find("start time must be below"),
-              std::string::npos);
+    EXPECT_NE(error_of("TransformTimes 1 0\n").find("start time must be below"), std::string::npos);
     EXPECT_NE(error_of("ActiveTransform EndTime\nScale 2 2 2\nActiveTransform All\n"
                        "Camera \"perspective\"\nWorldBegin\nWorldEnd\n")
                   .find("rotation and a translation only"),
@@ -140,8 +139,7 @@ TEST(CameraMotion, MotionLayerIsTheScreenShiftOfATrackingShot)
                              "ActiveTransform EndTime\nLookAt 0.5 0 10  0.5 0 0  0 1 0\n"
                              "ActiveTransform All\nCamera \"perspective\" \"float fov\" 40\n"
                              "WorldBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1]\n" +
-                             quad("-50 -50 0  50 -50 0  50 50 0  -50 50 0", "0 0 1") +
-                             "WorldEnd\n";
+                             quad("-50 -50 0  50 -50 0  50 50 0  -50 50 0", "0 0 1") + "WorldEnd\n";
     const SceneDescription desc = parse_scene_string(text, "slide.pbrt");
     Scene scene(desc);
     const Camera camera(desc.camera.at_time(1), w, h), previous(desc.camera.at_time(0), w, h);

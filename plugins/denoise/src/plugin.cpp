@@ -227,7 +227,8 @@ statmc::FrameNeighbours neighbours_from(const statmc::RunContext& ctx, int reach
             "temporal=" + std::to_string(reach) +
             " needs a frame sequence: read the input with a frame pattern (shot.#.exr, "
             "shot.%04d.exr) and denoise it as read, e.g. statmc shot.#.exr --frames 1-48 "
-            "--denoise:temporal=" + std::to_string(reach) + " -o out.#.exr");
+            "--denoise:temporal=" +
+            std::to_string(reach) + " -o out.#.exr");
     std::vector<int> offsets;
     for (int k = 1; k <= reach; ++k)
         offsets.insert(offsets.end(), {-k, k});
@@ -258,8 +259,8 @@ void register_denoise(statmc::PluginRegistry& registry)
         const statmc::DenoiseImageOptions opt = options_from(p);
         OIIO::ImageBuf result;
         try {
-            result = statmc::denoise(*inputs[0], neighbours_from(ctx, opt.temporal.frames), opt,
-                                     {}, ctx.nthreads);
+            result = statmc::denoise(*inputs[0], neighbours_from(ctx, opt.temporal.frames), opt, {},
+                                     ctx.nthreads);
         } catch (const std::exception& e) {
             result.errorfmt("denoise: {}", e.what());
         }
