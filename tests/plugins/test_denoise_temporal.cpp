@@ -80,7 +80,7 @@ TEST(DenoiseTemporal, DenoisesWhatCoreMergesBitwise)
 
     std::vector<TemporalFrame> frames;
     for (const StatisticsPlanes& p : seq.stats)
-        frames.push_back({p.view(), {}, {}});
+        frames.push_back({p.view(), {}, {}, {}});
     const DenoiseImageOptions opt = temporal_options(1);
     const StatisticsPlanes merged =
         merge_temporal_members(frames, 1, TestDomain::BoxCox, opt.temporal, opt.filter, 1);
@@ -159,11 +159,15 @@ TEST(DenoiseTemporal, FollowsTheMotionLayer)
     const Sequence seq(2);
     const int shift = 3;
     const OIIO::ImageBuf still_next = seq.images[1];
-    const OIIO::ImageBuf moved_next =
-        with_motion(layers::make_statistics_image(
-                        test::shifted(seq.stats[1], shift, 0, test::Entering::EdgeCopy), {},
-                        seq.guides.planes()),
-                    float(-shift), 0.f);
+    // The frame moves with its guides.
+    test::GuideData moved_guides = seq.guides;
+    for (std::vector<float>* planes :
+         {&moved_guides.albedo, &moved_guides.normal, &moved_guides.depth})
+        *planes = test::shifted_planes(*planes, kW, kH, shift, 0, test::Entering::EdgeCopy);
+    const StatisticsPlanes moved_stats =
+        test::shifted(seq.stats[1], shift, 0, test::Entering::EdgeCopy);
+    const OIIO::ImageBuf moved_next = with_motion(
+        layers::make_statistics_image(moved_stats, {}, moved_guides.planes()), float(-shift), 0.f);
     const OIIO::ImageBuf centre_still = seq.images[0];
     const OIIO::ImageBuf centre_moving = with_motion(seq.images[0], 0.f, 0.f);
 
@@ -182,8 +186,8 @@ TEST(DenoiseTemporal, FollowsTheMotionLayer)
     EXPECT_GT(compared, kW * kH / 2);
     // Without the motion layer the moved frame's edge lands 3 px off and is refused, so
     // the results differ there.
-    const OIIO::ImageBuf moved_unlabelled = layers::make_statistics_image(
-        test::shifted(seq.stats[1], shift, 0, test::Entering::EdgeCopy), {}, seq.guides.planes());
+    const OIIO::ImageBuf moved_unlabelled =
+        layers::make_statistics_image(moved_stats, {}, moved_guides.planes());
     const OIIO::ImageBuf c =
         denoise(centre_still, FrameNeighbours{{}, {&moved_unlabelled}}, temporal_options(1));
     int differ = 0;

@@ -13,30 +13,37 @@ namespace statmc::test {
 /// nearest edge pixel (every pixel stays valid, as the denoise operator's check requires).
 enum class Entering { Empty, EdgeCopy };
 
-/// `p` translated by (sx, sy): pixel (x, y) of the result is (x − sx, y − sy) of `p`.
+/// Dense channel-major planes of width × height translated by (sx, sy): pixel (x, y) of the
+/// result is (x − sx, y − sy) of the input.
+inline std::vector<float> shifted_planes(const std::vector<float>& from, int width, int height,
+                                         int sx, int sy, Entering entering)
+{
+    std::vector<float> to(from.size());
+    const std::size_t n = std::size_t(width) * height;
+    for (std::size_t c = 0; c < from.size() / n; ++c)
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                int u = x - sx, v = y - sy;
+                const bool in = u >= 0 && v >= 0 && u < width && v < height;
+                u = std::clamp(u, 0, width - 1);
+                v = std::clamp(v, 0, height - 1);
+                to[c * n + std::size_t(y) * width + x] =
+                    in || entering == Entering::EdgeCopy ? from[c * n + std::size_t(v) * width + u]
+                                                         : 0.f;
+            }
+    return to;
+}
+
+/// `p` translated by (sx, sy), every plane it has.
 inline StatisticsPlanes shifted(const StatisticsPlanes& p, int sx, int sy, Entering entering)
 {
     StatisticsPlanes out = p;
-    const std::size_t n = std::size_t(p.width) * p.height;
-    auto move = [&](const std::vector<float>& from, std::vector<float>& to) {
-        for (std::size_t c = 0; c < from.size() / n; ++c)
-            for (int y = 0; y < p.height; ++y)
-                for (int x = 0; x < p.width; ++x) {
-                    int u = x - sx, v = y - sy;
-                    const bool in = u >= 0 && v >= 0 && u < p.width && v < p.height;
-                    u = std::clamp(u, 0, p.width - 1);
-                    v = std::clamp(v, 0, p.height - 1);
-                    to[c * n + std::size_t(y) * p.width + x] =
-                        in || entering == Entering::EdgeCopy
-                            ? from[c * n + std::size_t(v) * p.width + u]
-                            : 0.f;
-                }
-    };
-    for (auto member :
-         {&StatisticsPlanes::count, &StatisticsPlanes::mean, &StatisticsPlanes::variance,
-          &StatisticsPlanes::bc_mean, &StatisticsPlanes::bc_variance, &StatisticsPlanes::bc_moment3,
-          &StatisticsPlanes::moment3, &StatisticsPlanes::moment4, &StatisticsPlanes::bc_moment4})
-        move(p.*member, out.*member);
+    for (auto member : {&StatisticsPlanes::count, &StatisticsPlanes::mean,
+                        &StatisticsPlanes::variance, &StatisticsPlanes::bc_mean,
+                        &StatisticsPlanes::bc_variance, &StatisticsPlanes::bc_moment3,
+                        &StatisticsPlanes::moment3, &StatisticsPlanes::moment4,
+                        &StatisticsPlanes::bc_moment4})
+        out.*member = shifted_planes(p.*member, p.width, p.height, sx, sy, entering);
     return out;
 }
 

@@ -28,7 +28,8 @@ struct RunContext {
     /// t + offset for each offset (≠ 0), in the frame list's order, read on demand (in
     /// parallel where the memory budget allows) and valid while the operator runs; null
     /// past the sequence's ends. May throw (an unreadable file, the budget). Empty outside
-    /// a sequence, or when input 0 is not a frame of one as read.
+    /// a sequence, or when input 0 is not a frame of one as read. The host keeps a copy of
+    /// the input as read for later frames: an in-place operator calls this before writing.
     std::function<std::vector<const OIIO::ImageBuf*>(const std::vector<int>& offsets)>
         sequence_frames;
 };
