@@ -1,7 +1,6 @@
 #include "statmc/core/temporal_merge.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -113,31 +112,6 @@ float temporal_noise_limit(const NoiseLevels& noise, std::size_t pixel, float ra
     return ratio > 0 && own > 0 ? std::min(noise.limit[pixel], ratio * own) : noise.limit[pixel];
 }
 
-// Whether pixel (u, v) of `other` shows the surface that (x, y) of `centre` shows, by the
-// guides both have: the filter's guide weight exp(−Σ Δg²/2σ²) must be at least 1/2. The
-// test cannot tell apart two pixels that straddle a light's edge with different coverage
-// (both variances are huge at low n); their albedo can (the light's own is another).
-// Half the weight is where the filter's guide term has fallen halfway: a rule fixed a
-// priori, not fitted to the evaluation.
-bool same_surface(const Guides& centre, int x, int y, const Guides& other, int u, int v,
-                  const DenoiseOptions& filter)
-{
-    constexpr double kLimit = 1.3862943611198906;  // 2 ln 2: exp(−limit/2) = 1/2
-    double d2 = 0;
-    auto add = [&](const std::array<ConstPlane, 3>& a, const std::array<ConstPlane, 3>& b,
-                   double sigma) {
-        for (int c = 0; c < 3; ++c) {
-            const double d = double(a[c](x, y)) - double(b[c](u, v));
-            d2 += std::isfinite(d) ? d * d / (sigma * sigma) : kLimit + 1;
-        }
-    };
-    if (centre.has_albedo() && other.has_albedo())
-        add(centre.albedo, other.albedo, filter.sigma_albedo);
-    if (centre.has_normal() && other.has_normal())
-        add(centre.normal, other.normal, filter.sigma_normal);
-    return d2 <= kLimit;
-}
-
 // Each frame's estimators and firefly levels, computed once and shared by every pixel.
 struct FrameTests {
     EstimatorImage est;
@@ -161,16 +135,6 @@ StatisticsPlanes merge_members(const std::vector<TemporalFrame>& frames, int cen
                                 : with_stand_in_box_cox(f.stats, dense_plane(zeros.data(), w)));
         positions = positions && views.back().has_box_cox_positions();
     }
-
-    // A guide gates the members only when every frame has it.
-    Guides guides = frames[centre].guides;
-    for (const TemporalFrame& f : frames) {
-        if (!f.guides.has_albedo())
-            guides.albedo = {};
-        if (!f.guides.has_normal())
-            guides.normal = {};
-    }
-    const bool gated = guides.has_albedo() || guides.has_normal();
 
     std::vector<FrameTests> tests(frames.size());
     float max_count = 2;
@@ -201,8 +165,9 @@ StatisticsPlanes merge_members(const std::vector<TemporalFrame>& frames, int cen
                 int joined = 0;
                 const bool testable = ce.testable(x, y);
                 const double gi = testable ? gamma2(ce, x, y) : 0.0;
-                const float limit = temporal_noise_limit(
-                    tests[centre].noise, std::size_t(y) * w + x, filter.firefly_ratio);
+                const float limit = temporal_noise_limit(tests[centre].noise,
+                                                         std::size_t(y) * w + x,
+                                                         filter.firefly_ratio);
                 for (int k = 0; k < int(frames.size()) && testable; ++k) {
                     int ox, oy;
                     if (std::abs(k - centre) > temporal.frames ||
@@ -215,9 +180,6 @@ StatisticsPlanes merge_members(const std::vector<TemporalFrame>& frames, int cen
                             if (dx * dx + dy * dy > r * r || !inside(cv, u, v) || !e.testable(u, v))
                                 continue;
                             if (!(tests[k].noise.level[std::size_t(v) * w + u] <= limit))
-                                continue;
-                            if (gated &&
-                                !same_surface(guides, x, y, frames[k].guides, u, v, filter))
                                 continue;
                             const double gj = gamma2(e, u, v);
                             bool member = true;

@@ -80,7 +80,7 @@ TEST(DenoiseTemporal, DenoisesWhatCoreMergesBitwise)
 
     std::vector<TemporalFrame> frames;
     for (const StatisticsPlanes& p : seq.stats)
-        frames.push_back({p.view(), {}, {}, {}});
+        frames.push_back({p.view(), {}, {}});
     const DenoiseImageOptions opt = temporal_options(1);
     const StatisticsPlanes merged =
         merge_temporal_members(frames, 1, TestDomain::BoxCox, opt.temporal, opt.filter, 1);

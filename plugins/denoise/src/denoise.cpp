@@ -467,10 +467,7 @@ StatisticsPlanes merged_over_time(const OIIO::ImageBuf& in, const StatisticsChan
                 check_statistics(frame, frame_ch, opt, {});
             }
             const std::array<ConstPlane, 2> motion = layers::motion_planes(frame);
-            const Guides guides{guide(frame, opt.guides.albedo, opt.guides.albedo_layer, true),
-                                guide(frame, opt.guides.normal, opt.guides.normal_layer, false)};
-            frames.push_back(
-                {layers::statistics_view(frame, frame_ch), motion[0], motion[1], guides});
+            frames.push_back({layers::statistics_view(frame, frame_ch), motion[0], motion[1]});
         } catch (const LayerError& e) {
             throw LayerError(offset == 0 ? e.what() : frame_label(offset, frame) + ": " + e.what());
         }

@@ -11,7 +11,6 @@
 
 #include "statmc/core/denoise_options.h"
 #include "statmc/core/estimator_image.h"
-#include "statmc/core/filter.h"
 #include "statmc/core/plane.h"
 #include "statmc/core/statistics_image.h"
 #include "statmc/core/statistics_view.h"
@@ -24,9 +23,6 @@ namespace statmc {
 struct TemporalFrame {
     StatisticsView stats;
     ConstPlane motion_x, motion_y;  ///< both null: a static camera and scene
-    /// The frame's albedo and normal guides, when the filter uses them: a guide that every
-    /// frame has gates the members (merge_temporal_members).
-    Guides guides;
 
     bool has_motion() const { return motion_x && motion_y; }
 };
@@ -50,11 +46,9 @@ bool corresponding_pixel(const std::vector<TemporalFrame>& frames, int centre, i
 
 /// The statistics of frame `centre` of `frames` (consecutive frames in time order, all of
 /// one resolution and channel count, every one with motion or none) with the members of
-/// the other frames merged in. A candidate joins when both pixels are testable, it shows
-/// the same surface (where every frame has a guide: the filter's guide weight between the
-/// two pixels, with filter.sigma_albedo / sigma_normal, is at least 1/2), the firefly
-/// guard (filter.firefly_ratio, Box-Cox only) lets it in, and the test at filter.alpha in
-/// `domain` passes in every channel. Candidates are merged in frame order,
+/// the other frames merged in. A candidate joins when both pixels are testable, the
+/// firefly guard (filter.firefly_ratio, Box-Cox only) lets it in, and the test at
+/// filter.alpha in `domain` passes in every channel. Candidates are merged in frame order,
 /// then row-major within the disk: the result is bitwise the same for any thread count.
 /// Without Box-Cox planes (the untransformed domain), the result has none either.
 /// `members`, when given (centre's width), receives the temporal members per pixel.

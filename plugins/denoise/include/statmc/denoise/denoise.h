@@ -49,8 +49,7 @@ struct FrameNeighbours {
 /// Temporal denoising (docs/method.md §13): the same, but first the members that the
 /// nearest `opt.temporal.frames` frames on each side offer are merged into `src`'s
 /// statistics (core/temporal_merge.h), following the motion layer (motion.X/Y) when
-/// every frame has it, and gated by the guides `opt.guides` selects when every frame has
-/// them. Fewer neighbours than asked for (a sequence's ends) use those
+/// every frame has it. Fewer neighbours than asked for (a sequence's ends) use those
 /// given. Every neighbour must be the same frame (resolution, data window) with every
 /// statistic that `src` is denoised from; a motion layer in only some frames is an error.
 /// `dst` keeps `src`'s own statistics: only the mean is replaced. With
