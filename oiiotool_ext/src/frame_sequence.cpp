@@ -13,29 +13,13 @@
 
 namespace statmc::tool {
 
-std::string frame_pattern(const std::string& text, std::string* framespec)
-{
-    std::string pattern, spec;
-    if (!OIIO::Filesystem::parse_pattern(text.c_str(), 0, pattern, spec))
-        return "";
-    if (framespec)
-        *framespec = spec;
-    return pattern;
-}
-
-std::string frame_path(const std::string& pattern, int frame)
-{
-    std::vector<std::string> names;
-    OIIO::Filesystem::enumerate_file_sequence(pattern, {frame}, names);
-    return names.empty() ? "" : names.front();
-}
-
 std::vector<int> parse_frame_list(const std::string& spec)
 {
-    std::vector<int> frames;
-    if (spec.empty() || !OIIO::Filesystem::enumerate_sequence(spec, frames) || frames.empty())
+    const std::optional<std::vector<int>> list = layers::frame_list(spec);
+    if (!list)
         throw ToolError("--frames: cannot read '" + spec +
                         "' as frames (e.g. 1-48, 1-48x2, 3,5,10-20)");
+    const std::vector<int>& frames = *list;
     for (std::size_t k = 1; k < frames.size(); ++k)
         if (std::find(frames.begin(), frames.begin() + std::ptrdiff_t(k), frames[k]) !=
             frames.begin() + std::ptrdiff_t(k))

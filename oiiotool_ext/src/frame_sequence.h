@@ -13,17 +13,15 @@
 #include <OpenImageIO/imagebuf.h>
 
 #include "statmc/layers/exr_files.h"
+#include "statmc/layers/frame_names.h"
 
 namespace statmc::tool {
 
-/// The printf form of `text`'s frame pattern ("shot.%04d.exr" for shot.#.exr), or "" when
-/// it has none. `framespec` receives a range written into the pattern (shot.1-10#.exr).
-std::string frame_pattern(const std::string& text, std::string* framespec = nullptr);
+using layers::frame_path;
+using layers::frame_pattern;
 
-/// The file of `frame` under a printf pattern.
-std::string frame_path(const std::string& pattern, int frame);
-
-/// "1-48", "1-48x2", "3,5,10-20": the frames, in order. Throws ToolError naming `spec`.
+/// "1-48", "1-48x2", "3,5,10-20": the frames, in order (layers::frame_list), each once.
+/// Throws ToolError naming `spec`.
 std::vector<int> parse_frame_list(const std::string& spec);
 
 /// The frames whose files exist under `pattern`, ascending; throws ToolError naming the

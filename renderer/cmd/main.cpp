@@ -15,12 +15,12 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
-#include <OpenImageIO/filesystem.h>
 
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/atomic_file.h"
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/file_error.h"
+#include "statmc/layers/frame_names.h"
 #include "statmc/layers/layer_names.h"
 #include "statmc/merge/merge.h"
 
@@ -120,24 +120,24 @@ std::vector<FrameToRender> frames_to_render(const std::string& output, const std
     if (list.empty() && !one_frame)
         return {{output, 0.0, std::uint64_t(seed), std::nullopt}};
     std::vector<int> numbers = {frame};
-    if (!list.empty() && (!OIIO::Filesystem::enumerate_sequence(list, numbers) || numbers.empty()))
-        throw std::runtime_error("--frames: cannot read '" + list +
-                                 "' as frames (e.g. 1-24, 1-48x2, 3,5,7)");
-    std::string pattern, range;
-    if (!OIIO::Filesystem::parse_pattern(output.c_str(), 0, pattern, range))
-        pattern.clear();
+    if (!list.empty()) {
+        const auto listed = statmc::layers::frame_list(list);
+        if (!listed)
+            throw std::runtime_error("--frames: cannot read '" + list +
+                                     "' as frames (e.g. 1-24, 1-48x2, 3,5,7)");
+        numbers = *listed;
+    }
+    const std::string pattern = statmc::layers::frame_pattern(output);
     if (pattern.empty() && numbers.size() > 1)
         throw std::runtime_error("-o " + output +
                                  ": --frames needs a frame pattern in the output name "
                                  "(shot.#.exr, shot.%04d.exr)");
     std::vector<FrameToRender> frames;
     for (int n : numbers) {
-        std::vector<std::string> names;
-        if (!pattern.empty())
-            OIIO::Filesystem::enumerate_file_sequence(pattern, {n}, names);
         const std::uint64_t mixed =
             std::uint64_t(seed) ^ (std::uint64_t(std::uint32_t(n)) * 0x9E3779B97F4A7C15ull);
-        frames.push_back({pattern.empty() ? output : names.at(0), n / fps, mixed, n});
+        frames.push_back(
+            {pattern.empty() ? output : statmc::layers::frame_path(pattern, n), n / fps, mixed, n});
     }
     return frames;
 }
