@@ -291,6 +291,29 @@ std::string StatisticsChannels::channel(Statistic stat, int c) const
     return channel_name(statistic_layer(aov, stat), suffixes.at(c));
 }
 
+namespace {
+
+// What a user without a sample count should do: a plain render (no statistic of the AOV at
+// all) needs passes or a renderer that writes statistics; a variance AOV needs the count.
+std::string missing_count_advice(const OIIO::ImageSpec& spec, const StatisticsChannels& ch)
+{
+    bool any_statistic = false;
+    for (Statistic stat : {Statistic::Variance, Statistic::BoxCoxMean, Statistic::BoxCoxVariance})
+        any_statistic =
+            any_statistic ||
+            !none_present(channel_indices(spec, statistic_layer(ch.aov, stat), ch.suffixes));
+    if (!any_statistic)
+        return "this looks like a plain render, which holds no per-pixel statistics: render K >= 2 "
+               "passes with different seeds and combine them (statmc a.exr b.exr c.exr d.exr "
+               "--passes --denoise -o out.exr), or have the renderer write the statistics "
+               "(docs/exr-layers.md)";
+    return "the number of samples of each pixel; for a render with the same count everywhere, "
+           "append it as a constant layer (oiiotool in.exr --pattern constant:color=SPP WxH 1 "
+           "--chnames sampleCount.Y --chappend -o out.exr)";
+}
+
+}  // namespace
+
 StatisticsChannels find_statistics(const OIIO::ImageSpec& spec, std::string_view aov)
 {
     check_format_version(spec);
@@ -300,7 +323,8 @@ StatisticsChannels find_statistics(const OIIO::ImageSpec& spec, std::string_view
     std::tie(ch.suffixes, ch.mean) = find_mean(spec, aov);
     ch.count = spec.channelindex(kSampleCountChannel);
     if (ch.count < 0)
-        throw LayerError(missing_layer_message(spec, kSampleCountLayer, scalar_suffixes()));
+        throw LayerError(missing_layer_message(spec, kSampleCountLayer, scalar_suffixes(), "layer",
+                                               missing_count_advice(spec, ch)));
     ch.variance = optional_layer(spec, statistic_layer(aov, Statistic::Variance), ch.suffixes);
     find_box_cox(spec, ch);
     find_higher_moments(spec, ch);

@@ -256,6 +256,27 @@ std::string error_of(const OIIO::ImageBuf& buf)
     return "no error";
 }
 
+TEST(StatisticsLayers, AMissingSampleCountSaysWhatToDo)
+{
+    const OIIO::ImageBuf full = make_statistics_image(test::noisy_statistics(kW, kH, 5, 9));
+    // A variance AOV without its count: append the count.
+    EXPECT_NE(error_of(test::without_channels(full, {"sampleCount.Y"}))
+                  .find("append it as a constant layer"),
+              std::string::npos);
+    // A plain render (only R, G, B): take passes.
+    std::vector<std::string> statistics;
+    for (const std::string& name : full.spec().channelnames)
+        if (name != "R" && name != "G" && name != "B")
+            statistics.push_back(name);
+    const std::string plain = error_of(test::without_channels(full, statistics));
+    EXPECT_EQ(plain.rfind("missing layer sampleCount (channels sampleCount.Y); this looks like a "
+                          "plain render",
+                          0),
+              0u)
+        << plain;
+    EXPECT_NE(plain.find("--passes"), std::string::npos);
+}
+
 TEST(StatisticsLayers, MissingLayersAreNamed)
 {
     const OIIO::ImageBuf full = make_statistics_image(test::noisy_statistics(kW, kH, 5, 9));

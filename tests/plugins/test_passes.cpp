@@ -192,6 +192,24 @@ TEST(PassesOperator, MismatchedRendersAreRefusedNamingBoth)
     EXPECT_EQ(passes_error({renders[0]}), "passes needs at least 2 renders, got 1");
 }
 
+TEST(PassesOperator, RendersOfOtherSampleCountsAreRefused)
+{
+    // Blender Cycles writes the samples per pixel into the header as a string.
+    std::vector<OIIO::ImageBuf> renders = {render(0), render(1), render(2)};
+    renders[0].specmod().attribute("cycles.ViewLayer.samples", "8");
+    renders[1].specmod().attribute("cycles.ViewLayer.samples", "8");
+    renders[2].specmod().attribute("cycles.ViewLayer.samples", "16384");
+    EXPECT_EQ(passes_error(renders),
+              "render 2 declares 16384 samples per pixel (cycles.ViewLayer.samples) and render 0 "
+              "8: passes takes renders of one sample count (each is one sample of the pixel's "
+              "estimator)");
+    renders[2].specmod().attribute("cycles.ViewLayer.samples", "8");
+    EXPECT_FALSE(passes(pointers(renders)).has_error());
+    // A render that declares nothing is not compared.
+    renders[2].specmod().erase_attribute("cycles.ViewLayer.samples");
+    EXPECT_FALSE(passes(pointers(renders)).has_error());
+}
+
 TEST(PassesOperator, StatisticsImagesAreNotRenders)
 {
     const std::vector<OIIO::ImageBuf> renders = {render(0), render(1), render(2)};

@@ -1,10 +1,13 @@
 #include "statmc/passes/passes.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/strutil.h>
 
 #include "statmc/core/passes.h"
 #include "statmc/layers/float_pixels.h"
@@ -38,6 +41,50 @@ void check_render(const Renders& renders, std::size_t k)
         if (layers::is_statistics_channel(channel))
             throw std::invalid_argument(label(renders, k) + " already holds statistics (" +
                                         channel + "); passes takes plain renders");
+}
+
+// The samples per pixel a render's header declares, where a renderer writes them: Blender
+// Cycles' `cycles.<view layer>.samples`. Empty when the header says nothing.
+std::optional<long> declared_samples(const OIIO::ImageSpec& spec, std::string& attribute)
+{
+    for (const OIIO::ParamValue& p : spec.extra_attribs) {
+        const std::string name = p.name().string();
+        if (!OIIO::Strutil::starts_with(name, "cycles.") ||
+            !OIIO::Strutil::ends_with(name, ".samples"))
+            continue;
+        const std::string text = p.get_string();
+        char* end = nullptr;
+        const long value = std::strtol(text.c_str(), &end, 10);
+        if (end != text.c_str() && *end == '\0') {
+            attribute = name;
+            return value;
+        }
+    }
+    return std::nullopt;
+}
+
+// Each pass is one sample of the pixel's estimator, so passes of different sample counts
+// (an 8-spp pass beside a 16384-spp reference) must not be averaged as equals.
+void require_one_sample_count(const Renders& renders)
+{
+    std::optional<long> first;
+    std::size_t first_k = 0;
+    for (std::size_t k = 0; k < renders.size(); ++k) {
+        std::string attribute;
+        const std::optional<long> n = declared_samples(renders[k]->spec(), attribute);
+        if (!n)
+            continue;
+        if (!first) {
+            first = n;
+            first_k = k;
+        } else if (*n != *first) {
+            throw std::invalid_argument(
+                label(renders, k) + " declares " + std::to_string(*n) + " samples per pixel (" +
+                attribute + ") and " + label(renders, first_k) + " " + std::to_string(*first) +
+                ": passes takes renders of one sample count (each is one sample of the "
+                "pixel's estimator)");
+        }
+    }
 }
 
 const std::vector<std::string>& beauty_suffixes(const Renders& renders)
@@ -112,6 +159,7 @@ bool passes_impl(OIIO::ImageBuf& dst, const Renders& renders, OIIO::ROI roi, int
     for (std::size_t k = 0; k < renders.size(); ++k)
         check_render(renders, k);
     layers::require_matching_inputs(renders, "render");
+    require_one_sample_count(renders);
 
     const OIIO::ImageBuf& first = *renders[0];
     const OIIO::ROI region = roi.defined() ? OIIO::roi_intersection(roi, first.roi()) : first.roi();
