@@ -96,6 +96,12 @@ void check_frames(const std::vector<TemporalFrame>& frames, int centre, TestDoma
         if (domain == TestDomain::Untransformed && !(v.count && v.variance[0]))
             throw std::invalid_argument("temporal merge: frame " + std::to_string(k) +
                                         " lacks the variance the test reads");
+        // A moment one frame lacks would be merged as 0 into the others'.
+        if (v.has_box_cox() != c.has_box_cox() || v.has_moments() != c.has_moments() ||
+            v.has_box_cox_moment4() != c.has_box_cox_moment4() ||
+            v.has_positions() != c.has_positions())
+            throw std::invalid_argument("temporal merge: frame " + std::to_string(k) +
+                                        " has other statistics than the centre");
     }
 }
 
@@ -139,6 +145,8 @@ StatisticsPlanes merge_members(const std::vector<TemporalFrame>& frames, int cen
     std::vector<FrameTests> tests(frames.size());
     float max_count = 2;
     for (std::size_t k = 0; k < frames.size(); ++k) {
+        if (std::abs(int(k) - centre) > temporal.frames)
+            continue;  // out of reach: never a candidate
         tests[k].est = estimators_from_statistics(frames[k].stats, domain);
         tests[k].noise = noise_levels(tests[k].est, filter.firefly_ratio);
         for (float n : tests[k].est.count)
@@ -165,9 +173,8 @@ StatisticsPlanes merge_members(const std::vector<TemporalFrame>& frames, int cen
                 int joined = 0;
                 const bool testable = ce.testable(x, y);
                 const double gi = testable ? gamma2(ce, x, y) : 0.0;
-                const float limit = temporal_noise_limit(tests[centre].noise,
-                                                         std::size_t(y) * w + x,
-                                                         filter.firefly_ratio);
+                const float limit = temporal_noise_limit(
+                    tests[centre].noise, std::size_t(y) * w + x, filter.firefly_ratio);
                 for (int k = 0; k < int(frames.size()) && testable; ++k) {
                     int ox, oy;
                     if (std::abs(k - centre) > temporal.frames ||

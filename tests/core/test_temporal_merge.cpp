@@ -265,7 +265,8 @@ TEST(TemporalMerge, AMovingLightEdgeDoesNotStraddleIntoADarkPixel)
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x)
             for (int i = 0; i < n; ++i) {
-                const bool straddles0 = (x != 8 || y != 8) && std::abs(x - 8) + std::abs(y - 8) <= 2;
+                const bool straddles0 =
+                    (x != 8 || y != 8) && std::abs(x - 8) + std::abs(y - 8) <= 2;
                 const bool straddles1 = std::abs(x - 8) + std::abs(y - 8) <= 2;
                 const std::array<float, 3> light{17.f, 17.f, 17.f};
                 f0.add(x, y, (straddles0 && i % 4 == 0 ? light : dark()).data());
@@ -321,6 +322,11 @@ TEST(TemporalMerge, MismatchedFramesAreRefused)
                      {{seq[0].view(), dense_plane(zero.data(), kW), dense_plane(zero.data(), kW)},
                       {seq[1].view(), {}, {}}},
                      0, TestDomain::BoxCox, {1, 0}, test_options(), 0),
+                 std::invalid_argument);
+    StatisticsPlanes fewer = seq[1];
+    fewer.moment3.clear(), fewer.moment4.clear();  // a frame without M3/M4
+    EXPECT_THROW(merge_temporal_members({{seq[0].view(), {}, {}}, {fewer.view(), {}, {}}}, 0,
+                                        TestDomain::BoxCox, {1, 0}, test_options(), 0),
                  std::invalid_argument);
     EXPECT_THROW(
         merge_temporal_members(frames_of(seq), 2, TestDomain::BoxCox, {1, 0}, test_options(), 0),
