@@ -37,7 +37,10 @@ std::string find_program(const std::string& name, const std::string& built_at)
     return name;
 }
 
-std::string absolute(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
+std::string absolute(const std::string& path)
+{
+    return fs::absolute(path).lexically_normal().string();
+}
 
 std::vector<Frame> frames_of(const std::vector<std::string>& scenes, const std::string& frames,
                              const std::string& output)
@@ -48,19 +51,20 @@ std::vector<Frame> frames_of(const std::vector<std::string>& scenes, const std::
             throw std::runtime_error("--frames needs one SCENE with a frame number, such as "
                                      "shot.%04d.pbrt");
         if (!has_frame_number(output))
-            throw std::runtime_error("-o " + output + ": a sequence needs a frame number in the "
+            throw std::runtime_error("-o " + output +
+                                     ": a sequence needs a frame number in the "
                                      "output, such as out/shot.%04d.exr");
         for (int f : parse_frames(frames))
             out.push_back({f, expand_frame(scenes[0], f), expand_frame(output, f)});
     } else {
         if (scenes.size() > 1 && !has_frame_number(output))
-            throw std::runtime_error("-o " + output + ": several scenes need a frame number in "
+            throw std::runtime_error("-o " + output +
+                                     ": several scenes need a frame number in "
                                      "the output (their position in the list), such as "
                                      "out/frame.%02d.exr");
         for (std::size_t i = 0; i < scenes.size(); ++i)
-            out.push_back({int(i), scenes[i], has_frame_number(output)
-                                                   ? expand_frame(output, int(i))
-                                                   : output});
+            out.push_back({int(i), scenes[i],
+                           has_frame_number(output) ? expand_frame(output, int(i)) : output});
     }
     for (Frame& f : out) {
         if (!fs::is_regular_file(f.scene))
@@ -109,7 +113,8 @@ int submit_job(FarmJob job, bool dry_run)
     require_sbatch_value("--mem", job.slurm.mem);
     require_sbatch_value("--account", job.slurm.account);
     require_sbatch_value("--job-dir", job.job_dir);
-    const std::string render = job.job_dir + "/render.sbatch", merge = job.job_dir + "/merge.sbatch";
+    const std::string render = job.job_dir + "/render.sbatch",
+                      merge = job.job_dir + "/merge.sbatch";
     if (dry_run) {
         std::printf("# %s\n%s\n# %s\n%s\n", render.c_str(), render_script(job).c_str(),
                     merge.c_str(), merge_script(job).c_str());
@@ -123,22 +128,23 @@ int submit_job(FarmJob job, bool dry_run)
     write_script(render, render_script(job));
     write_script(merge, merge_script(job));
     JobRecord record{job, submit(render, {}), {}};
-    std::printf("statmc-farm: render job %s: %zu frame(s) x %d task(s)\n", record.render_job.c_str(),
-                job.frames.size(), job.tasks);
+    std::printf("statmc-farm: render job %s: %zu frame(s) x %d task(s)\n",
+                record.render_job.c_str(), job.frames.size(), job.tasks);
     for (std::size_t i = 0; i < job.frames.size(); ++i) {
         try {
-            record.merge_jobs.push_back(submit(
-                merge,
-                {"--kill-on-invalid-dep=yes",
-                 "--dependency=afterok:" + task_elements(record.render_job, i, job.tasks)},
-                {std::to_string(i)}));
+            record.merge_jobs.push_back(
+                submit(merge,
+                       {"--kill-on-invalid-dep=yes",
+                        "--dependency=afterok:" + task_elements(record.render_job, i, job.tasks)},
+                       {std::to_string(i)}));
         } catch (const std::runtime_error& e) {
             // No job left behind that nothing follows: the renders and merges go too.
             std::vector<std::string> cancel{"scancel", record.render_job};
             cancel.insert(cancel.end(), record.merge_jobs.begin(), record.merge_jobs.end());
             run_command(cancel);
-            throw std::runtime_error(std::string(e.what()) + "; cancelled the jobs submitted so far (" +
-                                     record.render_job + " and its merges)");
+            throw std::runtime_error(std::string(e.what()) +
+                                     "; cancelled the jobs submitted so far (" + record.render_job +
+                                     " and its merges)");
         }
         std::printf("statmc-farm: merge job %s -> %s\n", record.merge_jobs.back().c_str(),
                     job.frames[i].output.c_str());
@@ -194,6 +200,22 @@ int report_status(const std::string& job_dir)
     return unfinished == 0 ? 0 : failed_frames > 0 ? 2 : 3;
 }
 
+// Whether statmc --denoise modifiers (":k=v:k=v") ask for temporal=K with K > 0.
+bool asks_for_temporal(const std::string& modifiers)
+{
+    std::size_t start = 0;
+    while (start < modifiers.size()) {
+        std::size_t end = modifiers.find(':', start + 1);
+        if (end == std::string::npos)
+            end = modifiers.size();
+        const std::string item = modifiers.substr(start + 1, end - start - 1);
+        if (item.rfind("temporal=", 0) == 0 && item.find_first_not_of('0', 9) != std::string::npos)
+            return true;
+        start = end;
+    }
+    return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -210,30 +232,34 @@ int main(int argc, char** argv)
         "submit", "write the batch scripts and submit them with sbatch: a render job array (N "
                   "tasks per frame, checkpointed, requeued when killed) and one merge job per "
                   "frame that runs when its tasks have succeeded");
-    submit_cmd->add_option("scene", scenes,
-                           "pbrt scene(s); with --frames one printf pattern (shot.%04d.pbrt)")
+    submit_cmd
+        ->add_option("scene", scenes,
+                     "pbrt scene(s); with --frames one printf pattern (shot.%04d.pbrt)")
         ->required();
-    submit_cmd->add_option("-o,--output", output,
-                           "the merged statistics EXR of each frame; a printf pattern "
-                           "(out/shot.%04d.exr) for a sequence")
+    submit_cmd
+        ->add_option("-o,--output", output,
+                     "the merged statistics EXR of each frame; a printf pattern "
+                     "(out/shot.%04d.exr) for a sequence")
         ->required();
     submit_cmd->add_option("--tasks", job.tasks, "tasks per frame")
         ->capture_default_str()
         ->check(CLI::Range(1, 100000));
-    submit_cmd->add_option("--spp", job.spp,
-                           "samples per pixel of each frame [default: the scene's]")
+    submit_cmd
+        ->add_option("--spp", job.spp, "samples per pixel of each frame [default: the scene's]")
         ->check(CLI::Range(1, 1 << 30));
     submit_cmd->add_option("--frames", frames, "frame range A-B of a sequence [default: unset]");
     submit_cmd->add_option("--seed", job.seed, "random seed of every task")
         ->capture_default_str()
         ->check(CLI::Range(0, 1 << 30));
-    submit_cmd->add_option("--checkpoint", job.checkpoint_seconds,
-                           "seconds between a render task's checkpoints: what a killed task loses "
-                           "at most")
+    submit_cmd
+        ->add_option("--checkpoint", job.checkpoint_seconds,
+                     "seconds between a render task's checkpoints: what a killed task loses "
+                     "at most")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
-    submit_cmd->add_option("--max-restarts", job.max_restarts,
-                           "times a killed render task is requeued before it counts as failed")
+    submit_cmd
+        ->add_option("--max-restarts", job.max_restarts,
+                     "times a killed render task is requeued before it counts as failed")
         ->capture_default_str()
         ->check(CLI::Range(0, 100));
     submit_cmd
@@ -248,14 +274,16 @@ int main(int argc, char** argv)
     submit_cmd->add_option("--partition", job.slurm.partition, "Slurm partition");
     submit_cmd->add_option("--time", job.slurm.time, "Slurm time limit per job (e.g. 2:00:00)");
     submit_cmd->add_option("--mem", job.slurm.mem, "Slurm memory per job (e.g. 8G)");
-    submit_cmd->add_option("--cpus-per-task", job.slurm.cpus_per_task,
-                           "Slurm CPUs per job; the render uses them all")
+    submit_cmd
+        ->add_option("--cpus-per-task", job.slurm.cpus_per_task,
+                     "Slurm CPUs per job; the render uses them all")
         ->check(CLI::Range(1, 4096));
     submit_cmd->add_option("--account", job.slurm.account, "Slurm account");
     submit_cmd->add_option("--job-dir", job_dir,
                            "where the scripts, logs and job record go [default: "
                            "statmc-farm/ beside the first output]");
-    submit_cmd->add_flag("--dry-run", dry_run, "print the scripts and sbatch commands; submit nothing");
+    submit_cmd->add_flag("--dry-run", dry_run,
+                         "print the scripts and sbatch commands; submit nothing");
     submit_cmd->add_option("--render-exe", job.render_exe, "statmc-render to run [default: found]");
     submit_cmd->add_option("--statmc-exe", job.statmc_exe, "statmc to run [default: found]");
 
@@ -280,10 +308,17 @@ int main(int argc, char** argv)
         job.denoise_modifiers = denoise_options.empty() || denoise_options[0] == ':'
                                     ? denoise_options
                                     : ":" + denoise_options;
-        job.job_dir = absolute(job_dir.empty()
-                                   ? (fs::path(job.frames[0].output).parent_path() / "statmc-farm")
-                                         .string()
-                                   : job_dir);
+        if (asks_for_temporal(job.denoise_modifiers))
+            throw std::runtime_error(
+                "--denoise" + job.denoise_modifiers +
+                ": each frame's merge denoises that frame alone, so temporal denoising would "
+                "fail there after the renders; once every frame is merged, run statmc over the "
+                "sequence: statmc OUT --frames LIST --denoise:temporal=K -o DENOISED "
+                "(docs/farm.md)");
+        job.job_dir =
+            absolute(job_dir.empty()
+                         ? (fs::path(job.frames[0].output).parent_path() / "statmc-farm").string()
+                         : job_dir);
         if (job.render_exe.empty())
             job.render_exe = find_program("statmc-render", STATMC_RENDER_BUILT_AT);
         if (job.statmc_exe.empty())

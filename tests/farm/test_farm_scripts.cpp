@@ -114,9 +114,8 @@ TEST(FarmScripts, RenderArrayCoversEveryTaskOfEveryFrameAndRequeuesKilledOnes)
 std::string run_element(Scratch& s, int k, int status)
 {
     FarmJob job = two_frames();
-    job.render_exe = s.write("render.sh",
-                             "#!/bin/sh\necho render \"$@\"\nexit " + std::to_string(status) + "\n",
-                             true);
+    job.render_exe = s.write(
+        "render.sh", "#!/bin/sh\necho render \"$@\"\nexit " + std::to_string(status) + "\n", true);
     s.write("scontrol", "#!/bin/sh\necho scontrol \"$@\"\n", true);
     const std::string script = s.write("render.sbatch", render_script(job));
     int ignored = 0;
@@ -143,16 +142,19 @@ TEST(FarmScripts, SlurmsSigtermLetsTheRenderSaveAndRequeues)
     // checkpoint and exits 130; the script must live to requeue it.
     Scratch s;
     FarmJob job = two_frames();
-    job.render_exe = s.write("render.sh", "#!/bin/bash\ntrap 'echo saved; exit 130' TERM\n"
-                                          "sleep 5 & wait\n",
+    job.render_exe = s.write("render.sh",
+                             "#!/bin/bash\ntrap 'echo saved; exit 130' TERM\n"
+                             "sleep 5 & wait\n",
                              true);
     s.write("scontrol", "#!/bin/sh\necho scontrol \"$@\"\n", true);
     const std::string script = s.write("render.sbatch", render_script(job));
     int status = 0;
-    const std::string out = shell_output(
-        "(PATH='" + s.dir.string() + "':$PATH SLURM_ARRAY_JOB_ID=41 SLURM_ARRAY_TASK_ID=2 "
-        "setsid bash '" + script + "' & pid=$!; sleep 1; kill -TERM -$pid; wait $pid)",
-        (s.dir / "term.log").string(), status);
+    const std::string out =
+        shell_output("(PATH='" + s.dir.string() +
+                         "':$PATH SLURM_ARRAY_JOB_ID=41 SLURM_ARRAY_TASK_ID=2 "
+                         "setsid bash '" +
+                         script + "' & pid=$!; sleep 1; kill -TERM -$pid; wait $pid)",
+                     (s.dir / "term.log").string(), status);
     EXPECT_TRUE(contains(out, "SIGTERM: the render saves its checkpoint")) << out;
     EXPECT_TRUE(contains(out, "saved")) << out;
     EXPECT_TRUE(contains(out, "scontrol requeue 41_2")) << out;
@@ -166,8 +168,9 @@ TEST(FarmScripts, MergeTakesTheFramesTasksInOrderAndDenoises)
     job.denoise_modifiers = ":method=classic";
     const std::string merge = merge_script(job);
     EXPECT_EQ(bash_syntax_check(s, merge), 0) << merge;
-    EXPECT_TRUE(contains(merge, "\"${tasks[@]:$((frame * 3)):3}\" --merge -o \"${outputs[$frame]}\" "
-                                "'--denoise:method=classic' -o \"${denoised[$frame]}\""))
+    EXPECT_TRUE(contains(merge,
+                         "\"${tasks[@]:$((frame * 3)):3}\" --merge -o \"${outputs[$frame]}\" "
+                         "'--denoise:method=classic' -o \"${denoised[$frame]}\""))
         << merge;
     EXPECT_TRUE(contains(merge, "'/o/shot.0008.denoised.exr'"));
 }
@@ -203,7 +206,8 @@ TEST(FarmCommand, SbatchMissingOrFailingIsAnErrorThatSaysSo)
     Scratch s;
     const std::string scene = s.write("s.pbrt", "WorldBegin\nWorldEnd\n");
     const std::string args = "submit '" + scene + "' --tasks 2 --spp 8 -o '" +
-                             (s.dir / "o.exr").string() + "' --render-exe /bin/true --statmc-exe /bin/true";
+                             (s.dir / "o.exr").string() +
+                             "' --render-exe /bin/true --statmc-exe /bin/true";
     int status = 0;
     // No sbatch on PATH.
     std::string out = farm_output(s, args, s.dir.string(), status);
@@ -212,7 +216,8 @@ TEST(FarmCommand, SbatchMissingOrFailingIsAnErrorThatSaysSo)
                               "installed and on PATH?"))
         << out;
     // sbatch refusing the job.
-    s.write("sbatch", "#!/bin/sh\necho 'sbatch: error: invalid partition specified: nope' >&2\nexit 1\n",
+    s.write("sbatch",
+            "#!/bin/sh\necho 'sbatch: error: invalid partition specified: nope' >&2\nexit 1\n",
             true);
     out = farm_output(s, args, s.dir.string() + ":/usr/bin:/bin", status);
     EXPECT_EQ(status, 1);
@@ -221,13 +226,21 @@ TEST(FarmCommand, SbatchMissingOrFailingIsAnErrorThatSaysSo)
     EXPECT_FALSE(fs::exists(job_record_path((s.dir / "statmc-farm").string())))
         << "no record of a job that was not submitted";
     // Bad input is refused before anything is written.
-    out = farm_output(s, "submit '" + scene + "' --tasks 9 --spp 8 -o '" + (s.dir / "o.exr").string() +
-                          "'",
-                      s.dir.string() + ":/usr/bin:/bin", status);
+    out = farm_output(
+        s, "submit '" + scene + "' --tasks 9 --spp 8 -o '" + (s.dir / "o.exr").string() + "'",
+        s.dir.string() + ":/usr/bin:/bin", status);
     EXPECT_EQ(status, 1);
     EXPECT_TRUE(contains(out, "at most as many tasks as samples per pixel")) << out;
-    out = farm_output(s, "submit '" + (s.dir / "missing.%04d.pbrt").string() +
-                          "' --frames 1-2 -o '" + (s.dir / "o.%04d.exr").string() + "'",
+    // Temporal denoising needs the whole sequence: refused up front, not after the renders.
+    out = farm_output(s,
+                      "submit '" + scene + "' --tasks 2 --spp 8 -o '" + (s.dir / "o.exr").string() +
+                          "' --denoise=radius=5:temporal=2",
+                      s.dir.string() + ":/usr/bin:/bin", status);
+    EXPECT_EQ(status, 1);
+    EXPECT_TRUE(contains(out, "run statmc over the sequence")) << out;
+    out = farm_output(s,
+                      "submit '" + (s.dir / "missing.%04d.pbrt").string() + "' --frames 1-2 -o '" +
+                          (s.dir / "o.%04d.exr").string() + "'",
                       s.dir.string() + ":/usr/bin:/bin", status);
     EXPECT_EQ(status, 1);
     EXPECT_TRUE(contains(out, "frame 1: scene " + (s.dir / "missing.0001.pbrt").string() +
