@@ -3,6 +3,7 @@
 // the stages it spends that on besides the filter (bench_filter). 1280×720 RGB, Box-Cox statistics,
 // n = 64, r = 20; medians over 5 repetitions.
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "bench_timing.h"
 #include "statmc/core/estimator_image.h"
 #include "statmc/denoise/denoise.h"
+#include "statmc/layers/exr_files.h"
 #include "statmc/layers/statistics_layers.h"
 #include "statmc/layers/statistics_validation.h"
 
@@ -21,11 +23,17 @@ namespace {
 
 using namespace statmc;
 
-// The frame under the EXR layer contract, with albedo and normal layers.
+// The frame under the EXR layer contract, with albedo and normal layers; with
+// $STATMC_BENCH_FRAME, that statistics EXR instead (a render, so that another denoiser can
+// be timed on the same frame: scripts/speed_vs_oidn.sh).
 const OIIO::ImageBuf& image()
 {
     static const bench::GuidePlanes guides;
     static const OIIO::ImageBuf buf = [] {
+        if (const char* path = std::getenv("STATMC_BENCH_FRAME"); path && *path) {
+            OIIO::ImageBuf file = layers::read_image_file(path);
+            return file;
+        }
         layers::GuidePlanes planes;
         planes.albedo = guides.guides.albedo;
         planes.normal = guides.guides.normal;
