@@ -1,7 +1,6 @@
 #include "frame_sequence.h"
 
 #include <algorithm>
-#include <cstdio>
 
 #include <OpenImageIO/filesystem.h>
 #include <tbb/parallel_for.h>
@@ -19,13 +18,12 @@ std::vector<int> parse_frame_list(const std::string& spec)
     if (!list)
         throw ToolError("--frames: cannot read '" + spec +
                         "' as frames (e.g. 1-48, 1-48x2, 3,5,10-20)");
-    const std::vector<int>& frames = *list;
-    for (std::size_t k = 1; k < frames.size(); ++k)
-        if (std::find(frames.begin(), frames.begin() + std::ptrdiff_t(k), frames[k]) !=
-            frames.begin() + std::ptrdiff_t(k))
-            throw ToolError("--frames " + spec + ": frame " + std::to_string(frames[k]) +
-                            " is listed twice");
-    return frames;
+    std::vector<int> sorted = *list;
+    std::sort(sorted.begin(), sorted.end());
+    if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
+        throw ToolError("--frames " + spec + ": frame " + std::to_string(*twice) +
+                        " is listed twice");
+    return *list;
 }
 
 std::vector<int> frames_on_disk(const std::string& text, const std::string& pattern)

@@ -1,9 +1,9 @@
 #include "sequence_run.h"
 
 #include <algorithm>
-#include <filesystem>
 #include <ostream>
 
+#include "statmc/layers/input_path.h"
 #include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {
@@ -11,12 +11,6 @@ namespace statmc::tool {
 namespace {
 
 bool is_file_command(const Invocation& inv) { return inv.name == "-i" || inv.name == "-o"; }
-
-bool file_exists(const std::string& path)
-{
-    std::error_code ec;
-    return std::filesystem::is_regular_file(path, ec);
-}
 
 }  // namespace
 
@@ -64,22 +58,23 @@ SequenceRun::SequenceRun(std::vector<Invocation> program, std::ostream& err)
     else
         throw ToolError("the outputs name a frame pattern but no input does: give --frames");
 
-    // A frame runs only when every input pattern has its file.
+    // A frame runs only when every input pattern has its file (the readers' own check).
     for (int frame : frames) {
-        std::string missing;
-        for (std::size_t k = 0; k < program_.size() && missing.empty(); ++k)
-            if (program_[k].name == "-i" && !patterns_[k].empty() &&
-                !file_exists(frame_path(patterns_[k], frame)))
+        std::string missing, why;
+        for (std::size_t k = 0; k < program_.size() && why.empty(); ++k)
+            if (program_[k].name == "-i" && !patterns_[k].empty()) {
                 missing = frame_path(patterns_[k], frame);
-        if (missing.empty()) {
+                why = layers::input_path_problem(missing);
+            }
+        if (why.empty()) {
             frames_.push_back(frame);
         } else if (skip_missing) {
-            err << "statmc: note: skipping frame " << frame << ": " << missing
-                << " does not exist\n";
+            err << "statmc: note: skipping frame " << frame << ": " << missing << ": " << why
+                << "\n";
         } else {
             throw ToolError(missing + ": frame " + std::to_string(frame) +
-                            " of the sequence does not exist (--skip-missing skips such "
-                            "frames)");
+                            " of the sequence is missing: " + why +
+                            " (--skip-missing skips such frames)");
         }
     }
     if (frames_.empty())

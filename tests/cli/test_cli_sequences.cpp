@@ -104,7 +104,7 @@ TEST_F(CliSequence, AMissingFrameIsAnErrorUnlessSkipped)
     write_frames("shot.%04d.exr", {1, 2, 4});
     const CliResult r = run_cli(
         {dir.file("shot.#.exr"), "--frames", "1-4", "--denoise", "-o", dir.file("out.#.exr")});
-    expect_error(r, "shot.0003.exr: frame 3 of the sequence does not exist");
+    expect_error(r, "shot.0003.exr: frame 3 of the sequence is missing: no such file");
     EXPECT_FALSE(has("out.0001.exr"));  // checked before any frame runs
 
     const CliResult skipped = run_cli({dir.file("shot.#.exr"), "--frames", "1-4", "--skip-missing",
