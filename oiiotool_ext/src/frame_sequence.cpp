@@ -1,6 +1,7 @@
 #include "frame_sequence.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include <OpenImageIO/filesystem.h>
 #include <tbb/parallel_for.h>
@@ -12,12 +13,22 @@
 
 namespace statmc::tool {
 
+std::string frame_pattern(const std::string& text, std::string* range)
+{
+    try {
+        return layers::frame_pattern(text, range);
+    } catch (const std::invalid_argument& e) {
+        throw ToolError(e.what());
+    }
+}
+
 std::vector<int> parse_frame_list(const std::string& spec)
 {
     const std::optional<std::vector<int>> list = layers::frame_list(spec);
     if (!list)
         throw ToolError("--frames: cannot read '" + spec +
-                        "' as frames (e.g. 1-48, 1-48x2, 3,5,10-20)");
+                        "' as frames (e.g. 1-48, 1-48x2, 3,5,10-20; at most " +
+                        std::to_string(layers::kMaxFrames) + " frames)");
     std::vector<int> sorted = *list;
     std::sort(sorted.begin(), sorted.end());
     if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())

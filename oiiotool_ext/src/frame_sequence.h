@@ -18,7 +18,9 @@
 namespace statmc::tool {
 
 using layers::frame_path;
-using layers::frame_pattern;
+
+/// layers::frame_pattern, its error a ToolError.
+std::string frame_pattern(const std::string& text, std::string* range = nullptr);
 
 /// "1-48", "1-48x2", "3,5,10-20": the frames, in order (layers::frame_list), each once.
 /// Throws ToolError naming `spec`.

@@ -124,7 +124,8 @@ std::vector<FrameToRender> frames_to_render(const std::string& output, const std
         const auto listed = statmc::layers::frame_list(list);
         if (!listed)
             throw std::runtime_error("--frames: cannot read '" + list +
-                                     "' as frames (e.g. 1-24, 1-48x2, 3,5,7)");
+                                     "' as frames (e.g. 1-24, 1-48x2, 3,5,7; at most " +
+                                     std::to_string(statmc::layers::kMaxFrames) + " frames)");
         numbers = *listed;
     }
     const std::string pattern = statmc::layers::frame_pattern(output);
