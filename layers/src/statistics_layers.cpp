@@ -306,7 +306,8 @@ std::string missing_count_advice(const OIIO::ImageSpec& spec, const StatisticsCh
         return "this looks like a plain render, which holds no per-pixel statistics: render K >= 2 "
                "passes with different seeds and combine them (statmc a.exr b.exr c.exr d.exr "
                "--passes --denoise -o out.exr), or have the renderer write the statistics "
-               "(docs/exr-layers.md)";
+               "(docs/exr-layers.md); for another renderer's statistics, name its preset "
+               "(--denoise:from=renderman, pbrt-v4; docs/renderers.md)";
     return "the number of samples of each pixel; for a render with the same count everywhere, "
            "append it as a constant layer (oiiotool in.exr --pattern constant:color=SPP WxH 1 "
            "--chnames sampleCount.Y --chappend -o out.exr)";

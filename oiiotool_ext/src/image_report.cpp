@@ -7,6 +7,9 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/strutil.h>
 
+#include "statmc/layers/layer_error.h"
+#include "statmc/layers/renderer_presets.h"
+
 namespace statmc::tool {
 
 namespace {
@@ -48,6 +51,20 @@ bool attribute_before(const OIIO::ParamValue* a, const OIIO::ParamValue* b)
     return OIIO::Strutil::iless(na, nb);
 }
 
+// statmc's one addition to oiiotool's report, for another renderer's file only (statmc's
+// own files and plain renders read exactly as oiiotool prints them): the preset that
+// --denoise and --passes take with from=auto, and why (docs/renderers.md).
+void print_renderer_preset(std::ostream& out, const OIIO::ImageSpec& spec)
+{
+    try {
+        const layers::RendererMatch match = layers::detect_renderer(spec);
+        if (!match.preset.empty() && match.preset != "statmc")
+            out << "    statmc preset: " << match.preset << " (" << match.evidence << ")\n";
+    } catch (const layers::LayerError& e) {
+        out << "    statmc preset: none; " << e.what() << "\n";
+    }
+}
+
 void print_details(std::ostream& out, const OIIO::ImageBuf& image)
 {
     const OIIO::ImageSpec& spec = image.spec();
@@ -65,6 +82,7 @@ void print_details(std::ostream& out, const OIIO::ImageBuf& image)
         out << "    full/display size: " << spec.full_width << " x " << spec.full_height << "\n";
     if (spec.full_x != spec.x || spec.full_y != spec.y)
         out << "    full/display origin: " << spec.full_x << ", " << spec.full_y << "\n";
+    print_renderer_preset(out, spec);
     std::vector<const OIIO::ParamValue*> attributes;
     for (const OIIO::ParamValue& p : spec.extra_attribs)
         attributes.push_back(&p);

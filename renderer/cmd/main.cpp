@@ -373,7 +373,8 @@ int main(int argc, char** argv)
                 if (!denoise)
                     return;
                 OIIO::ImageBuf denoised;
-                if (!statmc::denoise(denoised, image, statmc::DenoiseImageOptions{}))
+                const statmc::DenoiseImageOptions options;
+                if (!statmc::denoise(denoised, image, options))
                     throw std::runtime_error("denoise: " + denoised.geterror());
                 write_exr(denoised, denoised_path(output));
             };

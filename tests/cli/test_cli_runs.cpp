@@ -112,8 +112,8 @@ void write_mip_map(const std::string& path, int levels)
         level.width = level.height = level.full_width = level.full_height = 32 >> m;
         OIIO::ImageBuf buf(level);
         OIIO::ImageBufAlgo::fill(buf, {m + 0.5f, m + 0.5f, m + 0.5f});
-        ASSERT_TRUE(out->open(path, level, m == 0 ? OIIO::ImageOutput::Create
-                                                  : OIIO::ImageOutput::AppendMIPLevel))
+        ASSERT_TRUE(out->open(
+            path, level, m == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendMIPLevel))
             << out->geterror();
         ASSERT_TRUE(buf.write(out.get())) << buf.geterror();
     }
@@ -166,6 +166,59 @@ TEST(CliRun, CopiesKeepMipLevels)
     // An operator's result is one level, as in oiiotool.
     expect_success(run_cli({in, "--mulc", "2", "-o", dir.file("twice.exr")}));
     EXPECT_EQ(mip_levels_of(dir.file("twice.exr")).size(), 1u);
+}
+
+// cli_render(k) written as Blender writes a multilayer EXR (ViewLayer.Combined.R, ...,
+// ViewLayer.Denoising Albedo.R, ...).
+OIIO::ImageBuf blender_render(int k)
+{
+    const OIIO::ImageBuf plain = cli_render(k);
+    std::vector<std::string> names;
+    for (const std::string& name : plain.spec().channelnames)
+        names.push_back(name.size() == 1 ? "ViewLayer.Combined." + name
+                                         : "ViewLayer.Denoising Albedo." + name.substr(7));
+    std::vector<int> order(names.size());
+    for (std::size_t c = 0; c < order.size(); ++c)
+        order[c] = int(c);
+    OIIO::ImageBuf out = OIIO::ImageBufAlgo::channels(plain, int(order.size()), order, {}, names);
+    out.specmod().attribute("cycles.ViewLayer.samples", "8");
+    return out;
+}
+
+TEST(CliRun, BlenderMultilayerPassesDenoiseAsPlainOnes)
+{
+    TempDir dir;
+    std::vector<std::string> plain, blender;
+    for (int k = 0; k < 3; ++k) {
+        plain.push_back(dir.file("r" + std::to_string(k) + ".exr"));
+        blender.push_back(dir.file("ml" + std::to_string(k) + ".exr"));
+        write_exr(cli_render(k), plain.back());
+        write_exr(blender_render(k), blender.back());
+    }
+    auto run = [&](std::vector<std::string> args, const std::string& out) {
+        for (const char* a : {"--passes", "--denoise:radius=4", "-o"})
+            args.push_back(a);
+        args.push_back(out);
+        expect_success(run_cli(args));
+        return read_exr(out);
+    };
+    const OIIO::ImageBuf want = run(plain, dir.file("plain.exr"));
+    const OIIO::ImageBuf got = run(blender, dir.file("blender.exr"));
+    expect_same_channels(got, want);
+
+    const CliResult info = run_cli({"--info", "-v", blender[0]});
+    expect_success(info);
+    EXPECT_NE(info.out.find("    statmc preset: cycles (channel ViewLayer.Combined.R)\n"),
+              std::string::npos)
+        << info.out;
+    // A plain render names what to do.
+    const CliResult plain_denoise = run_cli({plain[0], "--denoise", "-o", dir.file("x.exr")});
+    EXPECT_EQ(plain_denoise.exit_code, 1);
+    EXPECT_NE(plain_denoise.err.find("--passes --denoise -o out.exr"), std::string::npos)
+        << plain_denoise.err;
+    EXPECT_NE(plain_denoise.err.find("name its preset (--denoise:from=renderman, pbrt-v4"),
+              std::string::npos)
+        << plain_denoise.err;
 }
 
 TEST(CliRun, PassesThenDenoise)

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imagebufalgo.h>
+
 #include "statmc/core/passes.h"
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/float_pixels.h"
@@ -230,6 +232,65 @@ TEST(PassesOperator, ImagesAreNamedByTheirFile)
                           0),
               0u)
         << error;
+}
+
+// render(k) as Blender writes a multilayer EXR: every channel under the view layer, the
+// beauty as `beauty` (Combined, or Noisy Image when Blender denoised Combined).
+OIIO::ImageBuf blender_multilayer(int k, const std::string& beauty, bool denoised_combined)
+{
+    const OIIO::ImageBuf plain = render(k);
+    std::vector<int> order;
+    std::vector<float> values;
+    std::vector<std::string> names;
+    for (int c = 0; c < plain.nchannels(); ++c) {
+        const std::string& name = plain.spec().channelnames[c];
+        order.push_back(c);
+        values.push_back(0.f);
+        names.push_back(c < 4 ? "ViewLayer." + beauty + "." + name
+                              : "ViewLayer.Denoising Albedo." + name.substr(name.size() - 1));
+    }
+    if (denoised_combined)
+        for (const char* c : {"R", "G", "B", "A"}) {
+            order.push_back(-1);
+            values.push_back(0.5f);
+            names.push_back(std::string("ViewLayer.Combined.") + c);
+        }
+    OIIO::ImageBuf out =
+        OIIO::ImageBufAlgo::channels(plain, int(order.size()), order, values, names);
+    out.specmod().attribute("cycles.ViewLayer.samples", "8");
+    return out;
+}
+
+TEST(PassesOperator, BlenderMultilayerRendersAreReadUnderTheContractsNames)
+{
+    const std::vector<OIIO::ImageBuf> plain = {render(0), render(1), render(2)};
+    const OIIO::ImageBuf expected = passes(pointers(plain));
+    for (const bool noisy : {false, true}) {
+        const std::string beauty = noisy ? "Noisy Image" : "Combined";
+        const std::vector<OIIO::ImageBuf> blender = {blender_multilayer(0, beauty, noisy),
+                                                     blender_multilayer(1, beauty, noisy),
+                                                     blender_multilayer(2, beauty, noisy)};
+        const OIIO::ImageBuf got = passes(pointers(blender));
+        ASSERT_FALSE(got.has_error()) << got.geterror();
+        for (const char* name : {"R", "G", "B", "A", "variance.R", "variance.B", "sampleCount.Y",
+                                 "albedo.R", "albedo.B"})
+            for (int y = 0; y < kH; ++y)
+                for (int x = 0; x < kW; ++x)
+                    ASSERT_TRUE(test::same_bits(channel_value(got, name, x, y),
+                                                channel_value(expected, name, x, y)))
+                        << beauty << " " << name << " at (" << x << ", " << y << ")";
+        // Blender's own denoised Combined is carried, never taken as the beauty.
+        EXPECT_EQ(got.spec().channelindex("ViewLayer.Combined.R") >= 0, noisy);
+    }
+    // Named explicitly as something else, the beauty is missing and said so.
+    const std::vector<OIIO::ImageBuf> blender = {blender_multilayer(0, "Combined", false),
+                                                 blender_multilayer(1, "Combined", false)};
+    OIIO::ImageBuf out;
+    PassesOptions pbrt;
+    pbrt.from = "pbrt-v4";
+    EXPECT_FALSE(passes(out, pointers(blender), pbrt));
+    EXPECT_NE(out.geterror().find("from=pbrt-v4) needs channels R, G, B"), std::string::npos)
+        << out.geterror();
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "statmc/layers/layer_error.h"
 #include "statmc/layers/layer_lookup.h"
 #include "statmc/layers/layer_names.h"
+#include "statmc/layers/renderer_presets.h"
 #include "statmc/layers/statistics_layers.h"
 #include "statmc/layers/statistics_validation.h"
 #include "statmc/layers/view_window.h"
@@ -514,6 +515,70 @@ StatisticsView with_planes_of(StatisticsView shape, const StatisticsView& values
     return shape;
 }
 
+// The channel `from` holds under `to`'s name, over the whole data window.
+void copy_channel(const OIIO::ImageBuf& from, const std::string& from_name, OIIO::ImageBuf& to,
+                  const std::string& to_name)
+{
+    OIIO::ROI source = from.roi(), target = to.roi();
+    source.chbegin = from.spec().channelindex(from_name);
+    target.chbegin = to.spec().channelindex(to_name);
+    source.chend = source.chbegin + 1;
+    target.chend = target.chbegin + 1;
+    std::vector<float> values(source.npixels());
+    if (!from.get_pixels(source, OIIO::TypeFloat, values.data()) ||
+        !to.set_pixels(target, OIIO::TypeFloat, values.data()))
+        throw std::runtime_error("cannot copy the denoised channel " + from_name + " to " +
+                                 to_name);
+}
+
+bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNeighbours& neighbours,
+                  const DenoiseImageOptions& opt, const OIIO::ROI& roi, int nthreads);
+
+// Another renderer's file: its statistics are imported under the contract's names and
+// denoised as such; the result is `in` with the denoised means written back to the
+// renderer's own channels, every other channel kept as it was.
+void denoise_imported(OIIO::ImageBuf& dst, const OIIO::ImageBuf& in,
+                      const FrameNeighbours& neighbours, const std::string& preset,
+                      const DenoiseImageOptions& opt, const OIIO::ROI& roi, int nthreads)
+{
+    const layers::ImportedImage imported = layers::statistics_from_preset(in, preset);
+    std::vector<layers::ImportedImage> frames;
+    FrameNeighbours imported_neighbours;
+    for (const auto* side : {&neighbours.previous, &neighbours.next})
+        for (const OIIO::ImageBuf* frame : *side)
+            frames.push_back(layers::statistics_from_preset(*frame, preset));
+    std::size_t k = 0;
+    for (; k < neighbours.previous.size(); ++k)
+        imported_neighbours.previous.push_back(&frames[k].image);
+    for (; k < frames.size(); ++k)
+        imported_neighbours.next.push_back(&frames[k].image);
+
+    DenoiseImageOptions contract = opt;
+    contract.from = "statmc";
+    OIIO::ImageBuf denoised;
+    denoise_impl(denoised, imported.image, imported_neighbours, contract, roi, nthreads);
+
+    OIIO::ImageBuf result;
+    if (!result.copy(in, OIIO::TypeFloat))
+        throw std::runtime_error("cannot copy the input: " + result.geterror());
+    const OIIO::ImageSpec& spec = denoised.spec();
+    for (int c : layers::find_statistics(spec, opt.aov).mean)
+        for (const auto& [contract_name, source_name] : imported.renamed)
+            if (contract_name == spec.channelnames[c])
+                copy_channel(denoised, contract_name, result, source_name);
+    if (opt.diagnostics) {
+        int members = -1, effective = -1;
+        result = with_diagnostics_channels(result, opt.aov, members, effective);
+        for (int c : {members, effective})
+            copy_channel(denoised, result.spec().channelnames[c], result,
+                         result.spec().channelnames[c]);
+    }
+    for (const char* name : {layers::attr::kDenoised, layers::attr::kDenoiseSkipped})
+        if (const OIIO::ParamValue* value = spec.find_attribute(name))
+            result.specmod().attribute(name, value->type(), value->data());
+    dst = std::move(result);
+}
+
 bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNeighbours& neighbours,
                   const DenoiseImageOptions& opt, const OIIO::ROI& roi, int nthreads)
 {
@@ -523,6 +588,11 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
     OIIO::ImageBuf scratch;
     const OIIO::ImageBuf& in = layers::local_float_pixels(src, scratch);
     const OIIO::ImageSpec& spec = in.spec();
+    if (const std::string preset = layers::resolve_renderer_preset(spec, opt.from);
+        !preset.empty() && preset != "statmc") {
+        denoise_imported(dst, in, neighbours, preset, opt, roi, nthreads);
+        return true;
+    }
 
     const StatisticsChannels all = layers::find_statistics(spec, opt.aov);
     const TestDomain domain = choose_domain(spec, all, opt.test);

@@ -1,5 +1,9 @@
 #include "statmc/denoise/denoise_image_options.h"
 
+#include <algorithm>
+
+#include "statmc/layers/renderer_presets.h"
+
 namespace statmc {
 
 std::string DenoiseImageOptions::validate() const
@@ -8,6 +12,9 @@ std::string DenoiseImageOptions::validate() const
         return why;
     if (std::string why = temporal.validate(); !why.empty())
         return why;
+    if (const auto& presets = layers::renderer_preset_names();
+        from != "auto" && std::find(presets.begin(), presets.end(), from) == presets.end())
+        return "from must be auto or a renderer preset, got '" + from + "'";
     if (guides.albedo != GuideUse::Off && guides.albedo_layer.empty())
         return "the albedo guide needs a layer name";
     if (guides.normal != GuideUse::Off && guides.normal_layer.empty())

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "statmc/denoise/denoise.h"
+#include "statmc/layers/renderer_presets.h"
 #include "statmc/layers/storage_rules.h"
 #include "statmc/plugin_sdk/plugin_interface.h"
 
@@ -89,6 +90,7 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.test = chosen(kTests, p.get_string("test", spelling(kTests, opt.test)), opt.test);
     opt.nonfinite = chosen(
         kNonfinite, p.get_string("nonfinite", spelling(kNonfinite, opt.nonfinite)), opt.nonfinite);
+    opt.from = p.get_string("from", opt.from);
     opt.aov = p.get_string("aov", opt.aov);
     opt.diagnostics = p.get_bool("diagnostics", opt.diagnostics);
     opt.variance_radius = p.get_int("variance_radius", opt.variance_radius);
@@ -102,6 +104,14 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.temporal.frames = p.get_int("temporal", opt.temporal.frames);
     opt.temporal.radius = p.get_int("temporal_radius", opt.temporal.radius);
     return opt;
+}
+
+std::vector<std::string> from_choices()
+{
+    std::vector<std::string> choices = {"auto"};
+    for (const std::string& preset : statmc::layers::renderer_preset_names())
+        choices.push_back(preset);
+    return choices;
 }
 
 // The help of a stage that the default method turns on and the others leave off.
@@ -146,6 +156,12 @@ std::vector<statmc::ParameterSpec> parameters()
                          spelling(kNonfinite, kDefaults.nonfinite),
                          "NaN/Inf in the statistics: error refuses the image, zero counts "
                          "them as 0"),
+        choice_parameter("from", from_choices(), kDefaults.from,
+                         "whose channel names the image has: auto recognises statmc's own, "
+                         "RenderMan's (mse, sampleCount), pbrt-v4's gbuffer (Variance, "
+                         "samplesPerPixel) and Blender Cycles' (ViewLayer.Combined; passes "
+                         "only) and refuses an ambiguous image; or name one "
+                         "(docs/renderers.md)"),
         string_parameter("aov", kDefaults.aov,
                          "the AOV whose mean is denoised (docs/exr-layers.md), e.g. diffuse or "
                          "bounce1L; empty: the beauty R,G,B"),

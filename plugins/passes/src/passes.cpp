@@ -15,6 +15,7 @@
 #include "statmc/layers/imagebufalgo_forms.h"
 #include "statmc/layers/layer_lookup.h"
 #include "statmc/layers/layer_names.h"
+#include "statmc/layers/renderer_presets.h"
 #include "statmc/layers/statistics_layers.h"
 #include "statmc/layers/view_window.h"
 
@@ -151,15 +152,35 @@ void keep_metadata(OIIO::ImageBuf& result, const OIIO::ImageBuf& first, const OI
     result.set_origin(region.xbegin, region.ybegin);
 }
 
-bool passes_impl(OIIO::ImageBuf& dst, const Renders& renders, OIIO::ROI roi, int nthreads)
+// The renders under the contract's names, where a preset renames them.
+Renders renamed_renders(const Renders& renders, const PassesOptions& options,
+                        std::vector<layers::ImportedImage>& imported)
 {
-    if (renders.size() < 2)
+    Renders renamed = renders;
+    imported.resize(renders.size());
+    for (std::size_t k = 0; k < renders.size(); ++k) {
+        const std::string preset =
+            layers::resolve_renderer_preset(renders[k]->spec(), options.from);
+        if (!preset.empty() && preset != "statmc") {
+            imported[k] = layers::render_from_preset(*renders[k], preset);
+            renamed[k] = &imported[k].image;
+        }
+    }
+    return renamed;
+}
+
+bool passes_impl(OIIO::ImageBuf& dst, const Renders& given, const PassesOptions& options,
+                 OIIO::ROI roi, int nthreads)
+{
+    if (given.size() < 2)
         throw std::invalid_argument("passes needs at least 2 renders, got " +
-                                    std::to_string(renders.size()));
+                                    std::to_string(given.size()));
+    layers::require_matching_inputs(given, "render");
+    require_one_sample_count(given);
+    std::vector<layers::ImportedImage> imported;
+    const Renders renders = renamed_renders(given, options, imported);
     for (std::size_t k = 0; k < renders.size(); ++k)
         check_render(renders, k);
-    layers::require_matching_inputs(renders, "render");
-    require_one_sample_count(renders);
 
     const OIIO::ImageBuf& first = *renders[0];
     const OIIO::ROI region = roi.defined() ? OIIO::roi_intersection(roi, first.roi()) : first.roi();
@@ -197,18 +218,31 @@ bool passes_impl(OIIO::ImageBuf& dst, const Renders& renders, OIIO::ROI roi, int
 
 }  // namespace
 
+bool passes(OIIO::ImageBuf& dst, const std::vector<const OIIO::ImageBuf*>& renders,
+            const PassesOptions& options, OIIO::ROI roi, int nthreads)
+{
+    return layers::errors_on(dst, "passes",
+                             [&] { return passes_impl(dst, renders, options, roi, nthreads); });
+}
+
 bool passes(OIIO::ImageBuf& dst, const std::vector<const OIIO::ImageBuf*>& renders, OIIO::ROI roi,
             int nthreads)
 {
-    return layers::errors_on(dst, "passes",
-                             [&] { return passes_impl(dst, renders, roi, nthreads); });
+    return passes(dst, renders, PassesOptions{}, roi, nthreads);
+}
+
+OIIO::ImageBuf passes(const std::vector<const OIIO::ImageBuf*>& renders,
+                      const PassesOptions& options, OIIO::ROI roi, int nthreads)
+{
+    return layers::returned_image("passes", [&](OIIO::ImageBuf& dst) {
+        return passes(dst, renders, options, roi, nthreads);
+    });
 }
 
 OIIO::ImageBuf passes(const std::vector<const OIIO::ImageBuf*>& renders, OIIO::ROI roi,
                       int nthreads)
 {
-    return layers::returned_image(
-        "passes", [&](OIIO::ImageBuf& dst) { return passes(dst, renders, roi, nthreads); });
+    return passes(renders, PassesOptions{}, roi, nthreads);
 }
 
 }  // namespace statmc

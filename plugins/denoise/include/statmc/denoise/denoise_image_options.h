@@ -47,6 +47,9 @@ struct DenoiseImageOptions {
     TestDomainChoice test = TestDomainChoice::Auto;
     NonfinitePolicy nonfinite = NonfinitePolicy::Error;
     std::string aov;  ///< the AOV denoised; "" is the beauty (R,G,B)
+    /// Whose channel names the image has (layers/renderer_presets.h, docs/renderers.md):
+    /// "auto" detects them, "statmc" is the contract itself, else a renderer's preset.
+    std::string from = "auto";
     /// Also write the filter's per-pixel members and effective sample count
     /// (layers::diagnostics_channel; 0 outside the ROI).
     bool diagnostics = false;

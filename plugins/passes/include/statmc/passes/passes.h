@@ -3,6 +3,7 @@
 // renderer without statmc integration gets denoised (docs/method.md; core/passes.h).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <OpenImageIO/imagebuf.h>
@@ -21,12 +22,26 @@ namespace statmc {
 /// names; they must be plain renders, not statistics images. `dst` covers `roi` (default:
 /// the data window) and is float.
 ///
+/// Renders written under another renderer's names (Blender's multilayer
+/// `ViewLayer.Combined.R`, `ViewLayer.Denoising Albedo.R`, ...) are read through its preset
+/// (options.from, layers/renderer_presets.h): the beauty becomes R,G,B(,A) and the guides
+/// albedo, normal and depth, so that the result denoises with them.
+///
 /// Returns false after `dst.errorfmt(...)` on any error, naming the offending renders by
 /// index and ImageBuf name; never throws.
+struct PassesOptions {
+    /// Whose channel names the renders have: "auto" detects them (docs/renderers.md).
+    std::string from = "auto";
+};
+
+bool passes(OIIO::ImageBuf& dst, const std::vector<const OIIO::ImageBuf*>& renders,
+            const PassesOptions& options, OIIO::ROI roi = {}, int nthreads = 0);
 bool passes(OIIO::ImageBuf& dst, const std::vector<const OIIO::ImageBuf*>& renders,
             OIIO::ROI roi = {}, int nthreads = 0);
 
 /// The return-value form: check `has_error()` on the result.
+OIIO::ImageBuf passes(const std::vector<const OIIO::ImageBuf*>& renders,
+                      const PassesOptions& options, OIIO::ROI roi = {}, int nthreads = 0);
 OIIO::ImageBuf passes(const std::vector<const OIIO::ImageBuf*>& renders, OIIO::ROI roi = {},
                       int nthreads = 0);
 
