@@ -9,6 +9,7 @@ packages=(
   slurm-wlm slurmctld slurmd slurm-client munge
   clang libclang-rt-14-dev
   python3-matplotlib python3-numpy python3-openimageio python3-venv
+  python3-dev pybind11-dev python3-pytest
 )
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq

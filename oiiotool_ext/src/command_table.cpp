@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "help_text.h"
-#include "plugin_commands.h"
+#include "statmc/tool/plugin_commands.h"
 
 namespace statmc::tool {
 

@@ -1,4 +1,4 @@
-#include "plugin_commands.h"
+#include "statmc/tool/plugin_commands.h"
 
 #include <algorithm>
 #include <cstdlib>

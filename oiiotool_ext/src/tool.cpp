@@ -4,7 +4,7 @@
 #include <new>
 #include <string>
 
-#include "plugin_commands.h"
+#include "statmc/tool/plugin_commands.h"
 #include "sequence_run.h"
 #include "statmc/layers/file_error.h"
 #include "statmc/tool/command_line.h"

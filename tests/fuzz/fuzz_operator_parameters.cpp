@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "fuzz_input.h"
-#include "plugin_commands.h"
+#include "statmc/tool/plugin_commands.h"
 #include "statmc/tool/command_line.h"
 #include "statmc/tool/command_table.h"
 #include "statmc/tool/tool_error.h"

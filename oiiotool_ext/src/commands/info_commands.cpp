@@ -1,7 +1,7 @@
 // --help, --version, --threads and --echo: commands that touch no image.
 #include <OpenImageIO/imageio.h>
 
-#include "plugin_commands.h"
+#include "statmc/tool/plugin_commands.h"
 #include "statmc/tool/command_table.h"
 #include "statmc/tool/number_parsing.h"
 #include "statmc/tool/tool_error.h"

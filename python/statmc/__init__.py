@@ -1,0 +1,159 @@
+"""statmc from Python: statistical Monte Carlo denoising (docs/python.md).
+
+Images are dicts of named layers, each an H x W x C float32 numpy array: the beauty under
+"beauty" (R,G,B, with A when present), every other layer under its own name ("variance",
+"sampleCount", "albedo", "bounce1.variance", ...). The operators are the statmc tool's
+plugins, with the same parameters, defaults and error messages as the command line:
+
+    import statmc
+    out = statmc.denoise("frame.exr", radius=8)
+    statmc.write_statistics("frame-denoised.exr", out)
+"""
+
+import os
+
+import numpy as np
+
+from ._statmc import FileError, ToolError  # noqa: F401  (part of the API)
+from . import _statmc
+
+__all__ = ["Image", "read_statistics", "write_statistics", "denoise", "passes", "merge",
+           "compare", "FileError", "ToolError"]
+
+BEAUTY = "beauty"
+# The order of a layer's channels: colour, then vector, then whatever else in file order.
+_SUFFIX_ORDER = ["R", "G", "B", "A", "X", "Y", "Z"]
+
+
+class Image(dict):
+    """Named layers (H x W x C float32 arrays) with the channel suffixes of each layer,
+    the header attributes (int, float and str ones) and the data window's origin."""
+
+    def __init__(self, layers=(), channels=None, attributes=None, origin=(0, 0)):
+        super().__init__(layers)
+        self.channels = dict(channels or {})
+        self.attributes = dict(attributes or {})
+        self.origin = tuple(origin)
+        self.report = ""
+
+    def channel_names(self):
+        """The file's channel names, layer by layer."""
+        names = []
+        for layer in self:
+            for suffix in self._suffixes(layer):
+                names.append(_channel_name(layer, suffix))
+        return names
+
+    def _suffixes(self, layer):
+        array = self[layer]
+        if array.ndim != 3:
+            raise ValueError(f"layer {layer}: expected an H x W x C array, got shape "
+                             f"{array.shape}")
+        suffixes = self.channels.get(layer) or _default_suffixes(layer, array.shape[2])
+        if len(suffixes) != array.shape[2]:
+            raise ValueError(f"layer {layer}: {array.shape[2]} channels but suffixes "
+                             f"{suffixes}")
+        return suffixes
+
+    def _pixels(self):
+        """One H x W x N float32 array of every channel, in channel_names() order."""
+        shapes = {self[layer].shape[:2] for layer in self}
+        if len(shapes) != 1:
+            raise ValueError(f"the layers differ in size: {sorted(shapes)}")
+        for layer in self:
+            self._suffixes(layer)
+        arrays = [np.asarray(self[layer], dtype=np.float32) for layer in self]
+        return np.ascontiguousarray(np.concatenate(arrays, axis=2), dtype=np.float32)
+
+    def _native(self):
+        return (self.channel_names(), self._pixels(), self.attributes, self.origin)
+
+
+def _channel_name(layer, suffix):
+    if layer == BEAUTY:
+        return suffix
+    return f"{layer}.{suffix}" if suffix else layer
+
+
+def _default_suffixes(layer, count):
+    if count == 3:
+        return ["X", "Y", "Z"] if layer in ("normal", "position") else ["R", "G", "B"]
+    if count == 4:
+        return ["R", "G", "B", "A"]
+    if count == 1:
+        return ["Z"] if layer == "depth" else ["Y"]
+    raise ValueError(f"layer {layer}: give the suffixes of its {count} channels in "
+                     f"Image.channels['{layer}']")
+
+
+def _from_native(native):
+    names, pixels, attributes, origin = native
+    groups = {}
+    for index, name in enumerate(names):
+        layer, _, suffix = name.rpartition(".")
+        if not layer:
+            layer = BEAUTY if name in _SUFFIX_ORDER[:4] else name
+            suffix = name if layer == BEAUTY else ""
+        groups.setdefault(layer, []).append((suffix, index))
+    image = Image(attributes=attributes, origin=origin)
+    for layer, members in groups.items():
+        members.sort(key=lambda m: _SUFFIX_ORDER.index(m[0]) if m[0] in _SUFFIX_ORDER
+                     else len(_SUFFIX_ORDER))
+        image[layer] = pixels[:, :, [index for _, index in members]]
+        image.channels[layer] = [suffix for suffix, _ in members]
+    return image
+
+
+def _image(source):
+    if isinstance(source, Image):
+        return source
+    if isinstance(source, (str, os.PathLike)):
+        return read_statistics(source)
+    raise TypeError(f"expected a path or a statmc.Image, got {type(source).__name__}")
+
+
+def _run(operator, sources, options, nthreads):
+    inputs = [_image(s)._native() for s in sources]
+    labels = [os.fspath(s) if isinstance(s, (str, os.PathLike)) else f"image {k}"
+              for k, s in enumerate(sources)]
+    # from_= for from=: Python's reserved words take a trailing underscore.
+    options = {(name[:-1] if name.endswith("_") else name): value
+               for name, value in options.items()}
+    native, report = _statmc.run(operator, inputs, labels, options, nthreads)
+    result = _from_native(native)
+    result.report = report
+    return result
+
+
+def read_statistics(path):
+    """The layers of subimage 0 of an image file (statmc's own checks apply)."""
+    return _from_native(_statmc.read(os.fspath(path)))
+
+
+def write_statistics(path, image):
+    """Writes an Image as OpenEXR under the layer contract's storage rules (float,
+    lossless), through a temporary file: a failed write leaves nothing behind."""
+    if not isinstance(image, Image):
+        raise TypeError(f"expected a statmc.Image, got {type(image).__name__}")
+    names, pixels, attributes, origin = image._native()
+    _statmc.write(os.fspath(path), names, pixels, attributes, origin)
+
+
+def denoise(source, nthreads=0, **options):
+    """The denoise operator (statmc --help denoise) on a path or an Image."""
+    return _run("denoise", [source], options, nthreads)
+
+
+def passes(sources, nthreads=0, **options):
+    """K plain renders of one frame (paths or Images) -> their statistics."""
+    return _run("passes", list(sources), options, nthreads)
+
+
+def merge(sources, nthreads=0, **options):
+    """Statistics images of one frame (farm tasks) merged exactly."""
+    return _run("merge", list(sources), options, nthreads)
+
+
+def compare(image, reference, nthreads=0, **options):
+    """The compare operator; its table is the result's .report."""
+    return _run("compare", [image, reference], options, nthreads)

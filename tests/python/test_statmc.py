@@ -1,0 +1,149 @@
+"""import statmc: the numpy round trip, denoise equal to the command line bit for bit, the
+command line's parameter checks and messages, errors that write nothing, and the GIL
+released while an operator runs. Run by ctest (python.pytest) with PYTHONPATH on the
+built package and STATMC_CLI naming the statmc executable."""
+
+import os
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import statmc
+
+CLI = os.environ.get("STATMC_CLI")
+
+
+def statistics_image(width=40, height=24, seed=3):
+    """A variance-AOV statistics image: a dark and a bright half, noisy means, per-sample
+    variances and counts that differ from pixel to pixel."""
+    rng = np.random.default_rng(seed)
+    level = np.where(np.arange(width) < width // 2, 0.2, 0.9).astype(np.float32)
+    count = (8 + (np.add.outer(np.arange(height), np.arange(width)) % 3)).astype(np.float32)
+    variance = np.full((height, width, 3), 0.05, np.float32)
+    noise = rng.normal(0, 1, (height, width, 3)).astype(np.float32)
+    beauty = level[None, :, None] + noise * np.sqrt(variance / count[:, :, None])
+    image = statmc.Image({"beauty": beauty.astype(np.float32),
+                          "sampleCount": count[:, :, None],
+                          "variance": variance},
+                         attributes={"statmc:spp": 8, "note": "synthetic", "gain": 1.5})
+    return image
+
+
+def test_numpy_round_trip_is_exact(tmp_path):
+    image = statistics_image()
+    image["normal"] = np.linspace(-1, 1, 40 * 24 * 3, dtype=np.float32).reshape(24, 40, 3)
+    path = tmp_path / "round.exr"
+    statmc.write_statistics(path, image)
+    back = statmc.read_statistics(path)
+    assert set(back) == set(image)
+    for layer in image:
+        assert back[layer].dtype == np.float32
+        assert np.array_equal(back[layer], image[layer]), layer
+    assert back.channels["normal"] == ["X", "Y", "Z"]
+    assert back.channels["beauty"] == ["R", "G", "B"]
+    assert back.attributes["statmc:spp"] == 8
+    assert back.attributes["note"] == "synthetic"
+    assert back.attributes["gain"] == pytest.approx(1.5)
+
+
+def test_denoise_equals_the_command_line_bitwise(tmp_path):
+    assert CLI, "STATMC_CLI must name the statmc executable"
+    source = tmp_path / "stats.exr"
+    statmc.write_statistics(source, statistics_image())
+    cli_out = tmp_path / "cli.exr"
+    subprocess.run([CLI, str(source), "--denoise:radius=5:alpha=0.01", "-o", str(cli_out)],
+                   check=True)
+    expected = statmc.read_statistics(cli_out)
+    got = statmc.denoise(source, radius=5, alpha=0.01)
+    assert np.array_equal(got["beauty"], expected["beauty"])
+    # It denoised: the means moved.
+    assert not np.array_equal(got["beauty"], statmc.read_statistics(source)["beauty"])
+    # From arrays as from the file, and with the same defaults.
+    assert np.array_equal(statmc.denoise(statmc.read_statistics(source), radius=5,
+                                         alpha=0.01)["beauty"], expected["beauty"])
+    assert got.attributes["statmc:denoised"] == 1
+    # from= is spelled from_= in Python.
+    assert np.array_equal(statmc.denoise(source, radius=5, alpha=0.01, from_="statmc")["beauty"],
+                          expected["beauty"])
+
+
+@pytest.mark.parametrize("options, modifier", [
+    ({"radius": -1}, "radius=-1"),
+    ({"method": "fancy"}, "method=fancy"),
+    ({"guides": ["albedo", "depth"]}, "guides=albedo,depth"),
+    ({"sigma_s": "wide"}, "sigma_s=wide"),
+    ({"no_such": 1}, "no_such=1"),
+])
+def test_options_are_checked_with_the_command_lines_messages(tmp_path, options, modifier):
+    source = tmp_path / "stats.exr"
+    statmc.write_statistics(source, statistics_image())
+    with pytest.raises(ValueError) as raised:
+        statmc.denoise(source, **options)
+    cli = subprocess.run([CLI, str(source), "--denoise:" + modifier, "-o",
+                          str(tmp_path / "x.exr")], capture_output=True, text=True)
+    assert cli.returncode == 1
+    assert cli.stderr.strip() == "statmc: error: " + str(raised.value)
+
+
+def test_bad_input_raises_and_writes_nothing(tmp_path):
+    plain = statmc.Image({"beauty": np.ones((8, 8, 3), np.float32)})
+    with pytest.raises(ValueError, match="missing layer sampleCount"):
+        statmc.denoise(plain)
+    uneven = statistics_image()
+    uneven["albedo"] = np.ones((5, 5, 3), np.float32)
+    target = tmp_path / "out.exr"
+    with pytest.raises(ValueError, match="differ in size"):
+        statmc.write_statistics(target, uneven)
+    with pytest.raises(OSError):
+        statmc.write_statistics(tmp_path / "missing" / "out.exr", statistics_image())
+    with pytest.raises(OSError, match="no such file"):
+        statmc.read_statistics(tmp_path / "absent.exr")
+    assert os.listdir(tmp_path) == []
+
+
+def test_the_gil_is_released_while_denoising():
+    big = statistics_image(width=1024, height=768, seed=11)
+    options = {"radius": 20, "method": "classic"}
+    began = time.perf_counter()
+    serial = [statmc.denoise(big, **options)["beauty"] for _ in range(2)]
+    one_denoise = (time.perf_counter() - began) / 2
+    results = [None, None]
+
+    def work(k):
+        results[k] = statmc.denoise(big, **options)["beauty"]
+
+    # Two Python threads denoising at once give what each gives alone.
+    threads = [threading.Thread(target=work, args=(k,)) for k in range(2)]
+    stamps = [time.perf_counter()]
+    for t in threads:
+        t.start()
+    # Python code keeps running beside them. With the GIL held through the filter, this
+    # loop would stall for a whole filter run; released, it stalls only while the
+    # threads convert arrays in Python (a few ms).
+    while any(t.is_alive() for t in threads):
+        time.sleep(0.001)
+        stamps.append(time.perf_counter())
+    for t in threads:
+        t.join()
+    for k in range(2):
+        assert np.array_equal(results[k], serial[k])
+    longest_stall = max(b - a for a, b in zip(stamps, stamps[1:]))
+    assert longest_stall < one_denoise / 2, (longest_stall, one_denoise)
+
+
+def test_passes_compare_and_merge_take_lists(tmp_path):
+    rng = np.random.default_rng(5)
+    renders = [statmc.Image({"beauty": rng.random((6, 9, 3), dtype=np.float32)})
+               for _ in range(3)]
+    stats = statmc.passes(renders)
+    stacked = np.stack([r["beauty"] for r in renders])
+    assert np.allclose(stats["beauty"], stacked.mean(axis=0), rtol=1e-6)
+    assert np.allclose(stats["variance"], stacked.var(axis=0, ddof=1), rtol=1e-4, atol=1e-7)
+    assert np.all(stats["sampleCount"] == 3)
+    report = statmc.compare(renders[0], renders[0]).report
+    assert "relMSE" in report or "RMSE" in report, report
+    with pytest.raises(ValueError, match="--passes: got 1 images"):
+        statmc.passes(renders[:1])
