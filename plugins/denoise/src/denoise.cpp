@@ -225,6 +225,45 @@ Filtered filter_region(const StatisticsView& stats, TestDomain domain, const Gui
     return f;
 }
 
+// An AOV averaged with the members and weights of `lead`'s test: the lead's estimators
+// with the AOV's means as the values (docs/method.md §14).
+Filtered filter_joint_aov(const StatisticsView& lead, TestDomain domain, const StatisticsView& aov,
+                          const Guides& guides, const DenoiseOptions& options, int nthreads)
+{
+    EstimatorImage est = estimators_from_statistics(lead, domain);
+    const std::size_t pixels = std::size_t(lead.width) * lead.height;
+    for (int c = 0; c < lead.channels; ++c)
+        for (int y = 0; y < lead.height; ++y)
+            for (int x = 0; x < lead.width; ++x)
+                est.value[est.index(c, x, y)] = aov.mean[c](x, y);
+    Filtered f;
+    f.means.resize(pixels * lead.channels);
+    std::vector<Plane> out;
+    for (int c = 0; c < lead.channels; ++c)
+        out.push_back(dense_plane(f.means.data() + c * pixels, lead.width));
+    filter(est, guides, options, out, {}, layers::thread_count(nthreads));
+    return f;
+}
+
+// The means of `aov`, checked over `region` as the lead's statistics are: only its means
+// are read, so they are all it needs besides the shared count.
+StatisticsChannels joint_aov_means(const OIIO::ImageBuf& in, const std::string& aov,
+                                   const StatisticsChannels& lead, const DenoiseImageOptions& opt,
+                                   const OIIO::ROI& region)
+{
+    StatisticsChannels ch = layers::find_statistics(in.spec(), aov);
+    if (ch.channels() != lead.channels())
+        throw LayerError("aovs: " + aov + " has " + std::to_string(ch.channels()) +
+                         " channels and " + (lead.aov.empty() ? "the beauty" : lead.aov) + " " +
+                         std::to_string(lead.channels()) + "; joint AOVs must match");
+    for (Statistic stat : layers::all_statistics())
+        if (stat != Statistic::Mean)
+            ch.indices(stat).clear();
+    ch.subpixel.clear();
+    check_statistics(in, ch, opt, region);
+    return ch;
+}
+
 // A dense plane over the input region, and the channel of the image it is written to.
 struct ChannelWrite {
     int channel;
@@ -348,6 +387,11 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
         require_moments(spec, all, "do_no_harm");
     }
     s.radius_ladder = opt.ici_alpha > 0;
+    if (s.radius_ladder && opt.optional_stages && opt.joint) {
+        s.radius_ladder = false;
+        s.skipped = "ici (joint AOVs share one membership; the ladder's radii would differ "
+                    "per AOV)";
+    }
     if (s.radius_ladder && opt.optional_stages) {
         const bool has_moments = all.has(Statistic::Variance) && all.has(Statistic::Moment4);
         if (!has_moments || opt.diagnostics) {
@@ -562,10 +606,13 @@ void denoise_imported(OIIO::ImageBuf& dst, const OIIO::ImageBuf& in,
     if (!result.copy(in, OIIO::TypeFloat))
         throw std::runtime_error("cannot copy the input: " + result.geterror());
     const OIIO::ImageSpec& spec = denoised.spec();
-    for (int c : layers::find_statistics(spec, opt.aov).mean)
-        for (const auto& [contract_name, source_name] : imported.renamed)
-            if (contract_name == spec.channelnames[c])
-                copy_channel(denoised, contract_name, result, source_name);
+    std::vector<std::string> denoised_aovs = {opt.aov};
+    denoised_aovs.insert(denoised_aovs.end(), opt.aovs.begin(), opt.aovs.end());
+    for (const std::string& aov : denoised_aovs)
+        for (int c : layers::find_statistics(spec, aov).mean)
+            for (const auto& [contract_name, source_name] : imported.renamed)
+                if (contract_name == spec.channelnames[c])
+                    copy_channel(denoised, contract_name, result, source_name);
     if (opt.diagnostics) {
         int members = -1, effective = -1;
         result = with_diagnostics_channels(result, opt.aov, members, effective);
@@ -585,6 +632,17 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
     check_input(src);
     if (const std::string why = opt.validate(); !why.empty())
         throw std::invalid_argument(why);
+    if (!opt.aovs.empty() && !opt.joint) {
+        // Each AOV by its own test: one run per AOV, the later ones in place.
+        DenoiseImageOptions one = opt;
+        one.aovs.clear();
+        denoise_impl(dst, src, neighbours, one, roi, nthreads);
+        for (const std::string& aov : opt.aovs) {
+            one.aov = aov;
+            denoise_impl(dst, dst, neighbours, one, roi, nthreads);
+        }
+        return true;
+    }
     OIIO::ImageBuf scratch;
     const OIIO::ImageBuf& in = layers::local_float_pixels(src, scratch);
     const OIIO::ImageSpec& spec = in.spec();
@@ -638,6 +696,16 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
     }
     Filtered filtered = filter_region(window, domain, window_guides, opt.filter, opt.diagnostics,
                                       stages.radius_ladder ? &stages.ladder : nullptr, nthreads);
+    std::vector<std::pair<StatisticsChannels, Filtered>> joint;
+    for (const std::string& aov : opt.joint ? opt.aovs : std::vector<std::string>{}) {
+        StatisticsChannels aov_ch = joint_aov_means(in, aov, ch, opt, regions.input);
+        const StatisticsView aov_window =
+            layers::view_window(layers::statistics_view(in, aov_ch), x0, y0, regions.input.width(),
+                                regions.input.height());
+        Filtered f =
+            filter_joint_aov(window, domain, aov_window, window_guides, opt.filter, nthreads);
+        joint.emplace_back(std::move(aov_ch), std::move(f));
+    }
     if (stages.harm_guard)
         keep_within_own_interval(window, window_guides, dense_planes(filtered.means, window),
                                  stages.guard, layers::thread_count(nthreads));
@@ -651,6 +719,12 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
     } else {
         result = denoised_copy(in, ch, filtered, regions, nthreads);
     }
+    std::vector<ChannelWrite> joint_writes;
+    for (const auto& [aov_ch, f] : joint)
+        for (const ChannelWrite& w : mean_writes(aov_ch, f, regions))
+            joint_writes.push_back(w);
+    if (!joint_writes.empty())
+        write_channels(result, nullptr, joint_writes, regions, nthreads);
     if (opt.diagnostics) {
         int members = -1, effective = -1;
         result = with_diagnostics_channels(result, opt.aov, members, effective);

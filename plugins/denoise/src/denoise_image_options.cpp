@@ -30,6 +30,23 @@ std::string DenoiseImageOptions::validate() const
                std::to_string(explained_alpha);
     if (!(variance_prior_dof >= 0 && variance_prior_dof <= 1000))
         return "variance_dof must be in [0, 1000], got " + std::to_string(variance_prior_dof);
+    if (std::find(aovs.begin(), aovs.end(), aov) != aovs.end())
+        return "aovs lists '" + (aov.empty() ? std::string("beauty") : aov) +
+               "', which aov denoises already";
+    for (std::size_t k = 0; k < aovs.size(); ++k)
+        if (std::find(aovs.begin(), aovs.begin() + k, aovs[k]) != aovs.begin() + k)
+            return "aovs lists '" + aovs[k] + "' twice";
+    if (joint) {
+        if (aovs.empty())
+            return "joint needs the AOVs to share the membership with (aovs=diffuse,specular)";
+        // Each of these changes one AOV's values or statistics alone: the sum would break.
+        if (temporal.frames > 0 || harm_alpha > 0 || variance_radius > 0 || explained_alpha > 0 ||
+            diagnostics)
+            return "joint cannot be combined yet with temporal, do_no_harm, variance_radius, "
+                   "explained_variance or diagnostics";
+        if (ici_alpha > 0 && !optional_stages)
+            return "joint and ici cannot be combined (the ladder's radii would differ per AOV)";
+    }
     if (ici_alpha > 0 && diagnostics && !optional_stages)
         return "ici and diagnostics cannot be combined yet (the radius differs per pixel)";
     return {};

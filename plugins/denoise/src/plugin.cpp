@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include <OpenImageIO/strutil.h>
+
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/renderer_presets.h"
 #include "statmc/layers/storage_rules.h"
@@ -92,6 +94,9 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
         kNonfinite, p.get_string("nonfinite", spelling(kNonfinite, opt.nonfinite)), opt.nonfinite);
     opt.from = p.get_string("from", opt.from);
     opt.aov = p.get_string("aov", opt.aov);
+    if (const std::string aovs = p.get_string("aovs", ""); !aovs.empty())
+        opt.aovs = OIIO::Strutil::splits(aovs, ",");
+    opt.joint = p.get_bool("joint", opt.joint);
     opt.diagnostics = p.get_bool("diagnostics", opt.diagnostics);
     opt.variance_radius = p.get_int("variance_radius", opt.variance_radius);
     opt.harm_alpha = p.get_float("do_no_harm", opt.harm_alpha);
@@ -165,6 +170,13 @@ std::vector<statmc::ParameterSpec> parameters()
         string_parameter("aov", kDefaults.aov,
                          "the AOV whose mean is denoised (docs/exr-layers.md), e.g. diffuse or "
                          "bounce1L; empty: the beauty R,G,B"),
+        string_parameter("aovs", "",
+                         "more AOVs denoised beside aov, comma-separated (e.g. "
+                         "diffuse,specular); each by its own test unless joint"),
+        bool_parameter("joint", kDefaults.joint,
+                       "with aovs: average every listed AOV with aov's members and weights "
+                       "(the beauty's test), so that AOVs summing to the beauty still sum to "
+                       "the denoised beauty (docs/method.md §14); leaves the ici ladder out"),
         int_parameter("variance_radius", kDefaults.variance_radius,
                       "experimental: denoise the Box-Cox variances over this radius first "
                       "(StatER; needs the boxcoxM4 layer); 0 = off")

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "statmc/core/denoise_options.h"
 #include "statmc/core/temporal_merge.h"
@@ -47,6 +48,13 @@ struct DenoiseImageOptions {
     TestDomainChoice test = TestDomainChoice::Auto;
     NonfinitePolicy nonfinite = NonfinitePolicy::Error;
     std::string aov;  ///< the AOV denoised; "" is the beauty (R,G,B)
+    /// More AOVs denoised beside `aov`, each by its own test unless `joint`.
+    std::vector<std::string> aovs;
+    /// With `aovs`: every listed AOV is averaged with the members and weights of `aov`'s
+    /// test (the beauty's by default) rather than its own, so that AOVs that sum to the
+    /// beauty still sum to the denoised beauty (docs/method.md §14). The radius ladder,
+    /// whose radii would differ per AOV, is then left out (noted, as for a missing layer).
+    bool joint = false;
     /// Whose channel names the image has (layers/renderer_presets.h, docs/renderers.md):
     /// "auto" detects them, "statmc" is the contract itself, else a renderer's preset.
     std::string from = "auto";

@@ -1,0 +1,133 @@
+// Joint AOV denoising (docs/method.md §14): AOVs averaged with the beauty's members and
+// weights still sum to the denoised beauty, to float rounding; denoised apart they do not.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "statmc/denoise/denoise.h"
+#include "statmc/layers/layer_names.h"
+#include "statmc/layers/statistics_layers.h"
+#include "test_images.h"
+
+namespace statmc {
+namespace {
+
+using test::channel_value;
+
+constexpr int kW = 26, kH = 18;
+
+// Diffuse and specular AOVs with their own noise, and a beauty that is their sum: the
+// float sum of the means, the sum of the variances, the shared count.
+OIIO::ImageBuf aov_image()
+{
+    const StatisticsPlanes diffuse = test::variance_aov(test::noisy_statistics(kW, kH, 8, 21));
+    const StatisticsPlanes specular = test::variance_aov(test::noisy_statistics(kW, kH, 8, 22));
+    StatisticsPlanes beauty = diffuse;
+    for (std::size_t i = 0; i < beauty.mean.size(); ++i) {
+        beauty.mean[i] = diffuse.mean[i] + specular.mean[i];
+        beauty.variance[i] = diffuse.variance[i] + specular.variance[i];
+    }
+    return layers::make_statistics_image(
+        beauty.view(), {}, test::make_guides(kW, kH, 4).planes(),
+        {{"diffuse", diffuse.view()}, {"specular", specular.view()}});
+}
+
+DenoiseImageOptions joint_options(bool joint)
+{
+    DenoiseImageOptions opt;
+    opt.filter.radius = 5;
+    opt.aovs = {"diffuse", "specular"};
+    opt.joint = joint;
+    return opt;
+}
+
+// The largest |diffuse + specular − beauty| over the image, relative to the terms' size.
+double worst_sum_mismatch(const OIIO::ImageBuf& out)
+{
+    double worst = 0;
+    for (const char* c : {"R", "G", "B"})
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const double d = channel_value(out, std::string("diffuse.") + c, x, y);
+                const double s = channel_value(out, std::string("specular.") + c, x, y);
+                const double b = channel_value(out, c, x, y);
+                worst = std::max(worst, std::abs(d + s - b) / (std::abs(d) + std::abs(s) + 1e-3));
+            }
+    return worst;
+}
+
+TEST(DenoiseJoint, JointAovsSumToTheDenoisedBeauty)
+{
+    const OIIO::ImageBuf in = aov_image();
+    const OIIO::ImageBuf joint = denoise(in, joint_options(true));
+    ASSERT_FALSE(joint.has_error()) << joint.geterror();
+    // A few float roundings of each term: the input's own sum is rounded once too.
+    EXPECT_LT(worst_sum_mismatch(joint), 1e-6);
+    // Denoised apart, each by its own test, they drift apart by far more.
+    const OIIO::ImageBuf apart = denoise(in, joint_options(false));
+    ASSERT_FALSE(apart.has_error()) << apart.geterror();
+    EXPECT_GT(worst_sum_mismatch(apart), 1e-3);
+    // And the AOVs did move.
+    EXPECT_NE(channel_value(joint, "diffuse.G", 7, 5), channel_value(in, "diffuse.G", 7, 5));
+}
+
+TEST(DenoiseJoint, TheBeautyIsTheClassicFilterAndEachAovKeepsItsStatistics)
+{
+    const OIIO::ImageBuf in = aov_image();
+    const OIIO::ImageBuf joint = denoise(in, joint_options(true));
+    DenoiseImageOptions classic = DenoiseImageOptions::classic();
+    classic.filter.radius = 5;
+    const OIIO::ImageBuf beauty = denoise(in, classic);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            ASSERT_TRUE(
+                test::same_bits(channel_value(joint, "R", x, y), channel_value(beauty, "R", x, y)));
+            ASSERT_TRUE(test::same_bits(channel_value(joint, "specular.variance.B", x, y),
+                                        channel_value(in, "specular.variance.B", x, y)));
+        }
+    EXPECT_NE(joint.spec().get_string_attribute(layers::attr::kDenoiseSkipped).find("joint AOVs"),
+              std::string::npos);
+}
+
+TEST(DenoiseJoint, SeparateAovsEqualOneRunPerAov)
+{
+    const OIIO::ImageBuf in = aov_image();
+    const OIIO::ImageBuf apart = denoise(in, joint_options(false));
+    DenoiseImageOptions one;
+    one.filter.radius = 5;
+    one.aov = "specular";
+    const OIIO::ImageBuf specular = denoise(in, one);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            ASSERT_TRUE(test::same_bits(channel_value(apart, "specular.G", x, y),
+                                        channel_value(specular, "specular.G", x, y)));
+}
+
+TEST(DenoiseJoint, WhatCannotBeJointIsRefused)
+{
+    DenoiseImageOptions opt = joint_options(true);
+    opt.aovs.clear();
+    EXPECT_NE(opt.validate().find("joint needs the AOVs"), std::string::npos);
+    opt = joint_options(true);
+    opt.temporal.frames = 1;
+    EXPECT_NE(opt.validate().find("joint cannot be combined yet with temporal"), std::string::npos);
+    opt = joint_options(true);
+    opt.optional_stages = false;  // ici asked for by name
+    EXPECT_NE(opt.validate().find("joint and ici cannot be combined"), std::string::npos);
+    opt = joint_options(true);
+    opt.aovs.push_back("diffuse");
+    EXPECT_EQ(opt.validate(), "aovs lists 'diffuse' twice");
+
+    const OIIO::ImageBuf in = aov_image();
+    opt = joint_options(true);
+    opt.aovs = {"diffuse", "emission"};
+    const OIIO::ImageBuf out = denoise(in, opt);
+    ASSERT_TRUE(out.has_error());
+    EXPECT_NE(out.geterror().find("missing layer emission (channels emission.R"), std::string::npos)
+        << out.geterror();
+}
+
+}  // namespace
+}  // namespace statmc
