@@ -35,10 +35,11 @@ run statmc render1.exr render2.exr render3.exr render4.exr --passes --denoise -o
 run statmc frame.exr --denoise:guides=albedo,normal -o frame-denoised.exr
 run statmc frame.exr --denoise:diagnostics=1 -o frame-diagnostics.exr
 # AOVs renamed into the contract, denoised separately, recombined
-run statmc frame.exr --ch diffuse.R=R,diffuse.G=G,diffuse.B=B,diffuse.variance.R=variance.R,diffuse.variance.G=variance.G,diffuse.variance.B=variance.B,sampleCount.Y \
+run statmc frame.exr --ch R,G,B,variance.R,variance.G,variance.B,diffuse.R=R,diffuse.G=G,diffuse.B=B,diffuse.variance.R=variance.R,diffuse.variance.G=variance.G,diffuse.variance.B=variance.B,sampleCount.Y \
        frameB.exr --ch specular.R=R,specular.G=G,specular.B=B,specular.variance.R=variance.R,specular.variance.G=variance.G,specular.variance.B=variance.B \
        --chappend -o aovs.exr
 run statmc aovs.exr --denoise:aov=diffuse --denoise:aov=specular -o aovs-denoised.exr
+run statmc aovs.exr --denoise:aovs=diffuse,specular:joint=1 -o aovs-joint.exr
 run statmc aovs-denoised.exr --ch R=diffuse.R,G=diffuse.G,B=diffuse.B \
        aovs-denoised.exr --ch R=specular.R,G=specular.G,B=specular.B --add -o beauty-denoised.exr
 # Merge farm tasks
