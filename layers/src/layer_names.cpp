@@ -70,6 +70,17 @@ bool is_statistics_channel(std::string_view channel, std::string_view aov)
     return false;
 }
 
+bool is_any_statistics_channel(std::string_view channel)
+{
+    const std::size_t dot = channel.rfind('.');
+    if (dot == std::string_view::npos)
+        return false;
+    const std::string_view layer = channel.substr(0, dot);
+    const std::size_t aov_end = layer.rfind('.');
+    return is_statistics_channel(
+        channel, aov_end == std::string_view::npos ? std::string_view() : layer.substr(0, aov_end));
+}
+
 std::string diagnostics_channel(std::string_view aov, std::string_view quantity)
 {
     return channel_name(channel_name(aov, kDiagnosticsLayer), quantity);

@@ -221,6 +221,23 @@ TEST(CliRun, BlenderMultilayerPassesDenoiseAsPlainOnes)
         << plain_denoise.err;
 }
 
+TEST(CliRun, OutputKeepMeansDropsTheStatistics)
+{
+    TempDir dir;
+    const std::string in = dir.file("stats.exr"), out = dir.file("comp.exr");
+    write_exr(cli_statistics_image(), in);
+    expect_success(run_cli({in, "--denoise:radius=3", "-o:keep=means", out}));
+    const OIIO::ImageBuf kept = read_exr(out), full = read_exr(in);
+    for (const std::string& name : full.spec().channelnames) {
+        // The image's means are the beauty's R,G,B; its other layers are guides.
+        const bool mean_or_guide = name.find('.') == std::string::npos ||
+                                   name.rfind("albedo.", 0) == 0 || name.rfind("normal.", 0) == 0 ||
+                                   name.rfind("depth.", 0) == 0;
+        EXPECT_EQ(kept.spec().channelindex(name) >= 0, mean_or_guide) << name;
+    }
+    EXPECT_GE(kept.spec().channelindex("R"), 0);
+}
+
 TEST(CliRun, PassesThenDenoise)
 {
     TempDir dir;

@@ -117,3 +117,19 @@ TEST(LayerNames, AovNamesNeedNoLeadingDigitDotOrSpace)
 
 }  // namespace
 }  // namespace statmc::layers
+
+namespace statmc::layers {
+namespace {
+
+TEST(LayerNames, StatisticsOfAnyAovAreRecognisedAndMeansAreNot)
+{
+    for (const char* statistic : {"variance.R", "boxcoxM3.B", "sampleCount.Y", "subpixel.UV",
+                                  "diffuse.variance.G", "bounce1L.M4.Y", "spec.boxcoxMean.R"})
+        EXPECT_TRUE(is_any_statistics_channel(statistic)) << statistic;
+    for (const char* mean : {"R", "A", "diffuse.R", "albedo.G", "normal.X", "depth.Z", "bounce1L.Y",
+                             "diagnostics.members", "ViewLayer.Combined.R"})
+        EXPECT_FALSE(is_any_statistics_channel(mean)) << mean;
+}
+
+}  // namespace
+}  // namespace statmc::layers

@@ -7,7 +7,10 @@
 
 #include "channel_selection.h"
 #include "image_report.h"
+#include <OpenImageIO/imagebufalgo.h>
+
 #include "statmc/layers/exr_files.h"
+#include "statmc/layers/layer_names.h"
 #include "statmc/layers/storage_rules.h"
 #include "statmc/tool/command_table.h"
 #include "statmc/tool/number_parsing.h"
@@ -52,10 +55,27 @@ std::optional<OIIO::TypeDesc> output_type(const Invocation& inv)
     return type;
 }
 
+// -o:keep=means: `image` without its statistics channels.
+OIIO::ImageBuf without_statistics(const OIIO::ImageBuf& image, const Invocation& inv, int nthreads)
+{
+    std::vector<int> kept;
+    for (int c = 0; c < image.nchannels(); ++c)
+        if (!layers::is_any_statistics_channel(image.spec().channelnames[c]))
+            kept.push_back(c);
+    if (kept.empty())
+        throw ToolError(inv.name + ":keep=means " + inv.args[0] +
+                        ": the image holds only statistics channels");
+    OIIO::ImageBuf out;
+    if (!OIIO::ImageBufAlgo::channels(out, image, int(kept.size()), kept, {}, {}, false, nthreads))
+        throw ToolError(inv.name + " " + inv.args[0] + ": " + out.geterror());
+    return out;
+}
+
 // "16G", "512M", "1.5G", "100000K" or plain bytes, as a byte count > 0.
 std::uint64_t byte_size(const std::string& text, const std::string& command)
 {
-    static const std::pair<char, double> units[] = {{'K', 1e3}, {'M', 1e6}, {'G', 1e9}, {'T', 1e12}};
+    static const std::pair<char, double> units[] = {
+        {'K', 1e3}, {'M', 1e6}, {'G', 1e9}, {'T', 1e12}};
     double scale = 1;
     std::string number = text;
     for (const auto& [suffix, factor] : units)
@@ -164,8 +184,13 @@ Command output_command()
     c.summary = "Write the top image (every subimage) to an OpenEXR file: float and lossless "
                 "unless -d/:type= or --compression say otherwise; via a temporary file, so a "
                 "failed write leaves no file";
-    c.modifiers = {statmc::string_parameter("type", "", "pixel type: half, float or uint32"),
-                   statmc::string_parameter("datatype", "", "the same as type")};
+    c.modifiers = {
+        statmc::string_parameter("type", "", "pixel type: half, float or uint32"),
+        statmc::string_parameter("datatype", "", "the same as type"),
+        statmc::choice_parameter("keep", {"all", "means"}, "all",
+                                 "all channels, or only the means: R,G,B,A, guides, AOV means and "
+                                 "diagnostics, without the statistics layers (variance, Box-Cox, "
+                                 "moments, sampleCount), for a file only a compositor will see")};
     c.check = [](const Invocation& inv) { output_type(inv); };
     c.run = [](ToolContext& ctx, const Invocation& inv) {
         layers::WriteOptions options = ctx.output;
@@ -174,7 +199,19 @@ Command output_command()
         if (ctx.verbose)
             ctx.out << "Writing " << inv.args[0] << "\n";
         const StackImage& image = ctx.stack.top(inv.name);
-        layers::write_image_file(image.subimages, inv.args[0], options, image.mip_levels);
+        if (inv.modifiers.get_string("keep") == "all") {
+            layers::write_image_file(image.subimages, inv.args[0], options, image.mip_levels);
+            return;
+        }
+        layers::MipLevels levels = image.mip_levels;
+        std::vector<OIIO::ImageBuf> subimages;
+        for (std::size_t s = 0; s < image.subimages.size(); ++s) {
+            subimages.push_back(without_statistics(image.subimages[s], inv, ctx.nthreads));
+            if (s < levels.size())
+                for (OIIO::ImageBuf& level : levels[s])
+                    level = without_statistics(level, inv, ctx.nthreads);
+        }
+        layers::write_image_file(subimages, inv.args[0], options, levels);
     };
     return c;
 }

@@ -30,7 +30,8 @@ inline constexpr const char* kDenoised = "statmc:denoised";  // int 1
 inline constexpr const char* kDenoiseSkipped = "statmc:denoiseSkipped";
 inline constexpr const char* kRenderTime = "statmc:renderTime";  // float seconds (statmc-render)
 inline constexpr const char* kScene = "statmc:scene";  // string: the scene file (statmc-render)
-inline constexpr const char* kFrame = "statmc:frame";  // int: the frame of a sequence (statmc-render)
+inline constexpr const char* kFrame =
+    "statmc:frame";  // int: the frame of a sequence (statmc-render)
 // Where the samples came from (sample_provenance.h): sample indices [begin, end) of every
 // pixel's stream, and the farm task that drew them.
 inline constexpr const char* kSampleBegin = "statmc:sampleBegin";    // int
@@ -121,6 +122,11 @@ const char* statistic_name(Statistic stat);
 /// Whether `channel` holds a statistic other than the mean of `aov` ("variance.R",
 /// "boxcoxM3.B", ...) or the sample count: what a plain render never has.
 bool is_statistics_channel(std::string_view channel, std::string_view aov = "");
+
+/// Whether `channel` holds a statistic of any AOV other than its mean ("variance.R",
+/// "diffuse.boxcoxM3.B", "bounce1L.M4.Y"), the sample count or the sub-pixel moments: what
+/// a compositor has no use for once the image is denoised.
+bool is_any_statistics_channel(std::string_view channel);
 
 /// `layer.suffix`, or the bare suffix for the unprefixed layer "".
 std::string channel_name(std::string_view layer, std::string_view suffix);
