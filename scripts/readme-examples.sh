@@ -42,6 +42,7 @@ run statmc aovs.exr --denoise:aov=diffuse --denoise:aov=specular -o aovs-denoise
 run statmc aovs.exr --denoise:aovs=diffuse,specular:joint=1 -o aovs-joint.exr
 run statmc aovs-denoised.exr --ch R=diffuse.R,G=diffuse.G,B=diffuse.B \
        aovs-denoised.exr --ch R=specular.R,G=specular.G,B=specular.B --add -o beauty-denoised.exr
+run statmc frame.exr --denoise -o:keep=means frame-comp.exr
 # Merge farm tasks
 run statmc task1.exr task2.exr --merge -o merged.exr
 run statmc merged.exr frame.exr --diff
