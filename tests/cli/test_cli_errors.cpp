@@ -328,7 +328,7 @@ TEST_F(CliError, UnknownModifier)
         {in, "--denoise:radius=3:sigma=2", "-o", out()},
         "--denoise: unknown modifier 'sigma' (modifiers: method, radius, alpha, sigma_s");
     expect_failure({in, "-o:compression=zip", out()},
-                   "-o: unknown modifier 'compression' (modifiers: type, datatype)");
+                   "-o: unknown modifier 'compression' (modifiers: type, datatype, keep)");
     expect_failure({in, "--siappend:all=1", out()},
                    "--siappend: unknown modifier 'all' (modifiers: n)");
     expect_failure({in, in, "--chappend:n=1", out()}, "--chappend: n must be");
