@@ -1,6 +1,7 @@
 #include "statmc/core/firefly_guard.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include <tbb/blocked_range.h>
@@ -64,6 +65,20 @@ float upper_median(float* v, int k)
     return v[k / 2];
 }
 
+/// Channel c's per-sample variance on a scale where shot-like noise hardly depends on
+/// brightness: the Box-Cox variance for full statistics; for the untransformed test its
+/// first-order stand-in s²/μ (the variance of 2√x by the delta method), so that both
+/// routes guard the same quantity.
+float channel_level(const EstimatorImage& est, int c, int x, int y)
+{
+    const std::size_t k = est.index(c, x, y);
+    const float per_sample = est.test_variance[k] * est.count[est.index(0, x, y)];
+    if (est.domain == TestDomain::BoxCox || per_sample == 0)
+        return per_sample;
+    const float mean = std::abs(est.test_mean[k]);
+    return mean > 0 ? per_sample / mean : std::numeric_limits<float>::max();
+}
+
 bool all_zero(const EstimatorImage& est, int x, int y)
 {
     for (int c = 0; c < est.channels; ++c)
@@ -74,10 +89,7 @@ bool all_zero(const EstimatorImage& est, int x, int y)
 
 }  // namespace
 
-bool firefly_guard_applies(const EstimatorImage& est, float ratio)
-{
-    return ratio > 0 && est.domain == TestDomain::BoxCox;
-}
+bool firefly_guard_applies(const EstimatorImage&, float ratio) { return ratio > 0; }
 
 NoiseLevels noise_levels(const EstimatorImage& est, float ratio)
 {
@@ -94,7 +106,7 @@ NoiseLevels noise_levels(const EstimatorImage& est, float ratio)
             float level = 0;
             if (testable[i])
                 for (int c = 0; c < est.channels; ++c)
-                    level = std::max(level, est.test_variance[est.index(c, x, y)] * est.count[i]);
+                    level = std::max(level, channel_level(est, c, x, y));
             out.level[i] = level;
         }
         row_testable[y] = all;

@@ -142,8 +142,9 @@ std::vector<statmc::ParameterSpec> parameters()
         float_parameter("sigma_albedo", f.sigma_albedo, "albedo guide falloff").above(0),
         float_parameter("sigma_normal", f.sigma_normal, "normal guide falloff").above(0),
         float_parameter("fireflies", std::nullopt,
-                        "firefly guard (Box-Cox test only): no pixel averages a neighbour "
-                        "whose sample variance exceeds this many times its own noise level "
+                        "firefly guard: no pixel averages a neighbour whose noise level (the "
+                        "Box-Cox sample variance, or s^2/mean for the untransformed test) "
+                        "exceeds this many times its own "
                         "(halos of highlights, fireflies); 0 = off. Default and classic " +
                             number_text(f.firefly_ratio) + ", paper 0")
             .at_least(0),

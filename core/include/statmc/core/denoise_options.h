@@ -11,9 +11,9 @@ struct DenoiseOptions {
     float sigma_spatial = 10.f;  ///< Gaussian spatial falloff in pixels, > 0
     float sigma_albedo = 0.02f;  ///< albedo guide falloff, > 0 (used only with an albedo guide)
     float sigma_normal = 0.1f;   ///< normal guide falloff, > 0 (used only with a normal guide)
-    /// Firefly guard (firefly_guard.h): a centre accepts no neighbour whose Box-Cox sample
-    /// variance exceeds this many times its own reference level. 0 = off, the paper's
-    /// filter; else ≥ 1. Applies to the Box-Cox test only.
+    /// Firefly guard (firefly_guard.h): a centre accepts no neighbour whose noise level
+    /// (the Box-Cox sample variance, or s²/μ for the untransformed test) exceeds this many
+    /// times its own reference level. 0 = off, the paper's filter; else ≥ 1.
     float firefly_ratio = 256.f;
 
     /// Empty when valid, else a message naming the offending parameter.

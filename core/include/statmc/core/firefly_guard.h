@@ -19,22 +19,22 @@ namespace statmc {
 /// Per pixel (row-major): the noise level that a neighbour presents, and the largest
 /// level that a centre accepts.
 struct NoiseLevels {
-    /// The per-sample variance in the test domain (test_variance × count: the Box-Cox
-    /// variance for full statistics, nearly independent of brightness for shot-like
-    /// noise), the largest over channels; 0 where the pixel is untestable.
+    /// The per-sample variance on a scale nearly independent of brightness for shot-like
+    /// noise, the largest over channels; 0 where the pixel is untestable. For full
+    /// statistics it is the Box-Cox variance (test_variance × count). For the untransformed
+    /// test it is the first-order stand-in for it, s²/μ: raw variances grow with
+    /// brightness, and a bright pixel would look like a firefly next to a dark one.
     std::vector<float> level;
     /// ratio × max(own level, median of the testable 8-neighbours' levels). Where both are
     /// 0 the neighbourhood is noise-free: a lit pixel there (an emitter, a directly seen
     /// constant) is certain and takes only neighbours as certain (limit 0); a black one
     /// may be a run of zero samples in a sparsely lit region, and takes any level (+∞,
     /// the paper's filter) so that the rare samples still spread. +∞ too with fewer than
-    /// three testable neighbours, and everywhere when ratio = 0 or the test is not on
-    /// Box-Cox statistics (raw variances grow with brightness: a bright pixel would look
-    /// like a firefly next to a dark one).
+    /// three testable neighbours, and everywhere when ratio = 0.
     std::vector<float> limit;
 };
 
-/// Whether the guard can exclude anything: ratio > 0 and Box-Cox statistics.
+/// Whether the guard can exclude anything: ratio > 0.
 bool firefly_guard_applies(const EstimatorImage& est, float ratio);
 
 /// Consistency: as n grows, the per-sample variances of pixels with equal expectations
