@@ -10,6 +10,8 @@ import os
 import statistics
 from collections import defaultdict
 
+from evaluation_report import write_report
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -303,12 +305,7 @@ def main():
     for (w, h), d in sorted(by_res.items()):
         doc.append(f"| {w}×{h} | " + " | ".join(f"{d[r] * 1000:.0f} ms" for r in sorted(d)) + " |")
     doc.append("")
-    notes = os.path.join(os.path.dirname(os.path.abspath(a.report)), "evaluation-notes.md")
-    if os.path.exists(notes):  # the hand-written reading of these figures
-        with open(notes) as f:
-            doc.append(f.read())
-    with open(a.report, "w") as f:
-        f.write("\n".join(doc))
+    write_report(a.report, doc, "evaluation-notes.md")
 
 
 if __name__ == "__main__":

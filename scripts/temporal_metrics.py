@@ -15,6 +15,8 @@ import os
 import numpy as np
 import OpenImageIO as oiio
 
+from evaluation_report import write_report
+
 EPS = 0.01
 
 
@@ -165,13 +167,7 @@ def main():
                         f"camera)")
     out += ["Frames {}–{} of the pan: noisy, per frame, K = 2, reference (top to bottom).".format(
         t0 + 1, t0 + 4), "", "![pan strip](images/temporal_strip.png)", ""]
-    notes = os.path.join(os.path.dirname(os.path.abspath(a.report)),
-                         "evaluation-temporal-notes.md")
-    if os.path.exists(notes):  # the hand-written reading of these figures
-        with open(notes) as f:
-            out.append(f.read())
-    with open(a.report, "w") as f:
-        f.write("\n".join(out))
+    write_report(a.report, out, "evaluation-temporal-notes.md")
 
 
 if __name__ == "__main__":
