@@ -3,6 +3,7 @@
 # (scripts/cycles_scene.py: multilayer EXRs with the denoising passes) and a reference;
 # statmc turns the passes into statistics and denoises them with Denoising Albedo/Normal
 # as guides; both are scored against the reference, and a before/after picture is made.
+# The scene's two light groups are denoised jointly and checked to still add up.
 # Usage: scripts/cycles-example.sh [OUT_DIR]   (default out/cycles; K=8 SPP=4 RES=320x240
 #        REFERENCE=1024 PICTURE=path.png override). Needs Debian's blender: exit 77 (ctest's
 #        skip) when it is not installed. Not part of CI: Blender is large.
@@ -27,6 +28,14 @@ blender -b --factory-startup --python scripts/cycles_scene.py -- --out "$out" --
 "$statmc" "$out/statistics.exr" --denoise -o "$out/denoised.exr"
 "$statmc" "$out/reference.exr" --ch R=ViewLayer.Combined.R,G=ViewLayer.Combined.G,B=ViewLayer.Combined.B \
   -o "$out/reference-rgb.exr"
+
+# Blender's light groups (Combined_key, Combined_fill) come in as the AOVs key and fill,
+# carried by --passes as means; averaged with the beauty's members they still add up.
+"$statmc" "$out/statistics.exr" --denoise:aovs=key,fill:joint=1 -o "$out/light-groups.exr"
+echo "== key + fill against the denoised beauty"
+lg="$out/light-groups.exr"
+"$statmc" "$lg" --ch R=key.R,G=key.G,B=key.B "$lg" --ch R=fill.R,G=fill.G,B=fill.B --add \
+  "$lg" --ch R,G,B --diff | tee "$out/light-groups-diff.txt" || true  # judged below
 
 for image in statistics denoised; do
   echo "== $image ($((K * SPP)) spp) vs the ${REFERENCE}-spp reference"

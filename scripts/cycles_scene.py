@@ -4,8 +4,8 @@ denoising passes: K passes with different seeds, and optionally a reference.
 blender -b --factory-startup --python scripts/cycles_scene.py -- \
     --out DIR --passes K --samples S --resolution WxH [--reference SAMPLES]
 
-Writes DIR/pass000.exr ... (view layer "ViewLayer": Combined, Denoising Albedo/Normal/Depth)
-and DIR/reference.exr. Adaptive sampling and Blender's own denoiser are off, so each pass
+Writes DIR/pass000.exr ... (view layer "ViewLayer": Combined, Denoising Albedo/Normal/Depth,
+and the light groups Combined_key and Combined_fill) and DIR/reference.exr. Adaptive sampling and Blender's own denoiser are off, so each pass
 is S independent samples per pixel.
 """
 
@@ -71,7 +71,15 @@ def build_scene(width, height):
     plane("back", (0, 1, 1), (half_pi, 0, 0), 2, white)
     plane("left", (-1, 0, 1), (0, half_pi, 0), 2, material("red", (0.63, 0.06, 0.05)))
     plane("right", (1, 0, 1), (0, half_pi, 0), 2, material("green", (0.14, 0.45, 0.09)))
-    plane("light", (0, 0, 1.99), (0, 0, 0), 0.5, material("light", (0, 0, 0), emission=12.0))
+    # Two light groups that add up to Combined (the world is black): the ceiling light and
+    # a dim panel low on the back wall.
+    layer = scene.view_layers[0]
+    for group in ("key", "fill"):
+        layer.lightgroups.add(name=group)
+    plane("light", (0, 0, 1.99), (0, 0, 0), 0.5,
+          material("light", (0, 0, 0), emission=12.0)).lightgroup = "key"
+    plane("fill", (0.55, 0.99, 0.25), (half_pi, 0, 0), 0.3,
+          material("fill", (0, 0, 0), emission=4.0)).lightgroup = "fill"
     bpy.ops.mesh.primitive_cube_add(size=0.6, location=(-0.35, 0.3, 0.6))
     tall = bpy.context.active_object
     tall.scale = (1, 1, 2)

@@ -39,6 +39,9 @@ struct Preset {
     const char* variance_of;      // kVarianceOfSample or kVarianceOfMean; null: no statistics
     const char* count_attribute;  // an int header attribute holding every pixel's count
     const char* no_statistics;    // why the statistics route is closed, and what to do
+    // Light groups: "<prefix><group>.<channel>" becomes the AOV "<group>.<channel>" on the
+    // render route (Cycles' "{L}.Combined_<group>.R"); null: none.
+    const char* light_group_prefix = nullptr;
 };
 
 // {prefix + "." + s for s in suffixes}, "" prefix = the bare suffixes.
@@ -130,7 +133,8 @@ const std::vector<Preset>& presets()
          nullptr,
          "Cycles writes no per-pixel variance: render K >= 2 passes with different seeds "
          "and combine them (statmc p1.exr p2.exr p3.exr p4.exr --passes --denoise -o out.exr; "
-         "docs/renderers.md)"},
+         "docs/renderers.md)",
+         "{L}.Combined_"},
     };
     return table;
 }
@@ -227,6 +231,21 @@ std::optional<std::vector<std::string>> found_sources(const OIIO::ImageSpec& spe
     return std::nullopt;
 }
 
+// A light group's channel under its AOV's name ("ViewLayer.Combined_key.R" → "key.R"),
+// or `channel` itself.
+std::string light_group_channel(const std::string& channel, const Preset& preset,
+                                const std::string& view_layer)
+{
+    if (!preset.light_group_prefix)
+        return channel;
+    const std::string prefix = source_name(preset.light_group_prefix, view_layer);
+    if (!OIIO::Strutil::starts_with(channel, prefix))
+        return channel;
+    const std::string rest = channel.substr(prefix.size());
+    const std::size_t dot = rest.rfind('.');
+    return dot != std::string::npos && is_valid_aov_name(rest.substr(0, dot)) ? rest : channel;
+}
+
 ImportedImage import_image(const OIIO::ImageBuf& src, const Preset& preset, bool statistics)
 {
     const OIIO::ImageSpec& spec = src.spec();
@@ -279,7 +298,9 @@ ImportedImage import_image(const OIIO::ImageBuf& src, const Preset& preset, bool
             if (!used.count(c)) {
                 order.push_back(c);
                 values.push_back(0.0f);
-                names.push_back(spec.channelnames[c]);
+                names.push_back(light_group_channel(spec.channelnames[c], preset, view_layer));
+                if (names.back() != spec.channelnames[c])
+                    out.renamed.emplace_back(names.back(), spec.channelnames[c]);
             }
     if (!OIIO::ImageBufAlgo::channels(out.image, src, int(order.size()), order, values, names))
         throw LayerError("importing the " + std::string(preset.renderer) +

@@ -293,5 +293,58 @@ TEST(PassesOperator, BlenderMultilayerRendersAreReadUnderTheContractsNames)
         << out.geterror();
 }
 
+TEST(PassesOperator, BlenderLightGroupsBecomeAovsThatDenoiseJointly)
+{
+    // Two light groups that sum to Combined, as Cycles writes them (Combined_<group>).
+    std::vector<OIIO::ImageBuf> renders;
+    for (int k = 0; k < 4; ++k) {
+        OIIO::ImageBuf r = blender_multilayer(k % 3, "Combined", false);
+        OIIO::ImageSpec spec = r.spec();
+        std::vector<int> order;
+        std::vector<std::string> names = spec.channelnames;
+        for (int c = 0; c < spec.nchannels; ++c)
+            order.push_back(c);
+        for (const char* group : {"key", "fill"})
+            for (const char* c : {"R", "G", "B"}) {
+                order.push_back(-1);
+                names.push_back(std::string("ViewLayer.Combined_") + group + "." + c);
+            }
+        std::vector<float> zeros(order.size(), 0.f);
+        r = OIIO::ImageBufAlgo::channels(r, int(order.size()), order, zeros, names);
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                for (const char* c : {"R", "G", "B"}) {
+                    const float all =
+                        channel_value(r, std::string("ViewLayer.Combined.") + c, x, y);
+                    const float key = 0.75f * all + 0.01f * float((x + 3 * y + k) % 5);
+                    test::set_channel(r, std::string("ViewLayer.Combined_key.") + c, x, y, key);
+                    test::set_channel(r, std::string("ViewLayer.Combined_fill.") + c, x, y,
+                                      all - key);
+                }
+        renders.push_back(r);
+    }
+    const OIIO::ImageBuf stats = passes(pointers(renders));
+    ASSERT_FALSE(stats.has_error()) << stats.geterror();
+    // The groups are AOVs now, each the mean of its renders.
+    EXPECT_FLOAT_EQ(channel_value(stats, "key.G", 4, 3),
+                    0.25f * (channel_value(renders[0], "ViewLayer.Combined_key.G", 4, 3) +
+                             channel_value(renders[1], "ViewLayer.Combined_key.G", 4, 3) +
+                             channel_value(renders[2], "ViewLayer.Combined_key.G", 4, 3) +
+                             channel_value(renders[3], "ViewLayer.Combined_key.G", 4, 3)));
+    EXPECT_EQ(stats.spec().channelindex("ViewLayer.Combined_key.G"), -1);
+    DenoiseImageOptions opt;
+    opt.filter.radius = 3;
+    opt.aovs = {"key", "fill"};
+    opt.joint = true;
+    const OIIO::ImageBuf out = denoise(stats, opt);
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const double sum =
+                double(channel_value(out, "key.R", x, y)) + channel_value(out, "fill.R", x, y);
+            EXPECT_NEAR(sum, channel_value(out, "R", x, y), 1e-5 * std::abs(sum) + 1e-6);
+        }
+}
+
 }  // namespace
 }  // namespace statmc
