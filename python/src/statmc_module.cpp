@@ -5,6 +5,8 @@
 //
 // An image crosses as (channel names, H×W×N float32 array, attributes, origin). Arrays
 // from Python are wrapped by the ImageBuf without a copy; results are copied out once.
+#include <cstdlib>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -134,9 +136,34 @@ statmc::ParameterValues parameters(const statmc::OperatorSpec& op, const py::dic
 // (names, pixels, attributes, origin), as read() returns it.
 using PythonImage = std::tuple<std::vector<std::string>, FloatArray, py::dict, std::pair<int, int>>;
 
+// The frames around input 0 (nearest first on each side), offered to an operator that asks
+// for its sequence (--denoise:temporal), as the command line offers a frame pattern's.
+std::function<std::vector<const OIIO::ImageBuf*>(const std::vector<int>&)>
+sequence_of(const std::vector<OIIO::ImageBuf>& previous, const std::vector<OIIO::ImageBuf>& next)
+{
+    return [&previous, &next](const std::vector<int>& offsets) {
+        std::vector<const OIIO::ImageBuf*> frames;
+        for (int offset : offsets) {
+            const std::vector<OIIO::ImageBuf>& side = offset < 0 ? previous : next;
+            const std::size_t k = std::size_t(std::abs(offset)) - 1;
+            frames.push_back(offset != 0 && k < side.size() ? &side[k] : nullptr);
+        }
+        return frames;
+    };
+}
+
+std::vector<OIIO::ImageBuf> images_from_python(const std::vector<PythonImage>& images)
+{
+    std::vector<OIIO::ImageBuf> out;
+    for (const PythonImage& image : images)
+        out.push_back(std::apply(image_from_python, image));
+    return out;
+}
+
 py::tuple run_operator(const std::string& name, const std::vector<PythonImage>& inputs,
                        const std::vector<std::string>& labels, const py::dict& options,
-                       int nthreads)
+                       const std::vector<PythonImage>& previous,
+                       const std::vector<PythonImage>& next, int nthreads)
 {
     const statmc::OperatorSpec* op = statmc::tool::plugin_registry().find(name);
     if (!op)
@@ -150,9 +177,9 @@ py::tuple run_operator(const std::string& name, const std::vector<PythonImage>& 
                                               : inputs.size() < std::size_t(op->min_inputs))
         throw py::value_error(command + ": got " + std::to_string(inputs.size()) + " images");
 
-    std::vector<OIIO::ImageBuf> images;
-    for (const PythonImage& in : inputs)
-        images.push_back(std::apply(image_from_python, in));
+    const std::vector<OIIO::ImageBuf> images = images_from_python(inputs);
+    const std::vector<OIIO::ImageBuf> before = images_from_python(previous);
+    const std::vector<OIIO::ImageBuf> after = images_from_python(next);
     std::vector<const OIIO::ImageBuf*> pointers;
     for (const OIIO::ImageBuf& image : images)
         pointers.push_back(&image);
@@ -163,6 +190,8 @@ py::tuple run_operator(const std::string& name, const std::vector<PythonImage>& 
     context.module = op->module;
     context.input_labels = labels;
     context.input_labels.resize(inputs.size());
+    if (!before.empty() || !after.empty())
+        context.sequence_frames = sequence_of(before, after);
     OIIO::ImageBuf result;
     {
         py::gil_scoped_release unlocked;
@@ -188,7 +217,8 @@ PYBIND11_MODULE(_statmc, m)
           py::arg("attributes"), py::arg("origin"),
           "writes an OpenEXR file under the layer contract's storage rules, atomically");
     m.def("run", &run_operator, py::arg("operator"), py::arg("inputs"), py::arg("labels"),
-          py::arg("options"), py::arg("nthreads") = 0,
+          py::arg("options"), py::arg("previous") = std::vector<PythonImage>{},
+          py::arg("next") = std::vector<PythonImage>{}, py::arg("nthreads") = 0,
           "runs a plugin operator; returns ((names, pixels, attributes, origin), report)");
     m.def("operators", [] {
         std::vector<std::string> names;

@@ -112,14 +112,16 @@ def _image(source):
     raise TypeError(f"expected a path or a statmc.Image, got {type(source).__name__}")
 
 
-def _run(operator, sources, options, nthreads):
+def _run(operator, sources, options, nthreads, previous=(), next=()):
     inputs = [_image(s)._native() for s in sources]
+    frames = {"previous": [_image(s)._native() for s in previous],
+              "next": [_image(s)._native() for s in next]}
     labels = [os.fspath(s) if isinstance(s, (str, os.PathLike)) else f"image {k}"
               for k, s in enumerate(sources)]
     # from_= for from=: Python's reserved words take a trailing underscore.
     options = {(name[:-1] if name.endswith("_") else name): value
                for name, value in options.items()}
-    native, report = _statmc.run(operator, inputs, labels, options, nthreads)
+    native, report = _statmc.run(operator, inputs, labels, options, nthreads=nthreads, **frames)
     result = _from_native(native)
     result.report = report
     return result
@@ -139,9 +141,10 @@ def write_statistics(path, image):
     _statmc.write(os.fspath(path), names, pixels, attributes, origin)
 
 
-def denoise(source, nthreads=0, **options):
-    """The denoise operator (statmc --help denoise) on a path or an Image."""
-    return _run("denoise", [source], options, nthreads)
+def denoise(source, nthreads=0, previous=(), next=(), **options):
+    """The denoise operator (statmc --help denoise) on a path or an Image. For temporal=K,
+    `previous` and `next` are the frames around it, nearest first (paths or Images)."""
+    return _run("denoise", [source], options, nthreads, previous, next)
 
 
 def passes(sources, nthreads=0, **options):

@@ -147,3 +147,21 @@ def test_passes_compare_and_merge_take_lists(tmp_path):
     assert "relMSE" in report or "RMSE" in report, report
     with pytest.raises(ValueError, match="--passes: got 1 images"):
         statmc.passes(renders[:1])
+
+
+def test_temporal_denoise_equals_the_command_lines_sequence(tmp_path):
+    for frame in (1, 2, 3):
+        statmc.write_statistics(tmp_path / f"shot.{frame:04d}.exr", statistics_image(seed=frame))
+    subprocess.run([CLI, str(tmp_path / "shot.#.exr"), "--frames", "1-3",
+                    "--denoise:temporal=1:radius=4", "-o", str(tmp_path / "out.#.exr")],
+                   check=True)
+    expected = statmc.read_statistics(tmp_path / "out.0002.exr")
+    got = statmc.denoise(tmp_path / "shot.0002.exr", previous=[tmp_path / "shot.0001.exr"],
+                         next=[statmc.read_statistics(tmp_path / "shot.0003.exr")],
+                         temporal=1, radius=4)
+    assert np.array_equal(got["beauty"], expected["beauty"])
+    # The frames mattered: alone, the frame denoises otherwise.
+    alone = statmc.denoise(tmp_path / "shot.0002.exr", radius=4)
+    assert not np.array_equal(alone["beauty"], expected["beauty"])
+    with pytest.raises(ValueError, match="needs a frame sequence"):
+        statmc.denoise(tmp_path / "shot.0002.exr", temporal=1)
