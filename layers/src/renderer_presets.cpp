@@ -35,6 +35,7 @@ struct Rule {
 struct Preset {
     const char* name;
     const char* renderer;
+    std::string (*evidence)(const OIIO::ImageSpec& spec);
     std::vector<Rule> rules;
     const char* variance_of;      // kVarianceOfSample or kVarianceOfMean; null: no statistics
     const char* count_attribute;  // an int header attribute holding every pixel's count
@@ -58,6 +59,65 @@ const std::vector<std::string> kLowerRgb = {"r", "g", "b"};
 const std::vector<std::string> kXyz = {"X", "Y", "Z"};
 const std::vector<std::string> kLowerXyz = {"x", "y", "z"};
 
+bool has_channel(const OIIO::ImageSpec& spec, const std::string& name)
+{
+    return spec.channelindex(name) >= 0;
+}
+
+const char* const kCyclesBeauties[] = {".Noisy Image.R", ".Combined.R"};
+
+// The view layers of a Blender multilayer file: L of every "L.Combined.R" or
+// "L.Noisy Image.R".
+std::set<std::string> view_layers(const OIIO::ImageSpec& spec)
+{
+    std::set<std::string> found;
+    for (const std::string& channel : spec.channelnames)
+        for (const char* beauty : kCyclesBeauties)
+            if (OIIO::Strutil::ends_with(channel, beauty) && channel.size() > std::strlen(beauty))
+                found.insert(channel.substr(0, channel.size() - std::strlen(beauty)));
+    return found;
+}
+
+// The evidence that `spec` is in statmc's own contract or one renderer's names (a channel
+// or attribute only it writes), "" when there is none.
+std::string contract_evidence(const OIIO::ImageSpec& spec)
+{
+    if (has_channel(spec, kSampleCountChannel))
+        return std::string("channel ") + kSampleCountChannel;
+    return spec.find_attribute(attr::kFormatVersion)
+               ? std::string("attribute ") + attr::kFormatVersion
+               : "";
+}
+
+std::string renderman_evidence(const OIIO::ImageSpec& spec)
+{
+    for (const std::string& channel : spec.channelnames)
+        if (channel == "mse" || OIIO::Strutil::starts_with(channel, "mse."))
+            return "channel " + channel;
+    return "";
+}
+
+std::string pbrt_v4_evidence(const OIIO::ImageSpec& spec)
+{
+    if (has_channel(spec, "RelativeVariance.R"))
+        return "channel RelativeVariance.R";
+    return has_channel(spec, "Variance.R") && spec.find_attribute("samplesPerPixel")
+               ? "channel Variance.R and attribute samplesPerPixel"
+               : "";
+}
+
+// Only the multilayer names: a single-layer Blender EXR is a plain R,G,B render, although
+// its header has cycles.<view layer>.samples too.
+std::string cycles_evidence(const OIIO::ImageSpec& spec)
+{
+    const std::set<std::string> layers = view_layers(spec);
+    for (const char* beauty : kCyclesBeauties)
+        for (const std::string& layer : layers)
+            if (has_channel(spec, layer + beauty))
+                return "channel " + layer + beauty;
+    return "";
+}
+
 // RenderMan writes colour AOVs as .r/.g/.b; files passed through other tools often come
 // back upper-case, so both spellings are taken.
 std::vector<std::vector<std::string>> renderman_colour(const std::string& layer)
@@ -75,6 +135,7 @@ const std::vector<Preset>& presets()
     static const std::vector<Preset> table = {
         {"renderman",
          "Pixar RenderMan 24-26 (denoiser AOVs)",
+         &renderman_evidence,
          {
              {Role::Render, true, kRgb, {kRgb, named("Ci", kLowerRgb), named("Ci", kRgb)}},
              {Role::Render, false, {"A"}, {{"A"}, {"a"}, {"Ci.a"}}},
@@ -99,6 +160,7 @@ const std::vector<Preset>& presets()
          nullptr},
         {"pbrt-v4",
          "pbrt-v4 (GBufferFilm)",
+         &pbrt_v4_evidence,
          {
              {Role::Render, true, kRgb, {kRgb}},
              {Role::Statistic, true, named("variance", kRgb), {named("Variance", kRgb)}},
@@ -113,6 +175,7 @@ const std::vector<Preset>& presets()
          nullptr},
         {"cycles",
          "Blender Cycles (multilayer EXR)",
+         &cycles_evidence,
          {
              {Role::Render,
               true,
@@ -145,60 +208,6 @@ const Preset* find_preset(const std::string& name)
         if (name == p.name)
             return &p;
     return nullptr;
-}
-
-bool has_channel(const OIIO::ImageSpec& spec, const std::string& name)
-{
-    return spec.channelindex(name) >= 0;
-}
-
-const char* const kCyclesBeauties[] = {".Noisy Image.R", ".Combined.R"};
-
-// The view layers of a Blender multilayer file: L of every "L.Combined.R" or
-// "L.Noisy Image.R".
-std::set<std::string> view_layers(const OIIO::ImageSpec& spec)
-{
-    std::set<std::string> found;
-    for (const std::string& channel : spec.channelnames)
-        for (const char* beauty : kCyclesBeauties)
-            if (OIIO::Strutil::ends_with(channel, beauty) && channel.size() > std::strlen(beauty))
-                found.insert(channel.substr(0, channel.size() - std::strlen(beauty)));
-    return found;
-}
-
-// The evidence that `spec` comes from `preset`, "" when there is none.
-std::string signature(const OIIO::ImageSpec& spec, const std::string& preset)
-{
-    if (preset == "statmc") {
-        if (has_channel(spec, kSampleCountChannel))
-            return std::string("channel ") + kSampleCountChannel;
-        return spec.find_attribute(attr::kFormatVersion)
-                   ? std::string("attribute ") + attr::kFormatVersion
-                   : "";
-    }
-    if (preset == "renderman") {
-        for (const std::string& channel : spec.channelnames)
-            if (channel == "mse" || OIIO::Strutil::starts_with(channel, "mse."))
-                return "channel " + channel;
-        return "";
-    }
-    if (preset == "pbrt-v4") {
-        if (has_channel(spec, "RelativeVariance.R"))
-            return "channel RelativeVariance.R";
-        return has_channel(spec, "Variance.R") && spec.find_attribute("samplesPerPixel")
-                   ? "channel Variance.R and attribute samplesPerPixel"
-                   : "";
-    }
-    if (preset == "cycles") {
-        // Only the multilayer names: a single-layer Blender EXR is a plain R,G,B render,
-        // although its header has cycles.<view layer>.samples too.
-        const std::set<std::string> layers = view_layers(spec);
-        for (const char* beauty : kCyclesBeauties)
-            for (const std::string& layer : layers)
-                if (has_channel(spec, layer + beauty))
-                    return "channel " + layer + beauty;
-    }
-    return "";
 }
 
 std::string source_name(const std::string& pattern, const std::string& view_layer)
@@ -331,13 +340,23 @@ const std::vector<std::string>& renderer_preset_names()
     return names;
 }
 
+const std::vector<std::string>& renderer_preset_choices()
+{
+    static const std::vector<std::string> choices = [] {
+        std::vector<std::string> c = {"auto"};
+        c.insert(c.end(), renderer_preset_names().begin(), renderer_preset_names().end());
+        return c;
+    }();
+    return choices;
+}
+
 RendererMatch detect_renderer(const OIIO::ImageSpec& spec)
 {
-    if (std::string evidence = signature(spec, "statmc"); !evidence.empty())
+    if (std::string evidence = contract_evidence(spec); !evidence.empty())
         return {"statmc", evidence};
     std::vector<RendererMatch> matches;
     for (const Preset& p : presets())
-        if (std::string evidence = signature(spec, p.name); !evidence.empty())
+        if (std::string evidence = p.evidence(spec); !evidence.empty())
             matches.push_back({p.name, evidence});
     if (matches.size() > 1) {
         std::vector<std::string> each;

@@ -225,23 +225,22 @@ Filtered filter_region(const StatisticsView& stats, TestDomain domain, const Gui
     return f;
 }
 
-// An AOV averaged with the members and weights of `lead`'s test: the lead's estimators
-// with the AOV's means as the values (docs/method.md §14).
-Filtered filter_joint_aov(const StatisticsView& lead, TestDomain domain, const StatisticsView& aov,
-                          const Guides& guides, const DenoiseOptions& options, int nthreads)
+// An AOV averaged with the members and weights of the lead's test: `lead`, the lead's
+// estimators, with the AOV's means put in as the values (docs/method.md §14). The
+// estimators are built once for all the AOVs; only their values change.
+Filtered filter_joint_aov(EstimatorImage& lead, const StatisticsView& aov, const Guides& guides,
+                          const DenoiseOptions& options, int nthreads)
 {
-    EstimatorImage est = estimators_from_statistics(lead, domain);
-    const std::size_t pixels = std::size_t(lead.width) * lead.height;
     for (int c = 0; c < lead.channels; ++c)
         for (int y = 0; y < lead.height; ++y)
             for (int x = 0; x < lead.width; ++x)
-                est.value[est.index(c, x, y)] = aov.mean[c](x, y);
+                lead.value[lead.index(c, x, y)] = aov.mean[c](x, y);
     Filtered f;
-    f.means.resize(pixels * lead.channels);
+    f.means.resize(lead.pixels() * lead.channels);
     std::vector<Plane> out;
     for (int c = 0; c < lead.channels; ++c)
-        out.push_back(dense_plane(f.means.data() + c * pixels, lead.width));
-    filter(est, guides, options, out, {}, layers::thread_count(nthreads));
+        out.push_back(dense_plane(f.means.data() + c * lead.pixels(), lead.width));
+    filter(lead, guides, options, out, {}, layers::thread_count(nthreads));
     return f;
 }
 
@@ -697,13 +696,15 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
     Filtered filtered = filter_region(window, domain, window_guides, opt.filter, opt.diagnostics,
                                       stages.radius_ladder ? &stages.ladder : nullptr, nthreads);
     std::vector<std::pair<StatisticsChannels, Filtered>> joint;
+    EstimatorImage lead;
+    if (opt.joint)
+        lead = estimators_from_statistics(window, domain);
     for (const std::string& aov : opt.joint ? opt.aovs : std::vector<std::string>{}) {
         StatisticsChannels aov_ch = joint_aov_means(in, aov, ch, opt, regions.input);
         const StatisticsView aov_window =
             layers::view_window(layers::statistics_view(in, aov_ch), x0, y0, regions.input.width(),
                                 regions.input.height());
-        Filtered f =
-            filter_joint_aov(window, domain, aov_window, window_guides, opt.filter, nthreads);
+        Filtered f = filter_joint_aov(lead, aov_window, window_guides, opt.filter, nthreads);
         joint.emplace_back(std::move(aov_ch), std::move(f));
     }
     if (stages.harm_guard)

@@ -12,8 +12,8 @@ std::string DenoiseImageOptions::validate() const
         return why;
     if (std::string why = temporal.validate(); !why.empty())
         return why;
-    if (const auto& presets = layers::renderer_preset_names();
-        from != "auto" && std::find(presets.begin(), presets.end(), from) == presets.end())
+    if (const auto& choices = layers::renderer_preset_choices();
+        std::find(choices.begin(), choices.end(), from) == choices.end())
         return "from must be auto or a renderer preset, got '" + from + "'";
     if (guides.albedo != GuideUse::Off && guides.albedo_layer.empty())
         return "the albedo guide needs a layer name";

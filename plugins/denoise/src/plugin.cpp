@@ -111,14 +111,6 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     return opt;
 }
 
-std::vector<std::string> from_choices()
-{
-    std::vector<std::string> choices = {"auto"};
-    for (const std::string& preset : statmc::layers::renderer_preset_names())
-        choices.push_back(preset);
-    return choices;
-}
-
 // The help of a stage that the default method turns on and the others leave off.
 std::string only_in_the_default(double value)
 {
@@ -162,7 +154,7 @@ std::vector<statmc::ParameterSpec> parameters()
                          spelling(kNonfinite, kDefaults.nonfinite),
                          "NaN/Inf in the statistics: error refuses the image, zero counts "
                          "them as 0"),
-        choice_parameter("from", from_choices(), kDefaults.from,
+        choice_parameter("from", layers::renderer_preset_choices(), kDefaults.from,
                          "whose channel names the image has: auto recognises statmc's own, "
                          "RenderMan's (mse, sampleCount), pbrt-v4's gbuffer (Variance, "
                          "samplesPerPixel) and Blender Cycles' (ViewLayer.Combined; passes "

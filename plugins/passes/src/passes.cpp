@@ -175,12 +175,13 @@ bool passes_impl(OIIO::ImageBuf& dst, const Renders& given, const PassesOptions&
     if (given.size() < 2)
         throw std::invalid_argument("passes needs at least 2 renders, got " +
                                     std::to_string(given.size()));
+    // Checked as given, so that messages name the files; a preset renames no statistic.
+    for (std::size_t k = 0; k < given.size(); ++k)
+        check_render(given, k);
     layers::require_matching_inputs(given, "render");
     require_one_sample_count(given);
     std::vector<layers::ImportedImage> imported;
     const Renders renders = renamed_renders(given, options, imported);
-    for (std::size_t k = 0; k < renders.size(); ++k)
-        check_render(renders, k);
 
     const OIIO::ImageBuf& first = *renders[0];
     const OIIO::ROI region = roi.defined() ? OIIO::roi_intersection(roi, first.roi()) : first.roi();

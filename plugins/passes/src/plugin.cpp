@@ -17,11 +17,8 @@ void register_passes(statmc::PluginRegistry& registry)
               "the untransformed means with df = 2K - 2. The renders must share the data "
               "window and channel names.";
     statmc::take_variadic_inputs(op, 2, "renders");
-    std::vector<std::string> from = {"auto"};
-    for (const std::string& preset : statmc::layers::renderer_preset_names())
-        from.push_back(preset);
     op.parameters.push_back(statmc::choice_parameter(
-        "from", from, statmc::PassesOptions{}.from,
+        "from", statmc::layers::renderer_preset_choices(), statmc::PassesOptions{}.from,
         "whose channel names the renders have: auto recognises Blender Cycles' multilayer "
         "files (ViewLayer.Combined or Noisy Image, Denoising Albedo/Normal/Depth as the "
         "guides) and other renderers' (docs/renderers.md); or name one"));

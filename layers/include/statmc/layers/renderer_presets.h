@@ -16,6 +16,9 @@ namespace statmc::layers {
 /// The presets by name: "statmc" (the contract itself), "renderman", "pbrt-v4", "cycles".
 const std::vector<std::string>& renderer_preset_names();
 
+/// What `from=` takes: "auto" (detect_renderer), then every preset name.
+const std::vector<std::string>& renderer_preset_choices();
+
 /// What detection found: the preset ("" when none claims the image, e.g. a plain R,G,B
 /// render) and the channels or attributes that gave it away.
 struct RendererMatch {
