@@ -81,10 +81,11 @@ std::string settings_text(const statmc::render::RenderSettings& s, bool bounce_l
     const auto& i = s.integrator;
     char text[256];
     std::snprintf(text, sizeof text,
-                  "maxdepth %d, rr %d/%d/%d, mis %d/%d/%g, bounce layers %s, schedule", i.maxdepth,
-                  int(i.roulette.mode), i.roulette.start_bounce, i.roulette.tracked_bounces,
-                  int(i.mis.mode), i.mis.tracked_bounces, double(i.mis.threshold),
-                  bounce_layers ? "all" : "used");
+                  "maxdepth %d, rr %d/%d/%d, mis %d/%d/%g, bounce layers %s, %s, schedule",
+                  i.maxdepth, int(i.roulette.mode), i.roulette.start_bounce,
+                  i.roulette.tracked_bounces, int(i.mis.mode), i.mis.tracked_bounces,
+                  double(i.mis.threshold), bounce_layers ? "all" : "used",
+                  s.adaptive.text().c_str());
     std::string out = text;
     for (int n : s.schedule)
         out += " " + std::to_string(n);
@@ -158,6 +159,7 @@ int main(int argc, char** argv)
     bool denoise = false, quiet = false, profile = false, every_iteration = false,
          bounce_layers = false;
     SamplingOptions sampling;
+    statmc::render::AdaptiveSettings adaptive;
     app.add_option("scene", scene_path, "pbrt-v3 scene file")->required();
     app.add_option("-o,--output", output_option,
                    "output statistics EXR; with --frame/--frames it may hold a frame pattern "
@@ -185,6 +187,7 @@ int main(int argc, char** argv)
                    "maximum path depth [default: the scene's Integrator maxdepth]")
         ->check(integer_at_least(0));
     add_sampling_options(app, sampling);
+    add_adaptive_options(app, adaptive);
     app.add_flag(
         "--bounce-layers", bounce_layers,
         "track and write every per-bounce layer (L and win counts) even with classic RR and "
@@ -205,6 +208,8 @@ int main(int argc, char** argv)
                        "[default: unset]")
             ->check(integer_at_least(1))
             ->excludes(task_opt);
+    // Adaptive counts come from the whole frame's statistics, which no task holds.
+    app.get_option("--adaptive")->excludes(task_opt)->excludes(tasks_opt);
     app.add_option("--checkpoint", checkpoint_seconds,
                    "every SECONDS, at a sample boundary, save the film to OUT.checkpoint "
                    "(atomically); a SIGINT/SIGTERM saves it and stops; removed once OUT is "
@@ -278,6 +283,14 @@ int main(int argc, char** argv)
         IntegratorSettings& integrator = settings.integrator;
         integrator.maxdepth = maxdepth >= 0 ? maxdepth : desc.maxdepth;
         sampling.apply(integrator);
+        settings.adaptive = adaptive;
+        if (adaptive.enabled &&
+            schedule_samples(settings.schedule) <= std::uint64_t(adaptive.min_spp))
+            throw std::runtime_error(
+                "--adaptive: " + std::to_string(schedule_samples(settings.schedule)) +
+                " samples per pixel leave nothing to adapt: every pixel takes its first " +
+                std::to_string(adaptive.min_spp) +
+                " uniformly (--adaptive-min-spp); give --spp above that");
         // Before anything is allocated: the same limits for --resolution and the Film.
         require_renderable_resolution(width, height, bounce_layout_for(integrator, bounce_layers),
                                       resolution.empty() ? desc.film_where : "--resolution");
@@ -309,6 +322,9 @@ int main(int argc, char** argv)
                 info.spp = f.sample_counts();
                 info.provenance.seed = seed;
                 info.provenance.range = task_samples(frame_spp, task);
+                // Pixel p holds sample indices 0 .. n_p − 1: the range covers them all.
+                if (settings.adaptive.enabled)
+                    info.provenance.range->end = info.provenance.range->begin + info.spp.max;
                 if (!whole) {
                     info.provenance.task_index = task.index;
                     info.provenance.task_count = task.count;
@@ -410,7 +426,7 @@ int main(int argc, char** argv)
                 merged.specmod().attribute(statmc::layers::attr::kScene, scene_path);
                 write_exr(merged, output);
                 write_denoised(merged);
-                counts = Film::SampleCounts{frame_spp, double(frame_spp), true};
+                counts = Film::SampleCounts{frame_spp, frame_spp, double(frame_spp), true};
             } else {
                 IterationCallback after_iteration;
                 if (every_iteration)
@@ -447,7 +463,16 @@ int main(int argc, char** argv)
                     std::filesystem::remove(checkpoint_path(output), ignored);
                 }
             }
-            if (!quiet)
+            if (!quiet && settings.adaptive.enabled)
+                std::fprintf(stderr,
+                             "%s: %dx%d, adaptive: %.1f spp on average, %d to %d%s%s, %.2f s, "
+                             "%.2f Msamples/s\n",
+                             output.c_str(), width, height, counts.mean, counts.min, counts.max,
+                             stats.converged ? ", every pixel within the noise threshold" : "",
+                             stats.interrupted ? " (interrupted)" : "", stats.seconds,
+                             stats.seconds > 0 ? double(stats.samples) / stats.seconds * 1e-6
+                                               : 0.0);
+            else if (!quiet)
                 std::fprintf(stderr, "%s: %dx%d, %s%d spp%s, %.2f s, %.2f Msamples/s\n",
                              output.c_str(), width, height, counts.uniform ? "" : "at least ",
                              counts.min, stats.interrupted ? " (interrupted)" : "", stats.seconds,

@@ -1,14 +1,17 @@
-// The command-line options of the sampling strategies (Russian roulette, MIS), shared by
+// The command-line options of the sampling strategies (Russian roulette, MIS, adaptive
+// sampling), shared by
 // statmc-render and bench/bench_sampling so that both spell and check them alike.
 // Header-only: only programs that link CLI11 include it.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "statmc/render/adaptive_sampling.h"
 #include "statmc/render/integrator.h"
 
 namespace statmc::render {
@@ -84,6 +87,49 @@ inline void add_sampling_options(CLI::App& app, SamplingOptions& o)
     app.add_option("--mis-threshold", o.mis.threshold, "SMIS: win-share threshold, in [0, 0.5)")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 0.4999));
+}
+
+/// A finite number ≥ `minimum`, said in words (CLI11's NonNegativeNumber prints the largest
+/// double as its upper bound).
+inline CLI::Validator number_at_least(double minimum)
+{
+    const std::string bound = CLI::detail::to_string(minimum);
+    return CLI::Validator(
+        [minimum, bound](std::string& text) -> std::string {
+            double value = 0;
+            if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value < minimum)
+                return "must be a number >= " + bound + ", got '" + text + "'";
+            return {};
+        },
+        "NUMBER>=" + bound);
+}
+
+/// --adaptive and its settings; the settings need the flag.
+inline void add_adaptive_options(CLI::App& app, AdaptiveSettings& a)
+{
+    auto* flag = app.add_flag(
+        "--adaptive", a.enabled,
+        "adaptive sampling: after --adaptive-min-spp uniform samples, each iteration spends "
+        "its samples where the denoised estimate is least certain (docs/sampling.md) "
+        "[default: off]");
+    app.add_option("--noise-threshold", a.noise_threshold,
+                   "adaptive: a pixel stops once the 95% interval of its denoised estimate is "
+                   "within ± this fraction of its value; 0 = none stops, samples only move")
+        ->capture_default_str()
+        ->check(number_at_least(0))
+        ->needs(flag);
+    app.add_option("--adaptive-min-spp", a.min_spp,
+                   "adaptive: samples per pixel every pixel takes before sampling adapts, and "
+                   "the fewest a pixel holds before it may stop")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1 << 20))
+        ->needs(flag);
+    app.add_option("--adaptive-min-rate", a.min_rate,
+                   "adaptive: every pixel that has not stopped takes at least this fraction of "
+                   "an iteration's samples per pixel (and at least 1)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.001, 1.0))
+        ->needs(flag);
 }
 
 }  // namespace statmc::render

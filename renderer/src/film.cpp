@@ -56,6 +56,7 @@ Film::SampleCounts Film::sample_counts() const
             hi = std::max(hi, n);
         }
     counts.min = int(lo);
+    counts.max = int(hi);
     counts.mean = sum / (double(width) * height);
     counts.uniform = lo == hi;
     return counts;

@@ -131,8 +131,19 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
     Progress progress((schedule_total - settings.samples_done) * npix, settings.progress);
 
     const BounceLayout needed = bounce_layout_for(settings.integrator);
-    const bool steered = !needed.empty();
-    if (steered &&
+    const bool tracks_bounces = !needed.empty();
+    const AdaptiveSettings& adaptive = settings.adaptive;
+    if (adaptive.enabled) {
+        if (const std::string problem = adaptive.validate(); !problem.empty())
+            throw std::invalid_argument("render: adaptive sampling: " + problem);
+        if (settings.first_sample != 0)
+            throw std::invalid_argument(
+                "render: adaptive sampling decides every pixel's count from the whole frame, "
+                "so it renders whole frames, not a farm task's share of the samples");
+    }
+    // Steered iterations take their decisions from the film at their start.
+    const bool steered = tracks_bounces || adaptive.enabled;
+    if (tracks_bounces &&
         (!film.bounces || film.bounces->layout().luminance_bounces < needed.luminance_bounces ||
          film.bounces->layout().mis_bounces < needed.mis_bounces))
         throw std::invalid_argument("render: the film does not track the bounces ACRR/SMIS need");
@@ -142,9 +153,12 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
     // Estimates steer sampling only from the second iteration on (§7, §8).
     std::optional<BounceEstimates> estimates;
 
-    // Samples [first, first + spp) of every pixel, tile by tile. A skippable pass leaves
-    // out the tiles not yet started once `cancel` is set. Returns the samples taken.
-    auto render_pass = [&](std::uint64_t first, int spp, bool skippable, std::uint64_t& cycle_sum) {
+    // Samples [first, first + spp) of every pixel, tile by tile; with `counts` (adaptive
+    // sampling), pixel p's next counts[p] samples instead, its stream carrying on from the
+    // samples it holds. A skippable pass leaves out the tiles not yet started once `cancel`
+    // is set. Returns the samples taken.
+    auto render_pass = [&](std::uint64_t first, int spp, const std::vector<std::uint32_t>* counts,
+                           bool skippable, std::uint64_t& cycle_sum) {
         std::atomic<std::uint64_t> samples{0}, cycles{0};
         tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
             if (skippable && cancel && cancel->load())
@@ -160,15 +174,20 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
             PathRecord record;
             std::vector<float> bounce_values(
                 film.bounces ? std::size_t(film.bounces->layout().quantities()) : 0);
+            std::uint64_t n = 0;
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
                     const std::size_t pixel = std::size_t(y) * settings.width + x;
                     // PixelEstimates{} steers nothing, as no estimates would.
                     const PixelEstimates pixel_estimates =
                         estimates ? estimates->pixel(pixel) : PixelEstimates{};
-                    for (int s = 0; s < spp; ++s) {
+                    const int take = counts ? int((*counts)[pixel]) : spp;
+                    const std::uint64_t begin =
+                        counts ? std::uint64_t(film.stats.at(x, y).n) : first;
+                    n += std::uint64_t(take);
+                    for (int s = 0; s < take; ++s) {
                         Sampler sampler(settings.seed, pixel,
-                                        settings.first_sample + first + std::uint64_t(s));
+                                        settings.first_sample + begin + std::uint64_t(s));
                         const float jx = sampler.get1d(), jy = sampler.get1d();
                         const Ray ray = camera.generate(float(x) + jx, float(y) + jy);
                         GuideSample guide;
@@ -191,7 +210,6 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
                                        float(x) + jx, float(y) + jy);
                     }
                 }
-            const std::uint64_t n = std::uint64_t(x1 - x0) * (y1 - y0) * spp;
             samples += n;
             cycles += __rdtsc() - t0;
             progress.advance(n);
@@ -221,13 +239,13 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
         }
         if (steered && settings.samples_done > iteration_begin)
             throw std::invalid_argument(
-                "render: ACRR/SMIS resume only at an iteration boundary (their checkpoints are "
-                "written there)");
+                "render: ACRR/SMIS and adaptive sampling resume only at an iteration boundary "
+                "(their checkpoints are written there)");
         const bool may_stop = it > 0;
         IterationStats is{spp, 0};
         // Denoised here rather than after the previous iteration, so a render that stops
         // never pays for estimates no iteration will use.
-        if (steered && it > 0) {
+        if (tracks_bounces && it > 0) {
             const auto denoise_start = Clock::now();
             // Without the albedo/normal guides: the estimates only steer sampling, and the
             // guided kernel costs about 4× (README, Performance); on Veach Ajar the
@@ -243,6 +261,20 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
                 break;
             }
         }
+        std::optional<SampleAllocation> allocation;
+        if (adaptive.enabled && iteration_begin >= std::uint64_t(adaptive.min_spp)) {
+            const auto start_map = Clock::now();
+            allocation = allocate_samples(
+                relative_variance_map(film.stats, adaptive.filter, settings.threads), film.stats,
+                spp, adaptive);
+            is.denoise_seconds +=
+                std::chrono::duration<double>(Clock::now() - start_map).count();
+            is.converged_pixels = allocation->converged;
+            if (allocation->total == 0) {  // every pixel met the noise threshold
+                rs.converged = true;
+                break;
+            }
+        }
         std::uint64_t next = std::max(iteration_begin, settings.samples_done);
         bool stopped = false;
         while (next < iteration_end) {
@@ -253,12 +285,16 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
             const auto pass_start = Clock::now();
             // A checkpointing render stops only at pass boundaries, with whole passes.
             const std::uint64_t taken =
-                render_pass(next, pass, may_stop && !in_passes, rs.tile_cycles);
+                render_pass(next, pass, allocation ? &allocation->counts : nullptr,
+                            may_stop && !in_passes, rs.tile_cycles);
             rs.samples += taken;
+            is.samples += taken;
             const double seconds = std::chrono::duration<double>(Clock::now() - pass_start).count();
             if (seconds > 0)
                 samples_per_second = double(taken) / seconds;
-            if (taken < std::uint64_t(pass) * npix) {  // tiles skipped: a partial iteration
+            const std::uint64_t expected =
+                allocation ? allocation->total : std::uint64_t(pass) * npix;
+            if (taken < expected) {  // tiles skipped: a partial iteration
                 rs.interrupted = true;
                 ++rs.iterations_done;
                 stopped = true;
@@ -290,7 +326,7 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
             break;
         }
     }
-    rs.complete = iteration_begin == schedule_total;
+    rs.complete = iteration_begin == schedule_total || rs.converged;
     progress.finish();
     rs.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return rs;

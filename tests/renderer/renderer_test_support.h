@@ -104,10 +104,12 @@ struct Rendered {
     std::uint64_t rays = 0;  ///< rays traced (Embree queries)
 };
 
-/// Renders `desc` at w×h with the progressive schedule to `spp`; the integrator takes the
-/// scene's maxdepth, and the film tracks what `integrator` needs.
+/// Renders `desc` at w×h with the progressive schedule to `spp` (adaptively with
+/// `adaptive`); the integrator takes the scene's maxdepth, and the film tracks what
+/// `integrator` needs.
 inline Rendered render_scene(const SceneDescription& desc, int w, int h, int spp,
-                             std::uint64_t seed, int threads, IntegratorSettings integrator = {})
+                             std::uint64_t seed, int threads, IntegratorSettings integrator = {},
+                             const AdaptiveSettings& adaptive = {})
 {
     Scene scene(desc);
     scene.enable_profiling(true);
@@ -120,6 +122,7 @@ inline Rendered render_scene(const SceneDescription& desc, int w, int h, int spp
     rs.threads = threads;
     integrator.maxdepth = desc.maxdepth;
     rs.integrator = integrator;
+    rs.adaptive = adaptive;
     Rendered r{std::make_unique<Film>(w, h, bounce_layout_for(integrator)), {}, 0};
     r.stats = render(scene, camera, rs, *r.film);
     r.rays = scene.traversal_counters().rays;

@@ -154,6 +154,48 @@ TEST(Cli, BadOptionValuesSayWhatIsExpected)
     EXPECT_LT(r.output.size(), 200u) << "no 310-digit bound: " << r.output;
 }
 
+TEST(Cli, AdaptiveWritesItsCountsAndRefusesWhatItCannotDo)
+{
+    ScratchDir dir("cli");
+    const std::string scene = dir.write("s.pbrt", kScene);
+    const std::string out = dir.file("o.exr");
+    const ProgramRun ok = run("\"" + scene + "\" -o \"" + out + "\" --spp 64 --adaptive", dir);
+    ASSERT_EQ(ok.status, 0) << ok.output;
+    EXPECT_NE(ok.output.find("adaptive: 64.0 spp on average"), std::string::npos) << ok.output;
+    OIIO::ImageBuf img(out);
+    ASSERT_TRUE(img.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+    // Non-uniform counts: no statmc:spp, but the smallest and the mean, and the sample range
+    // spans the largest count.
+    EXPECT_FALSE(img.spec().find_attribute("statmc:spp"));
+    const int lo = img.spec().get_int_attribute("statmc:sppMin");
+    EXPECT_GE(lo, 16);
+    EXPECT_LT(lo, 64);
+    EXPECT_NEAR(img.spec().get_float_attribute("statmc:sppMean"), 64.f, 1e-3f);
+    float largest = 0;
+    for (int y = 0; y < img.spec().height; ++y)
+        for (int x = 0; x < img.spec().width; ++x)
+            largest = std::max(
+                largest, img.getchannel(x, y, 0, img.spec().channelindex("sampleCount.Y")));
+    EXPECT_EQ(img.spec().get_int_attribute("statmc:sampleEnd"), int(largest));
+    std::filesystem::remove(out);
+
+    auto fails_with = [&](const std::string& args, const std::string& message) {
+        const ProgramRun r = run("\"" + scene + "\" -o \"" + out + "\" -q " + args, dir);
+        EXPECT_NE(r.status, 0) << args << "\n" << r.output;
+        EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+        EXPECT_FALSE(std::filesystem::exists(out)) << args;
+    };
+    fails_with("--adaptive --spp 16",
+               "--adaptive: 16 samples per pixel leave nothing to adapt: every pixel takes its "
+               "first 16 uniformly (--adaptive-min-spp)");
+    fails_with("--adaptive --spp 64 --adaptive-min-spp 64", "64 samples per pixel leave nothing");
+    fails_with("--adaptive --noise-threshold -0.1",
+               "--noise-threshold: must be a number >= 0, got '-0.1'");
+    fails_with("--noise-threshold 0.01", "--noise-threshold requires --adaptive");
+    fails_with("--adaptive --adaptive-min-rate 0", "--adaptive-min-rate");
+    fails_with("--adaptive --task 0/2", "--adaptive excludes --task");
+}
+
 TEST(Cli, HelpListsEveryOptionWithItsDefault)
 {
     ScratchDir dir("cli");

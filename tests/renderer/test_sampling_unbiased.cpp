@@ -1,5 +1,6 @@
-// ACRR and SMIS converge to the same image as classic roulette and standard MIS: region
-// means of independent renders (different seeds) agree in Welch's test.
+// ACRR and SMIS converge to the same image as classic roulette and standard MIS, and
+// adaptive sampling to the same image as uniform sampling: region means of independent
+// renders (different seeds) agree in Welch's test.
 //
 // Bounds. Each render has 1024 spp (Cornell: iterations 4, 4, 8, ..., 512, so ACRR steers
 // 8 of 9 iterations) or 2048 spp (Veach MIS); a region averages ≥ 64 pixels, so its mean is normal
@@ -77,17 +78,19 @@ Comparison welch_regions(const Film& a, const Film& b, int rw, int rh)
     return c;
 }
 
-/// Renders `desc` with `a` and with `b` (independent seeds) and expects every region to
+/// Renders `desc` with `a` and with `b` (independent seeds; `b` adaptively when
+/// `b_adaptive` says so) and expects every region to
 /// agree (|z| < kZBound) with a whole-image relative standard error below `max_rel_se`.
 /// Returns the two renders for the test's own checks.
 std::pair<Rendered, Rendered> expect_agreement(const std::string& scene, int w, int h, int spp,
                                                int rw, int rh, const IntegratorSettings& a,
                                                const IntegratorSettings& b, double max_rel_se,
-                                               const char* what)
+                                               const char* what,
+                                               const AdaptiveSettings& b_adaptive = {})
 {
     const auto desc = parse_scene_file(scene);
     Rendered ra = statmc::render::test::render_scene(desc, w, h, spp, 21, 0, a);
-    Rendered rb = statmc::render::test::render_scene(desc, w, h, spp, 22, 0, b);
+    Rendered rb = statmc::render::test::render_scene(desc, w, h, spp, 22, 0, b, b_adaptive);
     const Comparison c = welch_regions(*ra.film, *rb.film, rw, rh);
     EXPECT_EQ(c.regions, 3 * (w / rw) * (h / rh));
     EXPECT_LT(c.max_abs_z, kZBound) << c.worst;
@@ -140,4 +143,34 @@ TEST(Unbiased, SelectiveMisAgreesWithStandardMis)
     }
     EXPECT_GT(skipped, f.width * f.height / 10) << skipped << " of " << f.width * f.height;
     std::printf("SMIS skipped a technique at %d of %d first hits\n", skipped, f.width * f.height);
+}
+
+// Adaptive sampling moves samples between pixels, and each pixel's mean stays its own
+// samples' mean. Strictly, a count decided from the pixel's own earlier samples makes that
+// mean biased (optional stopping); here the decision comes from the denoised estimate of a
+// 3×3 block, where a pixel's own samples weigh little, so the bias should be far below what
+// these renders resolve. Same bounds as above (z per region, ≥ 64 pixels each); with
+// threshold 0 nothing stops and samples only move, with 0.02 many pixels stop at 16 spp.
+// Each region's standard error comes from its pixels' own variance/count, which is what
+// non-uniform counts give.
+TEST(Unbiased, AdaptiveSamplingAgreesWithUniformSampling)
+{
+    const std::string shared = statmc::render::test::shared_dir();
+    if (shared.empty())
+        GTEST_SKIP() << "../shared/scenes not present";
+    for (const double threshold : {0.0, 0.02}) {
+        AdaptiveSettings adaptive;
+        adaptive.enabled = true;
+        adaptive.noise_threshold = threshold;
+        const auto [a, b] = expect_agreement(shared + "/scenes/cornell-box/scene.pbrt", 32, 32,
+                                             1024, 8, 8, {}, {}, 0.02,
+                                             threshold > 0 ? "adaptive (threshold 0.02) vs uniform"
+                                                           : "adaptive vs uniform",
+                                             adaptive);
+        // It did adapt: the counts differ from pixel to pixel by a wide margin.
+        const Film::SampleCounts counts = b.film->sample_counts();
+        EXPECT_FALSE(counts.uniform);
+        EXPECT_GT(counts.max, 4 * counts.min) << counts.min << " .. " << counts.max;
+        std::printf("  counts %d .. %d, mean %.1f\n", counts.min, counts.max, counts.mean);
+    }
 }

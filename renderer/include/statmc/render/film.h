@@ -29,9 +29,11 @@ struct Film {
     /// Motion averages (X then Y), empty unless tracked.
     std::vector<float> motion() const;
     void track_motion() { motion_sum.assign(std::size_t(width) * height * 2, 0.0); }
-    /// The per-pixel sample counts: smallest, mean, and whether every pixel has the same.
+    /// The per-pixel sample counts: smallest, largest, mean, and whether every pixel has the
+    /// same.
     struct SampleCounts {
         int min = 0;
+        int max = 0;
         double mean = 0;
         bool uniform = true;
     };

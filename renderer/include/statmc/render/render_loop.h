@@ -5,6 +5,8 @@
 // for any thread count without a merge step. Guides are averaged alongside, and so are
 // the per-bounce statistics of ACRR and SMIS (bounce_statistics.h): after each iteration
 // but the last they are denoised, and the estimates steer the next iteration's samples.
+// Adaptive sampling (adaptive_sampling.h) steers in the same place: from the film's
+// denoised beauty it decides how many samples each pixel takes in the next iteration.
 #pragma once
 
 #include <atomic>
@@ -13,6 +15,7 @@
 #include <memory>
 #include <vector>
 
+#include "statmc/render/adaptive_sampling.h"
 #include "statmc/render/camera.h"
 #include "statmc/render/film.h"
 #include "statmc/render/integrator.h"
@@ -57,6 +60,10 @@ struct RenderSettings {
     /// motion, each sample adds the screen-space offset from where its first hit is to where
     /// that point was seen in the previous frame (the motion layer, docs/exr-layers.md).
     const Camera* previous_camera = nullptr;
+    /// Off: every pixel takes each iteration's samples. On: once every pixel holds
+    /// adaptive.min_spp samples, an iteration of s samples per pixel spends s × (pixels
+    /// not converged) samples where the denoised estimate is least certain.
+    AdaptiveSettings adaptive;
 };
 
 /// What one progressive iteration cost.
@@ -64,13 +71,16 @@ struct IterationStats {
     int spp = 0;
     double denoise_seconds =
         0;  ///< denoising the estimates it steered by, before rendering (0 without)
+    std::uint64_t samples = 0;         ///< camera samples taken, all pixels
+    std::size_t converged_pixels = 0;  ///< pixels adaptive sampling left out as converged
 };
 
 struct RenderStats {
     double seconds = 0;
     int iterations_done = 0;
     bool interrupted = false;
-    bool complete = false;  ///< every sample of the schedule was taken
+    bool complete = false;  ///< every sample of the schedule was taken, or every pixel converged
+    bool converged = false;  ///< adaptive sampling stopped early: every pixel met the threshold
     std::uint64_t samples = 0;
     std::uint64_t tile_cycles = 0;  ///< time stamp counter cycles inside tiles, all threads
 };

@@ -1,0 +1,178 @@
+#include "statmc/render/adaptive_sampling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "statmc/core/estimator_image.h"
+#include "statmc/core/filter.h"
+
+namespace statmc::render {
+
+namespace {
+
+constexpr double kZ95 = 1.959963984540054;  // two-sided 95% normal quantile
+constexpr double kRelMseEpsilon = 0.01;
+
+// An iteration's floor and ceiling of samples per pixel, whole numbers so that carrying
+// fractions along the scanline never crosses them.
+struct Bounds {
+    double lo, hi;
+};
+
+Bounds bounds_for(int spp, const AdaptiveSettings& s)
+{
+    const double lo = std::max(1.0, std::floor(s.min_rate * spp));
+    return {lo, std::max(lo, std::floor(s.max_rate * spp))};
+}
+
+bool converged(double r, double n, const AdaptiveSettings& s)
+{
+    return s.noise_threshold > 0 && n >= s.min_spp && kZ95 * std::sqrt(r / n) <= s.noise_threshold;
+}
+
+}  // namespace
+
+std::string AdaptiveSettings::validate() const
+{
+    char text[160];
+    if (!(noise_threshold >= 0) || !std::isfinite(noise_threshold)) {
+        std::snprintf(text, sizeof text, "noise threshold must be ≥ 0, got %g", noise_threshold);
+        return text;
+    }
+    if (min_spp < 1) {
+        std::snprintf(text, sizeof text, "minimum samples per pixel must be ≥ 1, got %d", min_spp);
+        return text;
+    }
+    if (!(min_rate > 0 && min_rate <= 1)) {
+        std::snprintf(text, sizeof text, "minimum rate must be in (0, 1], got %g", min_rate);
+        return text;
+    }
+    if (!(max_rate >= 1) || !std::isfinite(max_rate)) {
+        std::snprintf(text, sizeof text, "maximum rate must be ≥ 1, got %g", max_rate);
+        return text;
+    }
+    return filter.validate();
+}
+
+std::string AdaptiveSettings::text() const
+{
+    if (!enabled)
+        return "adaptive off";
+    char text[160];
+    std::snprintf(text, sizeof text, "adaptive threshold %g, min spp %d, rates %g..%g, radius %d",
+                  noise_threshold, min_spp, min_rate, max_rate, filter.radius);
+    return text;
+}
+
+std::vector<float> relative_variance_map(const StatisticsImage<3>& stats,
+                                         const DenoiseOptions& options, int threads)
+{
+    const int w = stats.width(), h = stats.height();
+    const std::size_t npix = std::size_t(w) * h;
+    const StatisticsPlanes planes = stats.planes();
+    const EstimatorImage est = estimators_from_statistics(planes.view(), TestDomain::BoxCox);
+    std::vector<float> mean(3 * npix), effective(npix);
+    std::vector<Plane> out;
+    for (int c = 0; c < 3; ++c)
+        out.push_back(dense_plane(mean.data() + c * npix, w));
+    FilterDiagnostics diagnostics;
+    diagnostics.effective_samples = dense_plane(effective.data(), w);
+    filter(est, {}, options, out, diagnostics, threads);
+
+    std::vector<float> r(npix, 0.f);
+    for (std::size_t i = 0; i < npix; ++i) {
+        const double n = planes.count[i];
+        if (!(n > 0) || !(effective[i] > 0))
+            continue;
+        const double gain = std::max(1.0, double(effective[i]) / n);
+        double worst = 0;
+        for (int c = 0; c < 3; ++c) {
+            const double m = mean[c * npix + i], s2 = planes.variance[c * npix + i];
+            worst = std::max(worst, s2 / (gain * (m * m + kRelMseEpsilon)));
+        }
+        r[i] = std::isfinite(worst) ? float(worst) : 0.f;
+    }
+    // The largest of each 3×3 block (clipped at the borders).
+    std::vector<float> rows(npix), dilated(npix);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            float m = 0;
+            for (int dx = std::max(0, x - 1); dx <= std::min(w - 1, x + 1); ++dx)
+                m = std::max(m, r[std::size_t(y) * w + dx]);
+            rows[std::size_t(y) * w + x] = m;
+        }
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            float m = 0;
+            for (int dy = std::max(0, y - 1); dy <= std::min(h - 1, y + 1); ++dy)
+                m = std::max(m, rows[std::size_t(dy) * w + x]);
+            dilated[std::size_t(y) * w + x] = m;
+        }
+    return dilated;
+}
+
+SampleAllocation allocate_samples(const std::vector<float>& relative_variance,
+                                  const StatisticsImage<3>& stats, int spp,
+                                  const AdaptiveSettings& settings)
+{
+    const std::size_t npix = relative_variance.size();
+    const auto& pixels = stats.accumulators();
+    const Bounds b = bounds_for(spp, settings);
+    SampleAllocation alloc;
+    alloc.counts.assign(npix, 0);
+
+    // The pixels still sampled, and the budget they share.
+    std::vector<char> active(npix, 0);
+    std::size_t n_active = 0;
+    for (std::size_t i = 0; i < npix; ++i) {
+        active[i] = !converged(relative_variance[i], pixels[i].n, settings);
+        n_active += std::size_t(active[i]);
+    }
+    alloc.converged = npix - n_active;
+    if (n_active == 0)
+        return alloc;
+    const double budget = double(spp) * double(n_active);
+
+    // Each count in proportion to sqrt(r) (the total n + a = c·sqrt(r)), within the bounds;
+    // the total is monotone in c, so bisection finds the c that spends the budget.
+    auto share = [&](std::size_t i, double c) {
+        return std::clamp(c * std::sqrt(double(relative_variance[i])) - pixels[i].n, b.lo, b.hi);
+    };
+    auto spent = [&](double c) {
+        double sum = 0;
+        for (std::size_t i = 0; i < npix; ++i)
+            if (active[i])
+                sum += share(i, c);
+        return sum;
+    };
+    double c_hi = 0;
+    for (std::size_t i = 0; i < npix; ++i)
+        if (active[i] && relative_variance[i] > 0)
+            c_hi = std::max(c_hi, (pixels[i].n + b.hi) / std::sqrt(double(relative_variance[i])));
+    double c = c_hi;
+    if (spent(c_hi) > budget) {
+        double c_lo = 0;
+        for (int k = 0; k < 60; ++k) {
+            const double mid = 0.5 * (c_lo + c_hi);
+            (spent(mid) > budget ? c_hi : c_lo) = mid;
+        }
+        c = c_lo;
+    }
+    // Whole samples: round the running sum, so every count is within one of its share and
+    // never outside the (whole-number) bounds.
+    double running = 0;
+    std::uint64_t emitted = 0;
+    for (std::size_t i = 0; i < npix; ++i) {
+        if (!active[i])
+            continue;
+        running += share(i, c);
+        const auto upto = std::uint64_t(std::llround(running));
+        alloc.counts[i] = std::uint32_t(upto - emitted);
+        emitted = upto;
+    }
+    alloc.total = emitted;
+    return alloc;
+}
+
+}  // namespace statmc::render
