@@ -85,7 +85,7 @@ int main(int argc, char** argv)
     CLI::App app{
         "bench_sampling: per-iteration cost, relative variance and efficiency of statmc-render's "
         "sampling (seed C.2), appended to a CSV"};
-    std::string scene_path, reference_path, csv_path, label;
+    std::string scene_path, reference_path, csv_path, label, breakdown_path;
     int width = 0, height = 0, iterations = 16, spp = 4, runs = 4, seed = 1, threads = 0,
         progressive = 0;
     double budget = 0;
@@ -110,6 +110,10 @@ int main(int argc, char** argv)
                    "stop a run after the iteration that reaches this many CPU "
                    "seconds (0 = run all iterations)")
         ->capture_default_str();
+    app.add_option("--breakdown", breakdown_path,
+                   "CSV to append one row per run to: where the render's time went (Embree "
+                   "closest-hit and shadow-ray queries, per-bounce statistics, the rest of the "
+                   "tiles' time, denoising the estimates), from time stamp counters");
     add_sampling_options(app, sampling);
     CLI11_PARSE(app, argc, argv);
 
@@ -118,7 +122,8 @@ int main(int argc, char** argv)
         width = ref.width;
         height = ref.height;
         const SceneDescription desc = parse_scene_file(scene_path);
-        const Scene scene(desc);  // built once: BVH construction is not part of the cost
+        Scene scene(desc);  // built once: BVH construction is not part of the cost
+        scene.enable_profiling(!breakdown_path.empty());
         const Camera camera(desc.camera, width, height);
         RenderSettings rs;
         rs.width = width;
@@ -142,6 +147,19 @@ int main(int argc, char** argv)
                               "seconds,elapsed,cpu_elapsed,cost,rel_var,"
                               "efficiency,relmse,relmse_trimmed\n");
 
+        std::FILE* breakdown = nullptr;
+        if (!breakdown_path.empty()) {
+            const bool new_file = !std::filesystem::exists(breakdown_path) ||
+                                  std::filesystem::file_size(breakdown_path) == 0;
+            breakdown = std::fopen(breakdown_path.c_str(), "a");
+            if (!breakdown)
+                throw std::runtime_error(breakdown_path + ": cannot open");
+            if (new_file)
+                std::fprintf(breakdown,
+                             "label,run,samples,rays,shadow_rays,tile_cycles,trace_cycles,"
+                             "shadow_cycles,bounce_cycles,denoise_seconds,seconds\n");
+        }
+
         for (int run = 0; run < runs; ++run) {
             rs.seed = std::uint64_t(seed + run);
             Film film(width, height, bounce_layout_for(rs.integrator));
@@ -150,10 +168,13 @@ int main(int argc, char** argv)
             std::vector<double> errors;
             double previous_n = 0, elapsed = 0, cpu_elapsed = 0;
             std::atomic<bool> stop{false};
+            double denoise_total = 0;
+            const Scene::TraversalCounters before = scene.traversal_counters();
             auto t0 = std::chrono::steady_clock::now();
             double cpu0 = cpu_seconds();
             auto measure = [&](int it, const Film& f, const IterationStats& is) {
                 const int k_spp = is.spp;  // this iteration's samples per pixel
+                denoise_total += is.denoise_seconds;
                 const double seconds =
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
                 const double cpu = cpu_seconds() - cpu0;
@@ -198,11 +219,25 @@ int main(int argc, char** argv)
                 t0 = std::chrono::steady_clock::now();  // metrics excluded
                 cpu0 = cpu_seconds();
             };
-            render(scene, camera, rs, film, &stop, measure);
+            const RenderStats stats = render(scene, camera, rs, film, &stop, measure);
+            if (breakdown) {
+                const Scene::TraversalCounters after = scene.traversal_counters();
+                const std::uint64_t shadow = after.shadow_cycles - before.shadow_cycles;
+                std::fprintf(breakdown, "%s,%d,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%.6f,%.6f\n",
+                             label.c_str(), run, (unsigned long long)stats.samples,
+                             (unsigned long long)(after.rays - before.rays),
+                             (unsigned long long)(after.shadow_rays - before.shadow_rays),
+                             (unsigned long long)stats.tile_cycles,
+                             (unsigned long long)(after.cycles - before.cycles - shadow),
+                             (unsigned long long)shadow, (unsigned long long)stats.bounce_cycles,
+                             denoise_total, stats.seconds);
+            }
             std::fprintf(stderr, "%s run %d: %.0f spp in %.2f s (%.2f CPU s)\n", label.c_str(), run,
                          previous_n, elapsed, cpu_elapsed);
         }
         std::fclose(csv);
+        if (breakdown)
+            std::fclose(breakdown);
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bench_sampling: error: %s\n", e.what());

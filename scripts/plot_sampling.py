@@ -174,6 +174,71 @@ def progressive(csv_dir, name, title, baseline, other):
           "(%s: %.0f)\n" % (other, t_o / t_b, e_o / e_b, baseline, t_b, spp_o * t_b / t_o, baseline, spp_b))
 
 
+def mis_sweep(csv_dir, img_dir):
+    """Seed Fig. S3: SMIS with 1..8 tracked vertices against standard MIS (progressive)."""
+    data = read(os.path.join(csv_dir, "mis_sweep.csv"))
+    standard = per_iteration(read(os.path.join(csv_dir, "mis_progressive.csv"))["standard"])
+    s_eff = summary(standard, 1)["efficiency"]
+    labels = sorted(data, key=lambda s: int(s[4:]))
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.2))
+    cmap = plt.get_cmap("viridis")
+    print("### SMIS tracked-bounce sweep (Veach MIS, progressive to 512 spp, 2 runs each)\n")
+    print("| tracked vertices | CPU time [s] | relMSE | trimmed relMSE | trimmed relMSE x time "
+          "| mean efficiency / standard's (iterations 2..) |")
+    print("|---|---|---|---|---|---|")
+    ratios = []
+    for i, label in enumerate(labels):
+        its = per_iteration(data[label])
+        axes[0].loglog([m["cpu_elapsed"] for m in its], [m["relmse_trimmed"] for m in its],
+                       color=cmap(i / max(1, len(labels) - 1)), label=label[4:])
+        last = its[-1]
+        ratio = summary(its, 1)["efficiency"] / s_eff
+        ratios.append((int(label[4:]), ratio))
+        print("| %s | %.2f | %.4g | %.4g | %.4g | %.2f |" % (label[4:], last["cpu_elapsed"], last["relmse"],
+                                                          last["relmse_trimmed"],
+                                                          last["relmse_trimmed"] * last["cpu_elapsed"], ratio))
+    last = standard[-1]
+    axes[0].loglog([m["cpu_elapsed"] for m in standard], [m["relmse_trimmed"] for m in standard], "k--",
+                   label="standard")
+    print("| standard MIS | %.2f | %.4g | %.4g | %.4g | 1 |\n" % (
+        last["cpu_elapsed"], last["relmse"], last["relmse_trimmed"], last["relmse_trimmed"] * last["cpu_elapsed"]))
+    axes[0].set_xlabel("CPU time [s]", fontsize=8)
+    axes[0].set_ylabel("relMSE (0.1% largest errors dropped)", fontsize=8)
+    axes[0].set_title("error vs time", fontsize=9)
+    axes[0].legend(fontsize=6, ncol=3, title="tracked", title_fontsize=6)
+    axes[1].plot([p[0] for p in ratios], [p[1] for p in ratios], "o-")
+    axes[1].axhline(1, color="k", ls="--", label="standard MIS")
+    axes[1].set_xlabel("tracked vertices", fontsize=8)
+    axes[1].set_title("mean efficiency relative to standard MIS", fontsize=9)
+    axes[1].legend(fontsize=7)
+    for ax in axes:
+        ax.tick_params(labelsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(img_dir, "sampling_mis_sweep.png"), dpi=80)
+
+
+def breakdown(csv_dir, name, title):
+    """Where a configuration's render time goes, per camera sample, from the time stamp
+    counters of bench_sampling --breakdown (averaged over runs)."""
+    path = os.path.join(csv_dir, name)
+    if not os.path.exists(path):
+        return
+    data = read(path)
+    print("### %s\n" % title)
+    print("| config | rays / sample | shadow rays / sample | cycles / sample: closest hit | shadow rays "
+          "| per-bounce statistics | shading, sampling, film | all | denoising the estimates, share of wall time |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for label, rows in data.items():
+        tot = {k: sum(r[k] for r in rows) for k in rows[0] if k not in ("label", "run")}
+        n = tot["samples"]
+        rest = tot["tile_cycles"] - tot["trace_cycles"] - tot["shadow_cycles"] - tot["bounce_cycles"]
+        print("| %s | %.2f | %.2f | %.0f | %.0f | %.0f | %.0f | %.0f | %.1f%% |" % (
+            label, (tot["rays"] - tot["shadow_rays"]) / n, tot["shadow_rays"] / n, tot["trace_cycles"] / n,
+            tot["shadow_cycles"] / n, tot["bounce_cycles"] / n, rest / n, tot["tile_cycles"] / n,
+            100 * tot["denoise_seconds"] / tot["seconds"]))
+    print()
+
+
 def main():
     csv_dir, img_dir = sys.argv[1], sys.argv[2]
     os.makedirs(img_dir, exist_ok=True)
@@ -183,6 +248,24 @@ def main():
     progressive(csv_dir, "mis_progressive.csv", "Veach MIS, progressive schedule to 512 spp", "standard",
                 "selective")
     mis(csv_dir, img_dir)
+    mis_sweep(csv_dir, img_dir)
+    breakdown(csv_dir, "ajar_breakdown.csv", "Where the time goes: Veach Ajar, 160x90, 32 x 4 spp")
+    breakdown(csv_dir, "big_breakdown.csv", "Where the time goes at 640x360: Veach Ajar (32 x 4 spp) "
+              "and Veach MIS (progressive to 128 spp)")
+    big = os.path.join(csv_dir, "big_efficiency.csv")
+    if os.path.exists(big):
+        its = {k: per_iteration(v) for k, v in read(big).items()}
+        print("### Veach Ajar at 640x360: ACRR vs classic RR (%d runs)\n" % its["classic"][0]["runs"])
+        print("| averaged over | cost ratio | rel. variance ratio (classic / ACRR) | efficiency ratio |")
+        print("|---|---|---|---|")
+        for first, what in ((0, "all iterations"), (1, "iterations 2..")):
+            c, a = summary(its["classic"], first), summary(its["acrr"], first)
+            print("| %s | x%.2f | ÷%.2f | x%.2f |" % (what, a["cost"] / c["cost"], c["rel_var"] / a["rel_var"],
+                                                     a["efficiency"] / c["efficiency"]))
+        print()
+    if os.path.exists(os.path.join(csv_dir, "big_mis.csv")):
+        progressive(csv_dir, "big_mis.csv", "Veach MIS at 640x360, progressive schedule to 128 spp", "standard",
+                    "selective")
 
 
 if __name__ == "__main__":

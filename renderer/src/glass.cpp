@@ -24,7 +24,7 @@ std::optional<BsdfSample> GlassLobe::sample(Vec3 wo, float, float, float uc) con
     const float cos_t = std::sqrt(1 - sin2_t);
     const Vec3 n = entering ? Vec3{0, 0, 1} : Vec3{0, 0, -1};
     const Vec3 wi = normalize(-wo * eta + n * (eta * cos_i - cos_t));
-    return BsdfSample{wi, kt * (eta * eta), 1 - F, true};
+    return BsdfSample{wi, kt * (eta * eta), 1 - F, true, eta * eta};
 }
 
 }  // namespace statmc::render

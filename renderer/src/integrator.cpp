@@ -7,13 +7,14 @@
 
 namespace statmc::render {
 
-float PathIntegrator::survival(int bounce, const Rgb& beta, const PixelEstimates* estimates) const
+float PathIntegrator::survival(int bounce, const Rgb& beta, const Rgb& rr_beta,
+                               const PixelEstimates* estimates) const
 {
     if (settings_.roulette.mode == RouletteMode::Acrr && estimates && estimates->has_luminance())
         if (const auto p = acrr_survival(beta.max_component(), estimates->luminance(bounce + 1),
                                          estimates->luminance(0)))
             return *p;
-    return classic_survival(beta);
+    return classic_survival(rr_beta);
 }
 
 TechniqueChoice PathIntegrator::techniques(int bounce, const PixelEstimates* estimates) const
@@ -42,6 +43,7 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
     float bsdf_pdf = 0;           // solid-angle pdf of the BSDF sample that produced `ray`
     TechniqueChoice prev_choice;  // the techniques of the vertex that sampled `ray`
     float roulette_weight = 1;    // Π 1/p so far, for the record
+    float eta_scale = 1;          // 1 / Π radiance_scale: β · eta_scale is pbrt-v3's rrBeta
     Vec3 prev_p;
     const Lights& lights = scene_.lights();
 
@@ -121,13 +123,14 @@ Rgb PathIntegrator::radiance(const Ray& camera_ray, Sampler& sampler, GuideSampl
         if (!bs || bs->weight.is_black())
             break;
         beta *= bs->weight;
+        eta_scale /= bs->radiance_scale;
         specular_bounce = bs->specular;
         bsdf_pdf = bs->pdf;
         prev_p = hit->p;
         prev_choice = choice;
 
         if (bounce >= settings_.roulette.start_bounce) {
-            const float p = survival(bounce, beta, estimates);
+            const float p = survival(bounce, beta, beta * eta_scale, estimates);
             if (p < 1.f) {
                 if (sampler.get1d() >= p)
                     break;

@@ -152,6 +152,8 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
     const bool in_passes = settings.checkpoint_seconds > 0;
     // Estimates steer sampling only from the second iteration on (§7, §8).
     std::optional<BounceEstimates> estimates;
+    const bool profiling = scene.profiling();
+    RenderStats rs;
 
     // Samples [first, first + spp) of every pixel, tile by tile; with `counts` (adaptive
     // sampling), pixel p's next counts[p] samples instead, its stream carrying on from the
@@ -159,7 +161,7 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
     // is set. Returns the samples taken.
     auto render_pass = [&](std::uint64_t first, int spp, const std::vector<std::uint32_t>* counts,
                            bool skippable, std::uint64_t& cycle_sum) {
-        std::atomic<std::uint64_t> samples{0}, cycles{0};
+        std::atomic<std::uint64_t> samples{0}, cycles{0}, bounce_cycles{0};
         tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
             if (skippable && cancel && cancel->load())
                 return;
@@ -174,7 +176,7 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
             PathRecord record;
             std::vector<float> bounce_values(
                 film.bounces ? std::size_t(film.bounces->layout().quantities()) : 0);
-            std::uint64_t n = 0;
+            std::uint64_t n = 0, bounce_cycles_local = 0;
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
                     const std::size_t pixel = std::size_t(y) * settings.width + x;
@@ -197,8 +199,11 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
                         const float value[3] = {L.r, L.g, L.b};
                         film.stats.add(x, y, value, jx, jy);
                         if (film.bounces) {
+                            const std::uint64_t b0 = profiling ? __rdtsc() : 0;
                             bounce_sample(record, film.bounces->layout(), bounce_values.data());
                             film.bounces->add(x, y, bounce_values.data());
+                            if (profiling)
+                                bounce_cycles_local += __rdtsc() - b0;
                         }
                         for (int c = 0; c < 3; ++c) {
                             film.albedo_sum[c * npix + pixel] += guide.albedo[c];
@@ -212,13 +217,14 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
                 }
             samples += n;
             cycles += __rdtsc() - t0;
+            bounce_cycles += bounce_cycles_local;
             progress.advance(n);
         });
         cycle_sum += cycles.load();
+        rs.bounce_cycles += bounce_cycles.load();
         return samples.load();
     };
 
-    RenderStats rs;
     auto last_checkpoint = Clock::now();
     std::uint64_t checkpointed = settings.samples_done, iteration_begin = 0;
     double samples_per_second = 0;
@@ -267,8 +273,7 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
             allocation = allocate_samples(
                 relative_variance_map(film.stats, adaptive.filter, settings.threads), film.stats,
                 spp, adaptive);
-            is.denoise_seconds +=
-                std::chrono::duration<double>(Clock::now() - start_map).count();
+            is.denoise_seconds += std::chrono::duration<double>(Clock::now() - start_map).count();
             is.converged_pixels = allocation->converged;
             if (allocation->total == 0) {  // every pixel met the noise threshold
                 rs.converged = true;

@@ -7,7 +7,10 @@ namespace statmc::render {
 
 float classic_survival(const Rgb& beta)
 {
-    return 1.f - std::max(0.05f, 1.f - beta.max_component());
+    const float m = beta.max_component();
+    if (!(m < 1.f))  // pbrt-v3's rrThreshold: no roulette at full throughput
+        return 1.f;
+    return 1.f - std::max(0.05f, 1.f - m);
 }
 
 std::optional<float> acrr_survival(float beta_max, float next_estimate, float pixel_estimate)

@@ -153,6 +153,8 @@ Scene::TraversalCounters Scene::traversal_counters() const
     for (const TraversalCounters& c : counters_) {
         total.cycles += c.cycles;
         total.rays += c.rays;
+        total.shadow_cycles += c.shadow_cycles;
+        total.shadow_rays += c.shadow_rays;
     }
     return total;
 }
@@ -269,8 +271,11 @@ bool Scene::occluded(Vec3 origin, Vec3 direction, float tmax) const
         const std::uint64_t t0 = __rdtsc();
         rtcOccluded1(embree_->scene, &ctx, &ray);
         auto& c = counters_.local();
-        c.cycles += __rdtsc() - t0;
+        const std::uint64_t dt = __rdtsc() - t0;
+        c.cycles += dt;
+        c.shadow_cycles += dt;
         ++c.rays;
+        ++c.shadow_rays;
     } else {
         rtcOccluded1(embree_->scene, &ctx, &ray);
     }

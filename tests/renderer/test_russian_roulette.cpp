@@ -26,7 +26,10 @@ TEST(RussianRoulette, ClassicIsPbrtV3)
 {
     EXPECT_FLOAT_EQ(classic_survival(Rgb{0.5f, 0.2f, 0.1f}), 0.5f);
     EXPECT_NEAR(classic_survival(Rgb{0.01f}), 0.01f, 1e-7f);
-    EXPECT_FLOAT_EQ(classic_survival(Rgb{3.f}), 0.95f);  // q never below 0.05
+    EXPECT_FLOAT_EQ(classic_survival(Rgb{0.99f}), 0.95f);  // q never below 0.05 ...
+    // ... but pbrt-v3 (rrThreshold 1) rolls no dice at full throughput.
+    EXPECT_FLOAT_EQ(classic_survival(Rgb{1.f}), 1.f);
+    EXPECT_FLOAT_EQ(classic_survival(Rgb{3.f, 0.1f, 0.1f}), 1.f);
 }
 
 TEST(RussianRoulette, AcrrSurvivalFollowsTheApproximateContribution)

@@ -18,6 +18,9 @@ struct BsdfSample {
     Rgb weight;
     float pdf = 0;
     bool specular = false;
+    /// The factor by which `weight` scales radiance crossing a refracting boundary
+    /// ((η_i/η_t)², 1 elsewhere): classic roulette factors it out, as pbrt-v3's etaScale does.
+    float radiance_scale = 1;
 };
 
 /// Samples the cosine-weighted hemisphere around +z (pdf = cos θ / π).

@@ -79,7 +79,9 @@ public:
                  const PixelEstimates* estimates = nullptr) const;
 
 private:
-    float survival(int bounce, const Rgb& beta, const PixelEstimates* estimates) const;
+    /// `rr_beta` is β with refraction's radiance scaling factored out (classic roulette's).
+    float survival(int bounce, const Rgb& beta, const Rgb& rr_beta,
+                   const PixelEstimates* estimates) const;
     TechniqueChoice techniques(int bounce, const PixelEstimates* estimates) const;
 
     const Scene& scene_;

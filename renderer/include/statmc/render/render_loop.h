@@ -83,6 +83,9 @@ struct RenderStats {
     bool converged = false;  ///< adaptive sampling stopped early: every pixel met the threshold
     std::uint64_t samples = 0;
     std::uint64_t tile_cycles = 0;  ///< time stamp counter cycles inside tiles, all threads
+    /// Of tile_cycles, those spent turning samples into per-bounce quantities and adding
+    /// them to their statistics (ACRR/SMIS); counted when the scene profiles.
+    std::uint64_t bounce_cycles = 0;
 };
 
 /// Runs after an iteration with the film so far and what the iteration cost.

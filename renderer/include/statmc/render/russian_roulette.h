@@ -29,7 +29,9 @@ struct RouletteSettings {
 /// The smallest survival probability ACRR gives (see the file comment).
 inline constexpr float kMinSurvival = 0.05f;
 
-/// pbrt-v3: terminate with q = max(0.05, 1 − max β), so p = 1 − q ∈ [β, 0.95] for β > 0.
+/// pbrt-v3 (path.cpp, rrThreshold 1): while max β < 1, terminate with q = max(0.05, 1 − max β),
+/// so p = 1 − q = min(max β, 0.95); at max β ≥ 1 the path always survives (p = 1). β is the
+/// throughput with refraction's radiance scaling factored out (pbrt-v3's rrBeta).
 float classic_survival(const Rgb& beta);
 
 /// ACRR's survival probability after sampling the BSDF at a vertex: s = max β · L̂_next /

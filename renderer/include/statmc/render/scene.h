@@ -52,10 +52,13 @@ public:
     /// summed over threads (for --profile: traversal vs shading). Off by default, since
     /// reading the counter around every ray costs a little.
     struct TraversalCounters {
-        std::uint64_t cycles = 0;
-        std::uint64_t rays = 0;
+        std::uint64_t cycles = 0;         ///< all queries
+        std::uint64_t rays = 0;           ///< all queries
+        std::uint64_t shadow_cycles = 0;  ///< the occlusion (shadow ray) queries among them
+        std::uint64_t shadow_rays = 0;
     };
     void enable_profiling(bool on) { profiling_ = on; }
+    bool profiling() const { return profiling_; }
     TraversalCounters traversal_counters() const;
 
 private:
