@@ -134,7 +134,7 @@ int main(int argc, char** argv)
             rs.schedule.assign(std::size_t(iterations), spp);
         rs.threads = threads;
         rs.integrator.maxdepth = desc.maxdepth;
-        sampling.apply(rs.integrator);
+        sampling.apply(rs);
         const std::size_t npix = std::size_t(width) * height;
 
         const bool fresh =

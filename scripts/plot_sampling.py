@@ -82,16 +82,17 @@ def ajar(csv_dir, img_dir):
     return its
 
 
-def sweep(csv_dir, img_dir, ajar_its):
-    data = read(os.path.join(csv_dir, "ajar_sweep.csv"))
+def sweep(csv_dir, img_dir, name, baseline, baseline_label, first, what, image, heading):
+    """A tracked-bounce sweep (seed Figs. S1, S3): error against CPU time per number tracked,
+    and the mean efficiency (iterations `first`..) relative to `baseline`'s."""
+    data = read(os.path.join(csv_dir, name))
     labels = sorted(data, key=lambda s: int(s[4:]))
-    c = ajar_its["classic"]
-    c_eff = summary(c)["efficiency"]
+    b_eff = summary(baseline, first)["efficiency"]
     fig, axes = plt.subplots(1, 2, figsize=(9, 3.2))
     cmap = plt.get_cmap("viridis")
-    print("### Tracked-bounce sweep (Veach Ajar, ACRR, 2 runs each)\n")
-    print("| tracked bounces | CPU time for 128 spp [s] | relMSE | trimmed relMSE | trimmed relMSE x time "
-          "| mean efficiency / classic's |")
+    print("### %s\n" % heading)
+    print("| tracked %s | CPU time [s] | relMSE | trimmed relMSE | trimmed relMSE x time "
+          "| mean efficiency / %s's |" % (what, baseline_label))
     print("|---|---|---|---|---|---|")
     ratios = []
     for i, label in enumerate(labels):
@@ -99,27 +100,30 @@ def sweep(csv_dir, img_dir, ajar_its):
         axes[0].loglog([m["cpu_elapsed"] for m in its], [m["relmse_trimmed"] for m in its],
                        color=cmap(i / max(1, len(labels) - 1)), label=label[4:])
         last = its[-1]
-        ratio = summary(its)["efficiency"] / c_eff
+        ratio = summary(its, first)["efficiency"] / b_eff
         ratios.append((int(label[4:]), ratio))
         print("| %s | %.2f | %.4g | %.4g | %.4g | %.2f |" % (label[4:], last["cpu_elapsed"], last["relmse"],
                                                           last["relmse_trimmed"],
                                                           last["relmse_trimmed"] * last["cpu_elapsed"], ratio))
-    axes[0].loglog([m["cpu_elapsed"] for m in c], [m["relmse_trimmed"] for m in c], "k--", label="classic")
-    print("| classic RR (4 runs) | %.2f | %.4g | %.4g | %.4g | 1 |\n" % (
-        c[-1]["cpu_elapsed"], c[-1]["relmse"], c[-1]["relmse_trimmed"], c[-1]["relmse_trimmed"] * c[-1]["cpu_elapsed"]))
+    last = baseline[-1]
+    axes[0].loglog([m["cpu_elapsed"] for m in baseline], [m["relmse_trimmed"] for m in baseline], "k--",
+                   label=baseline_label)
+    print("| %s (%d runs) | %.2f | %.4g | %.4g | %.4g | 1 |\n" % (
+        baseline_label, last["runs"], last["cpu_elapsed"], last["relmse"], last["relmse_trimmed"],
+        last["relmse_trimmed"] * last["cpu_elapsed"]))
     axes[0].set_xlabel("CPU time [s]", fontsize=8)
     axes[0].set_ylabel("relMSE (0.1% largest errors dropped)", fontsize=8)
     axes[0].set_title("error vs time", fontsize=9)
     axes[0].legend(fontsize=6, ncol=3, title="tracked", title_fontsize=6)
     axes[1].plot([p[0] for p in ratios], [p[1] for p in ratios], "o-")
-    axes[1].axhline(1, color="k", ls="--", label="classic")
-    axes[1].set_xlabel("tracked bounces", fontsize=8)
-    axes[1].set_title("mean efficiency relative to classic RR", fontsize=9)
+    axes[1].axhline(1, color="k", ls="--", label=baseline_label)
+    axes[1].set_xlabel("tracked " + what, fontsize=8)
+    axes[1].set_title("mean efficiency relative to " + baseline_label, fontsize=9)
     axes[1].legend(fontsize=7)
     for ax in axes:
         ax.tick_params(labelsize=7)
     fig.tight_layout()
-    fig.savefig(os.path.join(img_dir, "sampling_bounce_sweep.png"), dpi=80)
+    fig.savefig(os.path.join(img_dir, image), dpi=80)
 
 
 def mis(csv_dir, img_dir):
@@ -174,49 +178,6 @@ def progressive(csv_dir, name, title, baseline, other):
           "(%s: %.0f)\n" % (other, t_o / t_b, e_o / e_b, baseline, t_b, spp_o * t_b / t_o, baseline, spp_b))
 
 
-def mis_sweep(csv_dir, img_dir):
-    """Seed Fig. S3: SMIS with 1..8 tracked vertices against standard MIS (progressive)."""
-    data = read(os.path.join(csv_dir, "mis_sweep.csv"))
-    standard = per_iteration(read(os.path.join(csv_dir, "mis_progressive.csv"))["standard"])
-    s_eff = summary(standard, 1)["efficiency"]
-    labels = sorted(data, key=lambda s: int(s[4:]))
-    fig, axes = plt.subplots(1, 2, figsize=(9, 3.2))
-    cmap = plt.get_cmap("viridis")
-    print("### SMIS tracked-bounce sweep (Veach MIS, progressive to 512 spp, 2 runs each)\n")
-    print("| tracked vertices | CPU time [s] | relMSE | trimmed relMSE | trimmed relMSE x time "
-          "| mean efficiency / standard's (iterations 2..) |")
-    print("|---|---|---|---|---|---|")
-    ratios = []
-    for i, label in enumerate(labels):
-        its = per_iteration(data[label])
-        axes[0].loglog([m["cpu_elapsed"] for m in its], [m["relmse_trimmed"] for m in its],
-                       color=cmap(i / max(1, len(labels) - 1)), label=label[4:])
-        last = its[-1]
-        ratio = summary(its, 1)["efficiency"] / s_eff
-        ratios.append((int(label[4:]), ratio))
-        print("| %s | %.2f | %.4g | %.4g | %.4g | %.2f |" % (label[4:], last["cpu_elapsed"], last["relmse"],
-                                                          last["relmse_trimmed"],
-                                                          last["relmse_trimmed"] * last["cpu_elapsed"], ratio))
-    last = standard[-1]
-    axes[0].loglog([m["cpu_elapsed"] for m in standard], [m["relmse_trimmed"] for m in standard], "k--",
-                   label="standard")
-    print("| standard MIS | %.2f | %.4g | %.4g | %.4g | 1 |\n" % (
-        last["cpu_elapsed"], last["relmse"], last["relmse_trimmed"], last["relmse_trimmed"] * last["cpu_elapsed"]))
-    axes[0].set_xlabel("CPU time [s]", fontsize=8)
-    axes[0].set_ylabel("relMSE (0.1% largest errors dropped)", fontsize=8)
-    axes[0].set_title("error vs time", fontsize=9)
-    axes[0].legend(fontsize=6, ncol=3, title="tracked", title_fontsize=6)
-    axes[1].plot([p[0] for p in ratios], [p[1] for p in ratios], "o-")
-    axes[1].axhline(1, color="k", ls="--", label="standard MIS")
-    axes[1].set_xlabel("tracked vertices", fontsize=8)
-    axes[1].set_title("mean efficiency relative to standard MIS", fontsize=9)
-    axes[1].legend(fontsize=7)
-    for ax in axes:
-        ax.tick_params(labelsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(img_dir, "sampling_mis_sweep.png"), dpi=80)
-
-
 def breakdown(csv_dir, name, title):
     """Where a configuration's render time goes, per camera sample, from the time stamp
     counters of bench_sampling --breakdown (averaged over runs)."""
@@ -244,11 +205,14 @@ def main():
     os.makedirs(img_dir, exist_ok=True)
     its = ajar(csv_dir, img_dir)
     progressive(csv_dir, "ajar_progressive.csv", "Veach Ajar, progressive schedule to 256 spp", "classic", "acrr")
-    sweep(csv_dir, img_dir, its)
+    sweep(csv_dir, img_dir, "ajar_sweep.csv", its["classic"], "classic RR", 0, "bounces",
+          "sampling_bounce_sweep.png", "Tracked-bounce sweep (Veach Ajar, ACRR, 32 x 4 spp, 2 runs each)")
     progressive(csv_dir, "mis_progressive.csv", "Veach MIS, progressive schedule to 512 spp", "standard",
                 "selective")
     mis(csv_dir, img_dir)
-    mis_sweep(csv_dir, img_dir)
+    standard = per_iteration(read(os.path.join(csv_dir, "mis_progressive.csv"))["standard"])
+    sweep(csv_dir, img_dir, "mis_sweep.csv", standard, "standard MIS", 1, "vertices", "sampling_mis_sweep.png",
+          "SMIS tracked-vertex sweep (Veach MIS, progressive to 512 spp, 2 runs each; efficiency from iteration 2)")
     breakdown(csv_dir, "ajar_breakdown.csv", "Where the time goes: Veach Ajar, 160x90, 32 x 4 spp")
     breakdown(csv_dir, "big_breakdown.csv", "Where the time goes at 640x360: Veach Ajar (32 x 4 spp) "
               "and Veach MIS (progressive to 128 spp)")

@@ -81,10 +81,11 @@ std::string settings_text(const statmc::render::RenderSettings& s, bool bounce_l
     const auto& i = s.integrator;
     char text[256];
     std::snprintf(text, sizeof text,
-                  "maxdepth %d, rr %d/%d/%d, mis %d/%d/%g, bounce layers %s, %s, schedule",
+                  "maxdepth %d, rr %d/%d/%d, mis %d/%d/%g, estimates radius %d, bounce layers "
+                  "%s, %s, schedule",
                   i.maxdepth, int(i.roulette.mode), i.roulette.start_bounce,
                   i.roulette.tracked_bounces, int(i.mis.mode), i.mis.tracked_bounces,
-                  double(i.mis.threshold), bounce_layers ? "all" : "used",
+                  double(i.mis.threshold), s.bounce_filter.radius, bounce_layers ? "all" : "used",
                   s.adaptive.text().c_str());
     std::string out = text;
     for (int n : s.schedule)
@@ -282,7 +283,7 @@ int main(int argc, char** argv)
         settings.threads = threads;
         IntegratorSettings& integrator = settings.integrator;
         integrator.maxdepth = maxdepth >= 0 ? maxdepth : desc.maxdepth;
-        sampling.apply(integrator);
+        sampling.apply(settings);
         settings.adaptive = adaptive;
         if (adaptive.enabled &&
             schedule_samples(settings.schedule) <= std::uint64_t(adaptive.min_spp))

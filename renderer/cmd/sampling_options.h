@@ -13,18 +13,22 @@
 
 #include "statmc/render/adaptive_sampling.h"
 #include "statmc/render/integrator.h"
+#include "statmc/render/render_loop.h"
 
 namespace statmc::render {
 
 struct SamplingOptions {
     RouletteSettings roulette;
     MisSettings mis;
+    /// The radius of the filter that denoises the per-bounce estimates ACRR and SMIS steer by.
+    int estimates_radius = RenderSettings{}.bounce_filter.radius;
 
     /// Copies the choices into `settings` (maxdepth is left alone).
-    void apply(IntegratorSettings& settings) const
+    void apply(RenderSettings& settings) const
     {
-        settings.roulette = roulette;
-        settings.mis = mis;
+        settings.integrator.roulette = roulette;
+        settings.integrator.mis = mis;
+        settings.bounce_filter.radius = estimates_radius;
     }
 };
 
@@ -87,6 +91,11 @@ inline void add_sampling_options(CLI::App& app, SamplingOptions& o)
     app.add_option("--mis-threshold", o.mis.threshold, "SMIS: win-share threshold, in [0, 0.5)")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 0.4999));
+    app.add_option("--estimates-radius", o.estimates_radius,
+                   "ACRR/SMIS: radius of the filter that denoises the per-bounce estimates after "
+                   "each iteration (docs/sampling.md)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 64));
 }
 
 /// A finite number ≥ `minimum`, said in words (CLI11's NonNegativeNumber prints the largest

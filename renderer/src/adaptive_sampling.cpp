@@ -65,8 +65,36 @@ std::string AdaptiveSettings::text() const
     return text;
 }
 
-std::vector<float> relative_variance_map(const StatisticsImage<3>& stats,
-                                         const DenoiseOptions& options, int threads)
+namespace {
+
+// The largest of each value and its neighbours at ±`step` along a line of `length` values
+// `step` apart starting at `first` (clipped at the ends).
+void line_max3(const std::vector<float>& in, std::vector<float>& out, std::size_t first,
+               std::size_t step, int length)
+{
+    for (int k = 0; k < length; ++k) {
+        float m = 0;
+        for (int j = std::max(0, k - 1); j <= std::min(length - 1, k + 1); ++j)
+            m = std::max(m, in[first + std::size_t(j) * step]);
+        out[first + std::size_t(k) * step] = m;
+    }
+}
+
+// The largest value of each 3×3 block (clipped at the borders): rows, then columns.
+std::vector<float> block_max(const std::vector<float>& r, int w, int h)
+{
+    std::vector<float> rows(r.size()), out(r.size());
+    for (int y = 0; y < h; ++y)
+        line_max3(r, rows, std::size_t(y) * w, 1, w);
+    for (int x = 0; x < w; ++x)
+        line_max3(rows, out, std::size_t(x), std::size_t(w), h);
+    return out;
+}
+
+}  // namespace
+
+RelativeVariance relative_variance(const StatisticsImage<3>& stats, const DenoiseOptions& options,
+                                   int threads)
 {
     const int w = stats.width(), h = stats.height();
     const std::size_t npix = std::size_t(w) * h;
@@ -80,42 +108,28 @@ std::vector<float> relative_variance_map(const StatisticsImage<3>& stats,
     diagnostics.effective_samples = dense_plane(effective.data(), w);
     filter(est, {}, options, out, diagnostics, threads);
 
-    std::vector<float> r(npix, 0.f);
+    std::vector<float> own(npix, 0.f), denoised(npix, 0.f);
     for (std::size_t i = 0; i < npix; ++i) {
         const double n = planes.count[i];
         if (!(n > 0) || !(effective[i] > 0))
             continue;
-        const double gain = std::max(1.0, double(effective[i]) / n);
         double worst = 0;
         for (int c = 0; c < 3; ++c) {
             const double m = mean[c * npix + i], s2 = planes.variance[c * npix + i];
-            worst = std::max(worst, s2 / (gain * (m * m + kRelMseEpsilon)));
+            worst = std::max(worst, s2 / (m * m + kRelMseEpsilon));
         }
-        r[i] = std::isfinite(worst) ? float(worst) : 0.f;
+        if (!std::isfinite(worst))
+            continue;
+        own[i] = float(worst);
+        denoised[i] = float(worst / std::max(1.0, double(effective[i]) / n));
     }
-    // The largest of each 3×3 block (clipped at the borders).
-    std::vector<float> rows(npix), dilated(npix);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            float m = 0;
-            for (int dx = std::max(0, x - 1); dx <= std::min(w - 1, x + 1); ++dx)
-                m = std::max(m, r[std::size_t(y) * w + dx]);
-            rows[std::size_t(y) * w + x] = m;
-        }
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            float m = 0;
-            for (int dy = std::max(0, y - 1); dy <= std::min(h - 1, y + 1); ++dy)
-                m = std::max(m, rows[std::size_t(dy) * w + x]);
-            dilated[std::size_t(y) * w + x] = m;
-        }
-    return dilated;
+    return {block_max(own, w, h), block_max(denoised, w, h)};
 }
 
-SampleAllocation allocate_samples(const std::vector<float>& relative_variance,
-                                  const StatisticsImage<3>& stats, int spp,
-                                  const AdaptiveSettings& settings)
+SampleAllocation allocate_samples(const RelativeVariance& rv, const StatisticsImage<3>& stats,
+                                  int spp, const AdaptiveSettings& settings)
 {
+    const std::vector<float>& relative_variance = rv.denoised;
     const std::size_t npix = relative_variance.size();
     const auto& pixels = stats.accumulators();
     const Bounds b = bounds_for(spp, settings);
@@ -126,7 +140,7 @@ SampleAllocation allocate_samples(const std::vector<float>& relative_variance,
     std::vector<char> active(npix, 0);
     std::size_t n_active = 0;
     for (std::size_t i = 0; i < npix; ++i) {
-        active[i] = !converged(relative_variance[i], pixels[i].n, settings);
+        active[i] = !converged(rv.own[i], pixels[i].n, settings);
         n_active += std::size_t(active[i]);
     }
     alloc.converged = npix - n_active;

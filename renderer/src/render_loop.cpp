@@ -271,7 +271,7 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
         if (adaptive.enabled && iteration_begin >= std::uint64_t(adaptive.min_spp)) {
             const auto start_map = Clock::now();
             allocation = allocate_samples(
-                relative_variance_map(film.stats, adaptive.filter, settings.threads), film.stats,
+                relative_variance(film.stats, adaptive.filter, settings.threads), film.stats,
                 spp, adaptive);
             is.denoise_seconds += std::chrono::duration<double>(Clock::now() - start_map).count();
             is.converged_pixels = allocation->converged;

@@ -68,7 +68,8 @@ TEST(AdaptiveSampling, AllocationMatchesTheHandSolvedOptimum)
     const auto img = image_with_counts(4, 1, {16, 16, 16, 16});
     AdaptiveSettings s;
     s.enabled = true;
-    const SampleAllocation a = allocate_samples({1.f, 4.f, 16.f, 0.f}, img, 8, s);
+    const std::vector<float> r{1.f, 4.f, 16.f, 0.f};
+    const SampleAllocation a = allocate_samples({r, r}, img, 8, s);
     EXPECT_EQ(a.counts, (std::vector<std::uint32_t>{2, 4, 24, 2}));
     EXPECT_EQ(a.total, 32u);
     EXPECT_EQ(a.converged, 0u);
@@ -90,7 +91,7 @@ TEST(AdaptiveSampling, AllocationIsWithinOnePercentOfTheGreedyOptimum)
     const auto img = image_with_counts(w, h, n);
     AdaptiveSettings s;
     s.enabled = true;
-    const SampleAllocation a = allocate_samples(r, img, spp, s);
+    const SampleAllocation a = allocate_samples({r, r}, img, spp, s);
     const std::uint32_t lo = 2, hi = 64;
     EXPECT_EQ(a.total, std::uint64_t(spp) * n.size());
     EXPECT_EQ(std::accumulate(a.counts.begin(), a.counts.end(), std::uint64_t(0)), a.total);
@@ -121,13 +122,14 @@ TEST(AdaptiveSampling, AllocationIsWithinOnePercentOfTheGreedyOptimum)
 
 TEST(AdaptiveSampling, ConvergedPixelsTakeNothingAndTheBudgetShrinks)
 {
-    // Threshold 0.1 at n = 16: converged when 1.96·sqrt(r/16) ≤ 0.1, i.e. r ≤ 0.0416.
+    // Threshold 0.1 at n = 16: converged when 1.96·sqrt(r/16) ≤ 0.1, i.e. r ≤ 0.0416, for r
+    // of the pixel's own mean; the denoised estimate's r (here larger) only spreads samples.
     const auto img = image_with_counts(3, 1, {16, 16, 8});
     AdaptiveSettings s;
     s.enabled = true;
     s.noise_threshold = 0.1;
     // Pixel 2 is as quiet, but holds fewer samples than min_spp: it may not stop yet.
-    const SampleAllocation a = allocate_samples({0.04f, 0.05f, 0.f}, img, 4, s);
+    const SampleAllocation a = allocate_samples({{0.04f, 0.05f, 0.f}, {1.f, 1.f, 1.f}}, img, 4, s);
     EXPECT_EQ(a.counts[0], 0u);
     EXPECT_EQ(a.converged, 1u);
     EXPECT_EQ(a.total, 8u);  // 4 samples per pixel for the two still sampled
@@ -135,28 +137,38 @@ TEST(AdaptiveSampling, ConvergedPixelsTakeNothingAndTheBudgetShrinks)
     EXPECT_EQ(a.counts[1] + a.counts[2], 8u);
 }
 
-TEST(AdaptiveSampling, RelativeVarianceMapFollowsTheStatisticsAndDilates)
+TEST(AdaptiveSampling, RelativeVarianceFollowsTheStatisticsAndDilates)
 {
-    // A constant image (1, no variance) but one pixel of mean 10 with variance: r is 0 away
-    // from it, and its 3×3 block shares its value. The test tells 10 ± 0.26 from 1, so it
-    // has no members (g = 1) and r = s² / (10² + 0.01).
+    // A constant image (1, no variance) but one pixel with variance: r is 0 away from it,
+    // and its 3×3 block shares its value. With mean 10 ± 0.26 the test tells it from 1, so
+    // it has no members (g = 1) and both maps hold s² / (10² + 0.01); with mean 1 it joins
+    // its neighbours, whose average is 1 and far more precise than its own mean.
     const int w = 9, h = 7;
-    statmc::StatisticsImage<3> img(w, h);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int s = 0; s < 16; ++s) {
-                const float v = (x == 4 && y == 3) ? 9.f + float(s % 2) * 2.f : 1.f;
-                const float rgb[3] = {v, v, v};
-                img.add(x, y, rgb);
+    for (const float centre_mean : {10.f, 1.f}) {
+        statmc::StatisticsImage<3> img(w, h);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                for (int s = 0; s < 16; ++s) {
+                    const float v =
+                        (x == 4 && y == 3) ? centre_mean - 1.f + float(s % 2) * 2.f : 1.f;
+                    const float rgb[3] = {v, v, v};
+                    img.add(x, y, rgb);
+                }
+        const RelativeVariance r = relative_variance(img, {});
+        const double own = (16.0 / 15.0) / (double(centre_mean) * centre_mean + 0.01);
+        EXPECT_NEAR(r.own[3 * w + 4], own, 1e-6 * own) << centre_mean;
+        if (centre_mean == 10.f)
+            EXPECT_EQ(r.denoised[3 * w + 4], r.own[3 * w + 4]);
+        else
+            EXPECT_LT(r.denoised[3 * w + 4], r.own[3 * w + 4] / 4);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = std::size_t(y) * w + x;
+                const bool near = std::abs(x - 4) <= 1 && std::abs(y - 3) <= 1;
+                EXPECT_EQ(r.own[i], near ? r.own[3 * w + 4] : 0.f) << x << "," << y;
+                EXPECT_EQ(r.denoised[i], near ? r.denoised[3 * w + 4] : 0.f) << x << "," << y;
             }
-    const std::vector<float> r = relative_variance_map(img, {});
-    const float centre = r[3 * w + 4];
-    EXPECT_NEAR(centre, (16.0 / 15.0) / (100.0 + 0.01), 1e-7);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const bool near = std::abs(x - 4) <= 1 && std::abs(y - 3) <= 1;
-            EXPECT_EQ(r[std::size_t(y) * w + x], near ? centre : 0.f) << x << "," << y;
-        }
+    }
 }
 
 TEST(AdaptiveSampling, ConvergedRegionsStopWhileTheEmitterEdgeKeepsSampling)

@@ -1,9 +1,9 @@
 // Adaptive sampling (docs/sampling.md, "Adaptive sampling"): after each iteration the
 // film's statistics are denoised, and the next iteration's samples go where the denoised
-// estimate's confidence interval, relative to its value, is widest. A pixel whose interval
-// is narrower than the noise threshold has converged and takes no more samples; every
-// other pixel takes at least a minimum rate, so with threshold 0 every pixel's count grows
-// without bound and the render stays consistent.
+// estimate's confidence interval, relative to its value, is widest. A pixel whose own
+// mean's interval is narrower than the noise threshold has converged and takes no more
+// samples; every other pixel takes at least a minimum rate, so with threshold 0 every
+// pixel's count grows without bound and the render stays consistent.
 #pragma once
 
 #include <cstdint>
@@ -17,8 +17,11 @@ namespace statmc::render {
 
 struct AdaptiveSettings {
     bool enabled = false;
-    /// A pixel has converged when the 95% confidence interval of its denoised estimate is
-    /// narrower than ±this fraction of its value; 0: none converges, samples only move.
+    /// A pixel has converged when the 95% confidence interval of its own mean is narrower
+    /// than ±this fraction of its (denoised) value; 0: none converges, samples only move.
+    /// Its own mean's, not the denoised estimate's: the filter's effective sample count
+    /// leaves out the bias of averaging, and a stop on it was measured overconfident
+    /// (docs/sampling.md).
     double noise_threshold = 0;
     /// Samples per pixel every pixel takes uniformly before adapting, and the fewest a pixel
     /// holds before it may converge: the variance estimates need that many to be trusted.
@@ -44,22 +47,27 @@ struct SampleAllocation {
     std::size_t converged = 0;  ///< pixels that take none: their interval meets the threshold
 };
 
-/// Per pixel, the relative variance of one sample of its denoised estimate,
-///   r = max over channels of s² / (g · (μ̂² + 0.01)),
-/// s² the pixel's sample variance, μ̂ the denoised mean, g = N/n the filter's gain (N its
-/// effective sample count, n the pixel's own), then the largest r of each 3×3 block: a pixel
-/// whose few samples have all missed a rare path borrows its neighbours' variance. The
-/// relative 95% interval of a pixel with n samples is ±1.96·sqrt(r/n). The 0.01 is
-/// relMSE's (docs/evaluation.md), so dark pixels are judged by absolute error.
-std::vector<float> relative_variance_map(const StatisticsImage<3>& stats,
-                                         const DenoiseOptions& filter, int threads = 0);
+/// Per pixel, the relative variance of one sample, r = max over channels of
+/// s² / (μ̂² + 0.01) (s² the pixel's sample variance, μ̂ the denoised mean; relMSE's 0.01,
+/// docs/evaluation.md, so dark pixels are judged by absolute error), for the pixel's own
+/// mean (`own`) and for its denoised estimate (`denoised`: divided by g = N/n ≥ 1, the
+/// filter's gain, N its effective sample count, n the pixel's own). Each map then holds the
+/// largest r of each 3×3 block: a pixel whose few samples have all missed a rare path
+/// borrows its neighbours' variance. The relative 95% interval of n samples is
+/// ±1.96·sqrt(r/n).
+struct RelativeVariance {
+    std::vector<float> own, denoised;
+};
+RelativeVariance relative_variance(const StatisticsImage<3>& stats, const DenoiseOptions& filter,
+                                   int threads = 0);
 
 /// The next iteration's counts: `spp` samples per pixel for every pixel that has not
-/// converged, spread over them so that Σ r/(n + a) is least (each count n + a in proportion to
-/// sqrt(r), the optimum for independent pixels), within [min_rate·spp, max_rate·spp].
+/// converged (by `own`), spread over them so that Σ r/(n + a) is least for r = `denoised`
+/// (each count n + a in proportion to sqrt(r), the optimum for independent pixels), within
+/// [min_rate·spp, max_rate·spp].
 /// Fractions are carried along the scanline, so the counts are deterministic and add up to
 /// the budget unless the bounds leave some of it unspent.
-SampleAllocation allocate_samples(const std::vector<float>& relative_variance,
+SampleAllocation allocate_samples(const RelativeVariance& relative_variance,
                                   const StatisticsImage<3>& stats, int spp,
                                   const AdaptiveSettings& settings);
 
