@@ -85,3 +85,12 @@ for m in standard selective; do
   "$bench" "$mis" --reference "$OUT/mis-big-ref.exr" --csv "$OUT/big_mis.csv" --label "$m" \
     --mis "$m" --progressive-spp 128 --runs 2 --breakdown "$OUT/big_breakdown.csv"
 done
+
+# 6. The per-bounce filter's radius (--estimates-radius; 20 above) at 640x360, 2 runs each.
+rm -f "$OUT/big_radius.csv" "$OUT/big_radius_mis.csv"
+for r in 10 5; do
+  "$bench" "$ajar" --reference "$OUT/ajar-big-ref.exr" --csv "$OUT/big_radius.csv" --label "acrr-r$r" \
+    --rr acrr --rr-start-bounce 0 --iterations 32 --spp-per-iteration 4 --runs 2 --estimates-radius "$r"
+  "$bench" "$mis" --reference "$OUT/mis-big-ref.exr" --csv "$OUT/big_radius_mis.csv" --label "selective-r$r" \
+    --mis selective --progressive-spp 128 --runs 2 --estimates-radius "$r"
+done

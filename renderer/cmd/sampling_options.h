@@ -122,8 +122,8 @@ inline void add_adaptive_options(CLI::App& app, AdaptiveSettings& a)
         "its samples where the denoised estimate is least certain (docs/sampling.md) "
         "[default: off]");
     app.add_option("--noise-threshold", a.noise_threshold,
-                   "adaptive: a pixel stops once the 95% interval of its denoised estimate is "
-                   "within ± this fraction of its value; 0 = none stops, samples only move")
+                   "adaptive: a pixel stops once the 95% interval of its own mean is within "
+                   "± this fraction of its value; 0 = none stops, samples only move")
         ->capture_default_str()
         ->check(number_at_least(0))
         ->needs(flag);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "statmc/core/estimator_image.h"
 #include "statmc/core/filter.h"
@@ -118,8 +119,11 @@ RelativeVariance relative_variance(const StatisticsImage<3>& stats, const Denois
             const double m = mean[c * npix + i], s2 = planes.variance[c * npix + i];
             worst = std::max(worst, s2 / (m * m + kRelMseEpsilon));
         }
-        if (!std::isfinite(worst))
+        if (!(worst < std::numeric_limits<float>::max())) {
+            // Unmeasurable: never converged, and no weight it could spread to the others.
+            own[i] = std::numeric_limits<float>::max();
             continue;
+        }
         own[i] = float(worst);
         denoised[i] = float(worst / std::max(1.0, double(effective[i]) / n));
     }

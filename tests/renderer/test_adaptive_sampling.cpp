@@ -137,6 +137,33 @@ TEST(AdaptiveSampling, ConvergedPixelsTakeNothingAndTheBudgetShrinks)
     EXPECT_EQ(a.counts[1] + a.counts[2], 8u);
 }
 
+TEST(AdaptiveSampling, APixelWhoseVarianceOverflowsNeverConverges)
+{
+    // Samples of 0 and 1e30 (finite, so they count) have a variance beyond float: the pixel
+    // and its block are never taken for converged, and the rest stops as it should.
+    const int w = 5, h = 3;
+    statmc::StatisticsImage<3> img(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int s = 0; s < 16; ++s) {
+                const float v = (x == 0 && y == 1) ? float(s % 2) * 1e30f : 1.f;
+                const float rgb[3] = {v, v, v};
+                img.add(x, y, rgb);
+            }
+    const RelativeVariance r = relative_variance(img, {});
+    AdaptiveSettings s;
+    s.enabled = true;
+    s.noise_threshold = 0.5;
+    const SampleAllocation a = allocate_samples(r, img, 4, s);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const bool near = x <= 1;
+            EXPECT_EQ(a.counts[std::size_t(y) * w + x] > 0, near) << x << "," << y;
+        }
+    // No denoised variance to spread the budget by: each takes the floor rate, one sample.
+    EXPECT_EQ(a.total, 6u);
+}
+
 TEST(AdaptiveSampling, RelativeVarianceFollowsTheStatisticsAndDilates)
 {
     // A constant image (1, no variance) but one pixel with variance: r is 0 away from it,

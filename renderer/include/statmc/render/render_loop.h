@@ -35,6 +35,14 @@ std::vector<int> schedule_for_iterations(int iterations);
 /// them in the EXR).
 BounceLayout bounce_layout_for(const IntegratorSettings& settings, bool record_all = false);
 
+/// The filter that denoises the per-bounce estimates ACRR and SMIS steer by.
+inline DenoiseOptions estimates_filter()
+{
+    DenoiseOptions o = DenoiseOptions::paper();
+    o.radius = 10;
+    return o;
+}
+
 struct RenderSettings {
     int width = 0, height = 0;
     std::vector<int> schedule;  ///< samples per pixel of each iteration
@@ -42,8 +50,9 @@ struct RenderSettings {
     int threads = 0;  ///< 0: all cores
     IntegratorSettings integrator;
     /// How the per-bounce statistics are denoised: the paper's filter, without the firefly
-    /// guard, as ACRR and SMIS were measured (docs/sampling.md).
-    DenoiseOptions bounce_filter = DenoiseOptions::paper();
+    /// guard, at radius 10, where it costs half the time of radius 20 for estimates that
+    /// steer as well (docs/sampling.md, "The per-bounce filter's radius").
+    DenoiseOptions bounce_filter = estimates_filter();
     bool progress = false;
     /// The index of the first sample every pixel's stream draws: a farm task's share of
     /// the frame starts here (docs/farm.md). Sample s of pixel p is the same for any split.
