@@ -200,6 +200,29 @@ def breakdown(csv_dir, name, title):
     print()
 
 
+def radius(csv_dir):
+    """The per-bounce filter's radius, one batch at 640x360 (sampling_bench.sh section 6)."""
+    path = os.path.join(csv_dir, "radius_ajar.csv")
+    if not os.path.exists(path):
+        return
+    ajar_its = {k: per_iteration(v) for k, v in read(path).items()}
+    c = ajar_its["classic"]
+    print("### The per-bounce filter's radius (640x360, one batch, 2 runs each)\n")
+    print("| config | efficiency / classic RR's (all; iterations 2..) | rel. variance ratio | cost ratio |")
+    print("|---|---|---|---|")
+    for label in sorted(k for k in ajar_its if k != "classic"):
+        a, a1 = summary(ajar_its[label]), summary(ajar_its[label], 1)
+        cc, cc1 = summary(c), summary(c, 1)
+        print("| %s | x%.2f; x%.2f | ÷%.2f | x%.2f |" % (label, a["efficiency"] / cc["efficiency"],
+                                                      a1["efficiency"] / cc1["efficiency"],
+                                                      cc["rel_var"] / a["rel_var"], a["cost"] / cc["cost"]))
+    print()
+    breakdown(csv_dir, "radius_breakdown.csv", "The same batch: where the time goes")
+    mis_rows = read(os.path.join(csv_dir, "radius_mis.csv"))
+    for label in sorted(k for k in mis_rows if k != "standard"):
+        progressive(csv_dir, "radius_mis.csv", "The same batch: Veach MIS, " + label, "standard", label)
+
+
 def main():
     csv_dir, img_dir = sys.argv[1], sys.argv[2]
     os.makedirs(img_dir, exist_ok=True)
@@ -216,6 +239,7 @@ def main():
     breakdown(csv_dir, "ajar_breakdown.csv", "Where the time goes: Veach Ajar, 160x90, 32 x 4 spp")
     breakdown(csv_dir, "big_breakdown.csv", "Where the time goes at 640x360: Veach Ajar (32 x 4 spp) "
               "and Veach MIS (progressive to 128 spp)")
+    radius(csv_dir)
     big = os.path.join(csv_dir, "big_efficiency.csv")
     if os.path.exists(big):
         its = {k: per_iteration(v) for k, v in read(big).items()}
