@@ -51,6 +51,18 @@ def summary(its, first=0):
     return {k: mean([m[k] for m in sel]) for k in ("cost", "rel_var", "efficiency")}
 
 
+def ratio_table(its, heading):
+    """ACRR against classic RR: cost, relative variance and efficiency ratios, averaged over
+    all iterations and over those with estimates."""
+    print("### %s (%d runs)\n" % (heading, its["classic"][0]["runs"]))
+    print("| averaged over | cost ratio | rel. variance ratio (classic / ACRR) | efficiency ratio |")
+    print("|---|---|---|---|")
+    for first, what in ((0, "all iterations"), (1, "iterations 2..")):
+        c, a = summary(its["classic"], first), summary(its["acrr"], first)
+        print("| %s | x%.2f | ÷%.2f | x%.2f |" % (what, a["cost"] / c["cost"], c["rel_var"] / a["rel_var"],
+                                                 a["efficiency"] / c["efficiency"]))
+
+
 def ajar(csv_dir, img_dir):
     data = read(os.path.join(csv_dir, "ajar_efficiency.csv"))
     its = {k: per_iteration(v) for k, v in data.items()}
@@ -67,13 +79,7 @@ def ajar(csv_dir, img_dir):
     axes[0].legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(os.path.join(img_dir, "sampling_ajar_efficiency.png"), dpi=80)
-    print("### Veach Ajar: ACRR vs classic RR (%d runs)\n" % its["classic"][0]["runs"])
-    print("| averaged over | cost ratio | rel. variance ratio (classic / ACRR) | efficiency ratio |")
-    print("|---|---|---|---|")
-    for first, what in ((0, "all iterations"), (1, "iterations 2..")):
-        c, a = summary(its["classic"], first), summary(its["acrr"], first)
-        print("| %s | x%.2f | ÷%.2f | x%.2f |" % (what, a["cost"] / c["cost"], c["rel_var"] / a["rel_var"],
-                                                 a["efficiency"] / c["efficiency"]))
+    ratio_table(its, "Veach Ajar: ACRR vs classic RR")
     for label in ("classic", "acrr"):
         s = summary(its[label])
         print("\n%s: cost %.3g s/sample, rel. variance %.3g, efficiency %.3g, final relMSE %.4g in %.2f CPU s"
@@ -242,14 +248,8 @@ def main():
     radius(csv_dir)
     big = os.path.join(csv_dir, "big_efficiency.csv")
     if os.path.exists(big):
-        its = {k: per_iteration(v) for k, v in read(big).items()}
-        print("### Veach Ajar at 640x360: ACRR vs classic RR (%d runs)\n" % its["classic"][0]["runs"])
-        print("| averaged over | cost ratio | rel. variance ratio (classic / ACRR) | efficiency ratio |")
-        print("|---|---|---|---|")
-        for first, what in ((0, "all iterations"), (1, "iterations 2..")):
-            c, a = summary(its["classic"], first), summary(its["acrr"], first)
-            print("| %s | x%.2f | ÷%.2f | x%.2f |" % (what, a["cost"] / c["cost"], c["rel_var"] / a["rel_var"],
-                                                     a["efficiency"] / c["efficiency"]))
+        ratio_table({k: per_iteration(v) for k, v in read(big).items()},
+                    "Veach Ajar at 640x360: ACRR vs classic RR")
         print()
     if os.path.exists(os.path.join(csv_dir, "big_mis.csv")):
         progressive(csv_dir, "big_mis.csv", "Veach MIS at 640x360, progressive schedule to 128 spp", "standard",
