@@ -160,7 +160,7 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
     // samples it holds. A skippable pass leaves out the tiles not yet started once `cancel`
     // is set. Returns the samples taken.
     auto render_pass = [&](std::uint64_t first, int spp, const std::vector<std::uint32_t>* counts,
-                           bool skippable, std::uint64_t& cycle_sum) {
+                           bool skippable) {
         std::atomic<std::uint64_t> samples{0}, cycles{0}, bounce_cycles{0};
         tbb::parallel_for(0, tiles_x * tiles_y, [&](int tile) {
             if (skippable && cancel && cancel->load())
@@ -220,7 +220,7 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
             bounce_cycles += bounce_cycles_local;
             progress.advance(n);
         });
-        cycle_sum += cycles.load();
+        rs.tile_cycles += cycles.load();
         rs.bounce_cycles += bounce_cycles.load();
         return samples.load();
     };
@@ -270,9 +270,9 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
         std::optional<SampleAllocation> allocation;
         if (adaptive.enabled && iteration_begin >= std::uint64_t(adaptive.min_spp)) {
             const auto start_map = Clock::now();
-            allocation = allocate_samples(
-                relative_variance(film.stats, adaptive.filter, settings.threads), film.stats,
-                spp, adaptive);
+            allocation =
+                allocate_samples(relative_variance(film.stats, adaptive.filter, settings.threads),
+                                 film.stats, spp, adaptive);
             is.denoise_seconds += std::chrono::duration<double>(Clock::now() - start_map).count();
             is.converged_pixels = allocation->converged;
             if (allocation->total == 0) {  // every pixel met the noise threshold
@@ -289,9 +289,8 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
                                  : int(iteration_end - next);
             const auto pass_start = Clock::now();
             // A checkpointing render stops only at pass boundaries, with whole passes.
-            const std::uint64_t taken =
-                render_pass(next, pass, allocation ? &allocation->counts : nullptr,
-                            may_stop && !in_passes, rs.tile_cycles);
+            const std::uint64_t taken = render_pass(
+                next, pass, allocation ? &allocation->counts : nullptr, may_stop && !in_passes);
             rs.samples += taken;
             is.samples += taken;
             const double seconds = std::chrono::duration<double>(Clock::now() - pass_start).count();
