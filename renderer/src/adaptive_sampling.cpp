@@ -154,8 +154,11 @@ SampleAllocation allocate_samples(const RelativeVariance& rv, const StatisticsIm
 
     // Each count in proportion to sqrt(r) (the total n + a = c·sqrt(r)), within the bounds;
     // the total is monotone in c, so bisection finds the c that spends the budget.
+    std::vector<double> root(npix);
+    for (std::size_t i = 0; i < npix; ++i)
+        root[i] = std::sqrt(double(relative_variance[i]));
     auto share = [&](std::size_t i, double c) {
-        return std::clamp(c * std::sqrt(double(relative_variance[i])) - pixels[i].n, b.lo, b.hi);
+        return std::clamp(c * root[i] - pixels[i].n, b.lo, b.hi);
     };
     auto spent = [&](double c) {
         double sum = 0;
@@ -166,8 +169,8 @@ SampleAllocation allocate_samples(const RelativeVariance& rv, const StatisticsIm
     };
     double c_hi = 0;
     for (std::size_t i = 0; i < npix; ++i)
-        if (active[i] && relative_variance[i] > 0)
-            c_hi = std::max(c_hi, (pixels[i].n + b.hi) / std::sqrt(double(relative_variance[i])));
+        if (active[i] && root[i] > 0)
+            c_hi = std::max(c_hi, (pixels[i].n + b.hi) / root[i]);
     double c = c_hi;
     if (spent(c_hi) > budget) {
         double c_lo = 0;
