@@ -89,14 +89,37 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
     std::vector<float> out(n * channels);
     LogIntervals log;
     run_with_threads(nthreads, [&] { log = intervals_of(view, d, z); });
-    // The spatial part of w_ij by offset; the guides' part is exp(−|g_i − g_j|²/(2σ²)) per
-    // guide present. Each pair's weight is computed once for all channels.
+    // What the disk loop reads of a neighbour, made once per pixel rather than once per tap:
+    // its s² and whether the moderation may use it.
+    std::vector<double> s2(n * channels);
+    std::vector<char> usable(n * channels);
+    const bool moderate = options.prior_dof > 0;
+    run_with_threads(nthreads, [&] {
+        tbb::parallel_for(0, h, [&](int y) {
+            for (int c = 0; c < channels; ++c)
+                for (int x = 0; x < w; ++x) {
+                    const double count = view.count(x, y);
+                    const std::size_t k = c * n + std::size_t(y) * w + x;
+                    s2[k] = d.s2(c, x, y, count);
+                    usable[k] = moderate && count >= 2 && std::isfinite(s2[k]);
+                }
+        });
+    });
+    // The disk's offsets in raster order, the centre left out, with the spatial part of w_ij;
+    // the guides' part is exp(−|g_i − g_j|²/(2σ²)) per guide present. Each pair's weight is
+    // computed once for all channels.
+    struct Tap {
+        int dx, dy;
+        double spatial;
+    };
+    std::vector<Tap> taps;
     const double falloff = 1.0 / (2.0 * double(options.sigma_spatial) * options.sigma_spatial);
-    std::vector<double> spatial(std::size_t(2 * r + 1) * (2 * r + 1));
     for (int dy = -r; dy <= r; ++dy)
-        for (int dx = -r; dx <= r; ++dx)
-            spatial[std::size_t(dy + r) * (2 * r + 1) + dx + r] =
-                std::exp(-double(dx * dx + dy * dy) * falloff);
+        for (int dx = -r; dx <= r; ++dx) {
+            const int d2 = dx * dx + dy * dy;
+            if (d2 <= r * r && d2 != 0)
+                taps.push_back({dx, dy, std::exp(-double(d2) * falloff)});
+        }
     const double albedo_falloff = 1.0 / (2.0 * double(options.sigma_albedo) * options.sigma_albedo);
     const double normal_falloff = 1.0 / (2.0 * double(options.sigma_normal) * options.sigma_normal);
     const bool guided = guides.has_albedo() || guides.has_normal();
@@ -116,7 +139,7 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
             add(guides.normal, normal_falloff);
         return exponent;
     };
-    const bool moderate = options.prior_dof > 0;
+    const double z2 = z * z;
     constexpr int kMaxChannels = 4;
     run_with_threads(nthreads, [&] {
         tbb::parallel_for(0, h, [&](int y) {
@@ -130,7 +153,7 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
                 double prior_sum[kMaxChannels], prior_weight[kMaxChannels];
                 bool has_interval[kMaxChannels], active = moderate;
                 for (int c = 0; c < channels; ++c) {
-                    own[c] = d.s2(c, x, y, count);
+                    own[c] = s2[c * n + p];
                     has_interval[c] = !std::isnan(log.centre[c * n + p]);
                     active |= has_interval[c] || options.borrow_without_interval;
                     sum[c] = has_interval[c] ? own[c] : 0;
@@ -139,41 +162,34 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
                     prior_sum[c] = own_usable ? own[c] : 0;
                     prior_weight[c] = own_usable ? 1 : 0;
                 }
-                for (int dy = -r; active && dy <= r; ++dy) {
-                    const int yy = y + dy;
-                    if (yy < 0 || yy >= h)
+                const bool interior = x >= r && x < w - r && y >= r && y < h - r;
+                for (std::size_t t = 0; active && t < taps.size(); ++t) {
+                    const int xx = x + taps[t].dx, yy = y + taps[t].dy;
+                    if (!interior && (xx < 0 || xx >= w || yy < 0 || yy >= h))
                         continue;
-                    for (int dx = -r; dx <= r; ++dx) {
-                        const int xx = x + dx, d2 = dx * dx + dy * dy;
-                        if (xx < 0 || xx >= w || d2 > r * r || d2 == 0)
+                    const std::size_t q = std::size_t(yy) * w + xx;
+                    double wij = -1;  // computed on first use
+                    for (int c = 0; c < channels; ++c) {
+                        const std::size_t i = c * n + p, j = c * n + q;
+                        // NaN (no interval) fails the comparison: such a pixel joins none.
+                        // A borrowing pixel (no interval) takes any that has one.
+                        const double diff = double(log.centre[i]) - log.centre[j];
+                        const bool member =
+                            has_interval[c]
+                                ? diff * diff <= z2 * (double(log.se2[i]) + log.se2[j])
+                                : options.borrow_without_interval && !std::isnan(log.centre[j]);
+                        if (!member && !usable[j])
                             continue;
-                        const std::size_t q = std::size_t(yy) * w + xx;
-                        const double count_j = view.count(xx, yy);
-                        double wij = -1;  // computed on first use
-                        for (int c = 0; c < channels; ++c) {
-                            const std::size_t i = c * n + p, j = c * n + q;
-                            // NaN (no interval) fails the comparison: such a pixel joins
-                            // none. A borrowing pixel (no interval) takes any that has one.
-                            const double diff = double(log.centre[i]) - log.centre[j];
-                            const bool member =
-                                has_interval[c]
-                                    ? diff * diff <= z * z * (double(log.se2[i]) + log.se2[j])
-                                    : options.borrow_without_interval && !std::isnan(log.centre[j]);
-                            const double s2_j = d.s2(c, xx, yy, count_j);
-                            const bool usable = moderate && count_j >= 2 && std::isfinite(s2_j);
-                            if (!member && !usable)
-                                continue;
-                            if (wij < 0)
-                                wij = spatial[std::size_t(dy + r) * (2 * r + 1) + dx + r] *
-                                      (guided ? std::exp(-guide_exponent(x, y, xx, yy)) : 1.0);
-                            if (member) {
-                                sum[c] += wij * s2_j;
-                                weight[c] += wij;
-                            }
-                            if (usable) {
-                                prior_sum[c] += wij * s2_j;
-                                prior_weight[c] += wij;
-                            }
+                        if (wij < 0)
+                            wij = taps[t].spatial *
+                                  (guided ? std::exp(-guide_exponent(x, y, xx, yy)) : 1.0);
+                        if (member) {
+                            sum[c] += wij * s2[j];
+                            weight[c] += wij;
+                        }
+                        if (usable[j]) {
+                            prior_sum[c] += wij * s2[j];
+                            prior_weight[c] += wij;
                         }
                     }
                 }
