@@ -30,6 +30,8 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
 {
     if (!(ladder.alpha > 0 && ladder.alpha < 1))
         throw std::invalid_argument("radius ladder: alpha must be in (0, 1)");
+    if (est.channels < 1 || est.channels > 4)
+        throw std::invalid_argument("radius ladder: takes 1 to 4 channels, as the filter does");
     if (int(out.size()) < est.channels)
         throw std::invalid_argument("radius ladder: fewer output planes than channels");
     if (stats.width != est.width || stats.height != est.height || stats.channels != est.channels)
@@ -77,10 +79,12 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
                 if (!open[i])
                     continue;
                 bool overlaps = true;
+                double hw[4];  // each channel's half width, for the test and the update
                 for (int c = 0; c < channels && overlaps; ++c) {
                     const std::size_t k = c * pixels + i;
-                    const double v = rung_out[k], hw = half_width(k, effective[i]);
-                    overlaps = std::max(lo[k], v - hw) <= std::min(hi[k], v + hw);
+                    const double v = rung_out[k];
+                    hw[c] = half_width(k, effective[i]);
+                    overlaps = std::max(lo[k], v - hw[c]) <= std::min(hi[k], v + hw[c]);
                 }
                 if (!overlaps) {
                     open[i] = 0;  // the previous rung stands
@@ -88,9 +92,9 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
                 }
                 for (int c = 0; c < channels; ++c) {
                     const std::size_t k = c * pixels + i;
-                    const double v = rung_out[k], hw = half_width(k, effective[i]);
-                    lo[k] = std::max(lo[k], v - hw);
-                    hi[k] = std::min(hi[k], v + hw);
+                    const double v = rung_out[k];
+                    lo[k] = std::max(lo[k], v - hw[c]);
+                    hi[k] = std::min(hi[k], v + hw[c]);
                     out[c](x, y) = rung_out[k];
                 }
             }
