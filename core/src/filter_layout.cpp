@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <mutex>
 #include <new>
 
 #include <sys/mman.h>
@@ -51,19 +52,52 @@ void build_window(FilterLayout& L, const DenoiseOptions& options)
 
 constexpr std::size_t kHugePage = std::size_t(2) << 20;
 
-/// Uninitialised floats for the padded planes. Large blocks are aligned to 2 MiB and
-/// marked for transparent huge pages: a fresh 50 MB block otherwise takes ~13000 page
-/// faults, a fifth of the filter's time on a small radius.
-float* page_memory(std::size_t floats)
+// The block a LayoutMemoryReuse keeps, shared by every thread (one at a time).
+struct SpareBlock {
+    std::mutex mutex;
+    float* block = nullptr;
+    std::size_t bytes = 0;
+    int keepers = 0;
+};
+SpareBlock& spare()
 {
-    const std::size_t bytes = (floats * sizeof(float) + kHugePage - 1) / kHugePage * kHugePage;
+    static SpareBlock s;
+    return s;
+}
+
+std::size_t whole_huge_pages(std::size_t bytes)
+{
+    return (bytes + kHugePage - 1) / kHugePage * kHugePage;
+}
+
+/// Uninitialised floats for the padded planes, and the block's size in bytes. Large
+/// blocks are aligned to 2 MiB and marked for transparent huge pages: a fresh 50 MB block
+/// otherwise takes ~13000 page faults, a fifth of the filter's time on a small radius.
+/// While reuse is on, a kept block that is large enough (and not twice too large) is taken,
+/// and new blocks get an eighth more room, so that the ladder's growing radii fit in them.
+std::pair<float*, std::size_t> page_memory(std::size_t floats)
+{
+    const std::size_t needed = floats * sizeof(float);
+    std::size_t bytes = whole_huge_pages(needed);
+    {
+        SpareBlock& s = spare();
+        const std::lock_guard<std::mutex> lock(s.mutex);
+        if (s.block && s.bytes >= needed && s.bytes <= 2 * needed) {
+            const std::pair<float*, std::size_t> taken{s.block, s.bytes};
+            s.block = nullptr;
+            s.bytes = 0;
+            return taken;
+        }
+        if (s.keepers > 0)
+            bytes = whole_huge_pages(needed + needed / 8);
+    }
     void* p = std::aligned_alloc(kHugePage, bytes);
     if (!p)
         throw std::bad_alloc();
 #ifdef MADV_HUGEPAGE
     madvise(p, bytes, MADV_HUGEPAGE);  // advice only: without THP it is ignored
 #endif
-    return static_cast<float*>(p);
+    return {static_cast<float*>(p), bytes};
 }
 
 /// Marks the chunks whose window may hold a level above some centre's limit. The
@@ -109,7 +143,40 @@ void mark_guarded_chunks(FilterLayout& L, const NoiseLevels& noise)
 
 }  // namespace
 
-void FilterLayout::Release::operator()(float* p) const { std::free(p); }
+void FilterLayout::Release::operator()(float* p) const
+{
+    SpareBlock& s = spare();
+    {
+        const std::lock_guard<std::mutex> lock(s.mutex);
+        if (s.keepers > 0 && bytes > s.bytes) {  // keep the larger of the two
+            std::swap(p, s.block);
+            s.bytes = bytes;
+        }
+    }
+    std::free(p);
+}
+
+LayoutMemoryReuse::LayoutMemoryReuse()
+{
+    SpareBlock& s = spare();
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    ++s.keepers;
+}
+
+LayoutMemoryReuse::~LayoutMemoryReuse()
+{
+    SpareBlock& s = spare();
+    float* kept = nullptr;
+    {
+        const std::lock_guard<std::mutex> lock(s.mutex);
+        if (--s.keepers == 0) {
+            kept = s.block;
+            s.block = nullptr;
+            s.bytes = 0;
+        }
+    }
+    std::free(kept);
+}
 
 FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                                 const DenoiseOptions& options, int nthreads, int lanes,
@@ -152,7 +219,9 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         3 * L.channels + L.guide_count + (guard ? 2 : 0) + (with_inverse_count ? 1 : 0);
     // Not zeroed: every float, padding included, is written once below, by the thread
     // that will mostly read it (zeroing 50 MB first cost as much as filling it).
-    L.storage.reset(page_memory(L.plane_size * planes));
+    const auto [block, block_bytes] = page_memory(L.plane_size * planes);
+    L.storage =
+        std::unique_ptr<float[], FilterLayout::Release>(block, FilterLayout::Release{block_bytes});
     const std::ptrdiff_t origin = std::ptrdiff_t(L.pad_y) * L.stride + L.pad_x;
     auto plane_origin = [&](int k) { return L.storage.get() + k * L.plane_size + origin; };
     float* mean[4];

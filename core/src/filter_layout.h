@@ -19,6 +19,7 @@ struct FilterLayout {
     std::ptrdiff_t stride = 0;   // floats per padded row
     std::size_t plane_size = 0;  // floats per padded plane
     struct Release {
+        std::size_t bytes;  ///< the block's size, for a LayoutMemoryReuse to keep it
         void operator()(float* p) const;
     };
     std::unique_ptr<float[], Release> storage;  // all padded planes, back to back (page_memory)
@@ -55,6 +56,18 @@ struct FilterLayout {
     {
         return std::size_t(dy + pad_y) * (2 * pad_x + 1) + (dx + pad_x);
     }
+};
+
+/// While one is alive, a layout's freed planes are kept for the next layout rather than
+/// returned to the system, which hands back fresh pages that must be faulted in and
+/// zeroed again (a tenth of a guided radius ladder's time); released with the last one.
+/// For callers that filter one image several times (the radius ladder).
+class LayoutMemoryReuse {
+public:
+    LayoutMemoryReuse();
+    ~LayoutMemoryReuse();
+    LayoutMemoryReuse(const LayoutMemoryReuse&) = delete;
+    LayoutMemoryReuse& operator=(const LayoutMemoryReuse&) = delete;
 };
 
 /// `lanes`: the kernel's SIMD width, which sets the chunks of `guarded`.

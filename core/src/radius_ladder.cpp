@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "filter_layout.h"
 #include "statmc/core/variance_interval.h"
 
 namespace statmc {
@@ -69,6 +70,7 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
         rung_planes.push_back(dense_plane(rung_out.data() + c * pixels, w));
     FilterDiagnostics diagnostics;
     diagnostics.effective_samples = dense_plane(effective.data(), w);
+    const detail::LayoutMemoryReuse reuse;  // the rungs' layouts share one block
     for (int radius : rungs(ladder, options.radius)) {
         DenoiseOptions at = options;
         at.radius = radius;
