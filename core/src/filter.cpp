@@ -120,9 +120,11 @@ void check_arguments(const EstimatorImage& est, const DenoiseOptions& options,
 
 }  // namespace
 
-void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
-            const std::vector<Plane>& out, const FilterDiagnostics& diagnostics, int nthreads,
-            SimdLevel level)
+namespace {
+
+void filter_at_level(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
+                     const NoiseLevels* given_noise, const std::vector<Plane>& out,
+                     const FilterDiagnostics& diagnostics, int nthreads, SimdLevel level)
 {
     check_arguments(est, options, out);
     if (level == SimdLevel::Auto)
@@ -134,8 +136,11 @@ void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOption
     const int lanes = detail::kernel_width(level);
 
     run_with_threads(nthreads, [&] {
+        const NoiseLevels own_noise =
+            given_noise ? NoiseLevels{} : detail::guard_levels(est, options);
         const detail::FilterLayout layout =
-            detail::make_filter_layout(est, guides, options, nthreads, lanes, diagnostics.any());
+            detail::make_filter_layout(est, guides, options, given_noise ? *given_noise : own_noise,
+                                       nthreads, lanes, diagnostics.any());
         // Tiles of a few rows by 64 columns keep the window's planes in L2. Each pixel
         // is computed alone, so the tiling cannot change the result.
         const int chunk_grain = std::max(1, 64 / lanes);
@@ -148,5 +153,24 @@ void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOption
             tbb::simple_partitioner());
     });
 }
+
+}  // namespace
+
+void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
+            const std::vector<Plane>& out, const FilterDiagnostics& diagnostics, int nthreads,
+            SimdLevel level)
+{
+    filter_at_level(est, guides, options, nullptr, out, diagnostics, nthreads, level);
+}
+
+namespace detail {
+void filter_with_levels(const EstimatorImage& est, const Guides& guides,
+                        const DenoiseOptions& options, const NoiseLevels& noise,
+                        const std::vector<Plane>& out, const FilterDiagnostics& diagnostics,
+                        int nthreads)
+{
+    filter_at_level(est, guides, options, &noise, out, diagnostics, nthreads, SimdLevel::Auto);
+}
+}  // namespace detail
 
 }  // namespace statmc

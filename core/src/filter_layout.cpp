@@ -178,9 +178,16 @@ LayoutMemoryReuse::~LayoutMemoryReuse()
     std::free(kept);
 }
 
+NoiseLevels guard_levels(const EstimatorImage& est, const DenoiseOptions& options)
+{
+    return firefly_guard_applies(est, options.firefly_ratio)
+               ? noise_levels(est, options.firefly_ratio)
+               : NoiseLevels{};
+}
+
 FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
-                                const DenoiseOptions& options, int nthreads, int lanes,
-                                bool with_inverse_count)
+                                const DenoiseOptions& options, const NoiseLevels& noise,
+                                int nthreads, int lanes, bool with_inverse_count)
 {
     FilterLayout L;
     L.width = est.width;
@@ -210,9 +217,6 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
     L.guide_count = int(guide_planes.size());
 
     // The guard's planes exist only where some chunk needs them.
-    const NoiseLevels noise = firefly_guard_applies(est, options.firefly_ratio)
-                                  ? noise_levels(est, options.firefly_ratio)
-                                  : NoiseLevels{};
     mark_guarded_chunks(L, noise);
     const bool guard = std::find(L.guarded.begin(), L.guarded.end(), 1) != L.guarded.end();
     const int planes =

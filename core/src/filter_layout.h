@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "statmc/core/filter.h"
+#include "statmc/core/firefly_guard.h"
 
 namespace statmc::detail {
 
@@ -70,11 +71,23 @@ public:
     LayoutMemoryReuse& operator=(const LayoutMemoryReuse&) = delete;
 };
 
+/// The firefly guard's levels for `est` under `options` (empty where the guard does not
+/// apply): they depend on neither the radius nor the guides, so a caller that filters one
+/// image at several radii computes them once.
+NoiseLevels guard_levels(const EstimatorImage& est, const DenoiseOptions& options);
+
 /// `lanes`: the kernel's SIMD width, which sets the chunks of `guarded`.
-/// `with_inverse_count` adds the 1/n plane the effective sample count needs.
+/// `with_inverse_count` adds the 1/n plane the effective sample count needs. `noise`:
+/// guard_levels(est, options).
 FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
-                                const DenoiseOptions& options, int nthreads, int lanes,
-                                bool with_inverse_count = false);
+                                const DenoiseOptions& options, const NoiseLevels& noise,
+                                int nthreads, int lanes, bool with_inverse_count = false);
+
+/// filter() with the guard's levels given (guard_levels of the same image and options).
+void filter_with_levels(const EstimatorImage& est, const Guides& guides,
+                        const DenoiseOptions& options, const NoiseLevels& noise,
+                        const std::vector<Plane>& out, const FilterDiagnostics& diagnostics,
+                        int nthreads);
 
 /// Filters output rows [y0, y1), chunks of kernel-width columns [chunk0, chunk1).
 using FilterRowsFn = void (*)(const FilterLayout& layout, const std::vector<Plane>& out,

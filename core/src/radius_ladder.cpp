@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "filter_layout.h"
+#include "statmc/core/thread_limit.h"
 #include "statmc/core/variance_interval.h"
 
 namespace statmc {
@@ -70,11 +71,14 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
         rung_planes.push_back(dense_plane(rung_out.data() + c * pixels, w));
     FilterDiagnostics diagnostics;
     diagnostics.effective_samples = dense_plane(effective.data(), w);
-    const detail::LayoutMemoryReuse reuse;  // the rungs' layouts share one block
+    // What every rung shares: one block for the layouts, and the guard's levels.
+    const detail::LayoutMemoryReuse reuse;
+    NoiseLevels noise;
+    run_with_threads(nthreads, [&] { noise = detail::guard_levels(est, options); });
     for (int radius : rungs(ladder, options.radius)) {
         DenoiseOptions at = options;
         at.radius = radius;
-        filter(est, guides, at, rung_planes, diagnostics, nthreads);
+        detail::filter_with_levels(est, guides, at, noise, rung_planes, diagnostics, nthreads);
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 const std::size_t i = std::size_t(y) * w + x;
