@@ -206,7 +206,7 @@ int main(int argc, char** argv)
                 const double trimmed =
                     std::accumulate(errors.begin(), errors.begin() + std::ptrdiff_t(keep), 0.0) /
                     double(keep);
-                const double samples = double(k_spp) * double(npix);
+                const double samples = double(is.samples);
                 const double cost = cpu / samples;
                 const double rel_var = k_spp * iteration_error / double(3 * npix);
                 std::fprintf(csv,

@@ -20,6 +20,7 @@ import sys
 import numpy as np
 
 import statmc
+from image_metrics import relmse
 
 RENDER = "build/renderer/statmc-render"
 SCENES = [("veach-ajar", "320x180", 2048), ("veach-mis", "320x180", 4096),
@@ -36,13 +37,6 @@ def render(scene, size, spp, seed, path, extra=()):
                         "--spp", str(spp), "--seed", str(seed), "--quiet", "-o", path,
                         *extra], check=True)
     return statmc.read_statistics(path)
-
-
-def relmse(x, reference, trim=0.0):
-    e = ((x - reference) ** 2 / (reference ** 2 + 0.01)).ravel()
-    if trim > 0:
-        e = np.sort(e)[: int(len(e) * (1 - trim))]
-    return float(np.mean(e))
 
 
 def measure(image, reference):

@@ -17,6 +17,7 @@ import sys
 import numpy as np
 
 import statmc
+from image_metrics import relmse
 
 RENDER = "build/renderer/statmc-render"
 SCENES = {"a": "../shared/scenes/cornell-box/scene.pbrt", "b": "../shared/scenes/veach-mis/scene.pbrt"}
@@ -48,10 +49,6 @@ def summed(a, b):
             key = name if layer == "beauty" else f"{name}.{layer}"
             image[key] = part[layer]
     return image
-
-
-def relmse(x, reference):
-    return float(np.mean((x - reference) ** 2 / (reference ** 2 + 0.01)))
 
 
 def main():

@@ -13,9 +13,9 @@ import os
 import subprocess
 import sys
 
-import numpy as np
 
 import statmc
+from image_metrics import relmse
 
 RENDER = "build/renderer/statmc-render"
 SCENES = ["cornell-box", "veach-mis", "veach-ajar"]
@@ -29,10 +29,6 @@ def render(scene, spp, seed, path):
                         "--spp", str(spp), "--seed", str(seed), "--quiet", "-o", path],
                        check=True)
     return statmc.read_statistics(path)
-
-
-def relmse(x, reference):
-    return float(np.mean((x - reference) ** 2 / (reference ** 2 + 0.01)))
 
 
 def main():

@@ -11,15 +11,11 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
 
 import statmc  # noqa: E402
+from image_metrics import tonemap  # noqa: E402
 
 SCENES = ("veach-ajar", "veach-mis", "cornell-box")
-
-
-def tonemap(rgb):
-    return np.clip(rgb / (1 + rgb), 0, 1) ** (1 / 2.2)
 
 
 def main():

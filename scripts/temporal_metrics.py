@@ -16,8 +16,8 @@ import numpy as np
 import OpenImageIO as oiio
 
 from evaluation_report import write_report
-
-EPS = 0.01
+from image_metrics import EPS, relmse
+from image_metrics import tonemap as tonemap_float
 
 
 def rgb(path):
@@ -25,10 +25,6 @@ def rgb(path):
     names = list(buf.spec().channelnames)
     pixels = buf.get_pixels(oiio.FLOAT)
     return pixels[:, :, [names.index(c) for c in ("R", "G", "B")]]
-
-
-def relmse(x, r):
-    return float(np.mean((x - r) ** 2 / (r ** 2 + EPS)))
 
 
 def flicker(xs, rs):
@@ -64,8 +60,7 @@ def score(directory, refs, frames):
 
 
 def tonemap(x):
-    y = np.clip(x / (1 + x), 0, 1) ** (1 / 2.2)
-    return (y * 255 + 0.5).astype(np.uint8)
+    return (tonemap_float(x) * 255 + 0.5).astype(np.uint8)
 
 
 def write_png(path, image):

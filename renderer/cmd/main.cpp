@@ -24,6 +24,7 @@
 #include "statmc/layers/layer_names.h"
 #include "statmc/merge/merge.h"
 
+#include "option_checks.h"
 #include "sampling_options.h"
 #include "statmc/render/camera.h"
 #include "statmc/render/checkpoint.h"
@@ -56,22 +57,6 @@ bool parse_resolution(const std::string& text, int& width, int& height)
         return false;
     const auto h = std::from_chars(w.ptr + 1, end, height);
     return h.ec == std::errc() && h.ptr == end && h.ptr != w.ptr + 1;
-}
-
-// An integer option's range in words: CLI11's PositiveNumber and NonNegativeNumber print the
-// largest double as their upper bound.
-CLI::Validator integer_at_least(int minimum)
-{
-    return CLI::Validator(
-        [minimum](std::string& text) -> std::string {
-            int value = 0;
-            const char* end = text.data() + text.size();
-            const auto r = std::from_chars(text.data(), end, value);
-            if (r.ec != std::errc() || r.ptr != end || value < minimum)
-                return "must be an integer >= " + std::to_string(minimum) + ", got '" + text + "'";
-            return {};
-        },
-        "INT>=" + std::to_string(minimum));
 }
 
 // What else, besides scene, seed, resolution and task, makes two renders' films

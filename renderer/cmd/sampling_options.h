@@ -4,12 +4,13 @@
 // Header-only: only programs that link CLI11 include it.
 #pragma once
 
-#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+
+#include "option_checks.h"
 
 #include "statmc/render/adaptive_sampling.h"
 #include "statmc/render/integrator.h"
@@ -96,21 +97,6 @@ inline void add_sampling_options(CLI::App& app, SamplingOptions& o)
                    "each iteration (docs/sampling.md)")
         ->capture_default_str()
         ->check(CLI::Range(0, 64));
-}
-
-/// A finite number ≥ `minimum`, said in words (CLI11's NonNegativeNumber prints the largest
-/// double as its upper bound).
-inline CLI::Validator number_at_least(double minimum)
-{
-    const std::string bound = CLI::detail::to_string(minimum);
-    return CLI::Validator(
-        [minimum, bound](std::string& text) -> std::string {
-            double value = 0;
-            if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value < minimum)
-                return "must be a number >= " + bound + ", got '" + text + "'";
-            return {};
-        },
-        "NUMBER>=" + bound);
 }
 
 /// --adaptive and its settings; the settings need the flag.

@@ -274,7 +274,6 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
                 allocate_samples(relative_variance(film.stats, adaptive.filter, settings.threads),
                                  film.stats, spp, adaptive);
             is.denoise_seconds += std::chrono::duration<double>(Clock::now() - start_map).count();
-            is.converged_pixels = allocation->converged;
             if (allocation->total == 0) {  // every pixel met the noise threshold
                 rs.converged = true;
                 break;

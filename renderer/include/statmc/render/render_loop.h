@@ -80,15 +80,14 @@ struct IterationStats {
     int spp = 0;
     double denoise_seconds =
         0;  ///< denoising the estimates it steered by, before rendering (0 without)
-    std::uint64_t samples = 0;         ///< camera samples taken, all pixels
-    std::size_t converged_pixels = 0;  ///< pixels adaptive sampling left out as converged
+    std::uint64_t samples = 0;  ///< camera samples taken, all pixels
 };
 
 struct RenderStats {
     double seconds = 0;
     int iterations_done = 0;
     bool interrupted = false;
-    bool complete = false;  ///< every sample of the schedule was taken, or every pixel converged
+    bool complete = false;   ///< every sample of the schedule was taken, or every pixel converged
     bool converged = false;  ///< adaptive sampling stopped early: every pixel met the threshold
     std::uint64_t samples = 0;
     std::uint64_t tile_cycles = 0;  ///< time stamp counter cycles inside tiles, all threads
