@@ -12,6 +12,8 @@
 #include "bench_frame.h"
 #include "bench_timing.h"
 #include "statmc/core/filter.h"
+#include "statmc/core/radius_ladder.h"
+#include "statmc/core/variance_filter.h"
 
 namespace {
 
@@ -126,6 +128,27 @@ void BM_FilterScalarKernel(benchmark::State& s) { run(s, false, SimdLevel::Scala
 void BM_FilterReference(benchmark::State& s) { run(s, false, SimdLevel::Scalar, true); }
 void BM_FilterReferenceGuides(benchmark::State& s) { run(s, true, SimdLevel::Scalar, true); }
 
+// The default's variance denoising (the radius ladder's ṽ: radius 3, moderation d₀ = 16 as
+// the default operator sets it) at one SIMD level; Args: guides (0/1), level (1 scalar,
+// 2 AVX2, 3 AVX-512). All threads.
+void BM_VarianceFilter(benchmark::State& state)
+{
+    const SimdLevel level = SimdLevel(state.range(1));
+    const std::vector<SimdLevel> levels = supported_simd_levels();
+    if (std::find(levels.begin(), levels.end(), level) == levels.end()) {
+        state.SkipWithError("this CPU cannot run that level");
+        return;
+    }
+    static const bench::GuidePlanes guide_planes;
+    const Guides guides = state.range(0) ? guide_planes.guides : Guides{};
+    VarianceFilterOptions options = RadiusLadderOptions{}.variance;
+    options.prior_dof = 16;
+    for (auto _ : state)
+        benchmark::DoNotOptimize(denoise_variances(bench::frame().view(), TestDomain::Untransformed,
+                                                   guides, options, 0, level));
+    state.SetLabel(simd_level_name(level));
+}
+
 // Arg = threads (0 = all cores). Medians over 5 repetitions (3 for the slow paths).
 BENCHMARK(BM_Filter)->Arg(0)->Arg(1)->Apply(median_of_5);
 BENCHMARK(BM_FilterGuides)->Arg(0)->Arg(1)->Apply(median_of_5);
@@ -137,6 +160,9 @@ BENCHMARK(BM_FilterAvx2Kernel)->Args({0, 0})->Args({0, 1})->Apply(median_of_5);
 BENCHMARK(BM_FilterScalarKernel)->Arg(0)->Apply(median_of_3);
 BENCHMARK(BM_FilterReference)->Arg(1)->Apply(median_of_3_single);
 BENCHMARK(BM_FilterReferenceGuides)->Arg(1)->Apply(median_of_3_single);
+BENCHMARK(BM_VarianceFilter)
+    ->ArgsProduct({{0, 1}, {int(SimdLevel::Scalar), int(SimdLevel::Avx2), int(SimdLevel::Avx512)}})
+    ->Apply(median_of_5);
 
 }  // namespace
 

@@ -1,13 +1,16 @@
 #include "statmc/core/variance_filter.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include <tbb/parallel_for.h>
 
 #include "statmc/core/thread_limit.h"
 #include "statmc/core/variance_interval.h"
+#include "variance_filter_layout.h"
 
 namespace statmc {
 
@@ -49,159 +52,197 @@ DomainPlanes planes_of(const StatisticsView& view, TestDomain domain)
     return {view.variance, view.moment4, view.variance_of_mean};
 }
 
-// Each pixel's interval on ln σ², or a NaN centre where it has none.
-struct LogIntervals {
-    std::vector<float> centre, se2;  // channel-major
-};
-
-LogIntervals intervals_of(const StatisticsView& view, const DomainPlanes& d, double z)
+// Each pixel's interval on ln σ² (a NaN centre where it has none), its s² and whether the
+// moderation may use it: what the disk loop reads of a neighbour, made once per pixel
+// rather than once per tap.
+void fill_pixel_planes(const StatisticsView& view, const DomainPlanes& d, double z, bool moderate,
+                       detail::VarianceLayout& L)
 {
-    const std::size_t n = std::size_t(view.width) * view.height;
-    LogIntervals out{std::vector<float>(n * view.channels), std::vector<float>(n * view.channels)};
+    const std::size_t n = L.pixels;
+    L.log_centre.resize(n * view.channels);
+    L.log_se2.resize(n * view.channels);
+    L.s2.resize(n * view.channels);
+    L.usable.resize(n * view.channels);
     tbb::parallel_for(0, view.height, [&](int y) {
         for (int c = 0; c < view.channels; ++c)
             for (int x = 0; x < view.width; ++x) {
                 const double count = view.count(x, y);
-                const double m2 = d.s2(c, x, y, count) * (count - 1);
+                const double s2 = d.s2(c, x, y, count);
+                const double m2 = s2 * (count - 1);
                 const double m4 = double(d.moment4[c](x, y)) * count;
                 const auto interval = bonett_interval(count, m2, m4, z);
                 const std::size_t k = c * n + std::size_t(y) * view.width + x;
-                out.centre[k] = interval ? float(interval->centre) : NAN;
+                L.log_centre[k] = interval ? float(interval->centre) : NAN;
                 const double se = interval ? interval->half_width / z : 0;
-                out.se2[k] = float(se * se);
+                L.log_se2[k] = float(se * se);
+                L.s2[k] = s2;
+                L.usable[k] = moderate && count >= 2 && std::isfinite(s2);
             }
     });
-    return out;
+}
+
+// The disk's offsets in raster order, the centre left out, with the spatial part of w_ij;
+// the guides' part is exp(−Σ_groups f·|g_i − g_j|²) per guide present.
+void fill_taps_and_guides(const StatisticsView& view, const Guides& guides,
+                          const VarianceFilterOptions& o, detail::VarianceLayout& L)
+{
+    const int r = o.radius;
+    const double falloff = 1.0 / (2.0 * double(o.sigma_spatial) * o.sigma_spatial);
+    for (int dy = -r; dy <= r; ++dy)
+        for (int dx = -r; dx <= r; ++dx) {
+            const int d2 = dx * dx + dy * dy;
+            if (d2 <= r * r && d2 != 0)
+                L.taps.push_back({dx, dy, std::exp(-double(d2) * falloff)});
+        }
+    auto add_group = [&](const std::array<ConstPlane, 3>& g, float sigma) {
+        L.guide_falloff[L.guide_groups()] = 1.0 / (2.0 * double(sigma) * sigma);
+        for (const ConstPlane& plane : g) {
+            std::vector<float> dense(L.pixels);
+            for (int y = 0; y < view.height; ++y)
+                for (int x = 0; x < view.width; ++x)
+                    dense[std::size_t(y) * view.width + x] = plane(x, y);
+            L.guide.push_back(std::move(dense));
+        }
+    };
+    if (guides.has_albedo())
+        add_group(guides.albedo, o.sigma_albedo);
+    if (guides.has_normal())
+        add_group(guides.normal, o.sigma_normal);
+}
+
+// The centre's own terms: its s² with weight 1 where it has an interval (or nothing), and
+// in the moderation's sums where it is usable.
+detail::VarianceSums own_terms(const detail::VarianceLayout& L, std::size_t p)
+{
+    detail::VarianceSums s;
+    for (int c = 0; c < L.channels; ++c) {
+        const std::size_t k = c * L.pixels + p;
+        const bool has_interval = !std::isnan(L.log_centre[k]);
+        s.sum[c] = has_interval ? L.s2[k] : 0;
+        s.weight[c] = has_interval ? 1 : 0;
+        s.prior_sum[c] = L.usable[k] ? L.s2[k] : 0;
+        s.prior_weight[c] = L.usable[k] ? 1 : 0;
+    }
+    return s;
+}
+
+// The scalar disk loop, and the reference the SIMD kernels match bit for bit: per channel
+// the tested sum (centre first, then the disk in raster order: a fixed summation order,
+// whichever thread runs the row) and, for the moderation, the untested one.
+void add_disk_scalar(const detail::VarianceLayout& L, int x, int y, detail::VarianceSums& s)
+{
+    const int w = L.width, h = L.height;
+    const std::size_t n = L.pixels, p = std::size_t(y) * w + x;
+    const bool interior = L.interior(x, y);
+    for (const detail::VarianceTap& tap : L.taps) {
+        const int xx = x + tap.dx, yy = y + tap.dy;
+        if (!interior && (xx < 0 || xx >= w || yy < 0 || yy >= h))
+            continue;
+        const std::size_t q = std::size_t(yy) * w + xx;
+        double wij = tap.spatial;
+        if (L.guide_groups() > 0) {
+            double exponent = 0;
+            for (int group = 0; group < L.guide_groups(); ++group) {
+                double d2 = 0;
+                for (int k = 0; k < 3; ++k) {
+                    const std::vector<float>& g = L.guide[3 * group + k];
+                    const double d = double(g[p]) - g[q];
+                    d2 = d2 + d * d;
+                }
+                exponent = exponent + d2 * L.guide_falloff[group];
+            }
+            wij = tap.spatial * std::exp(-exponent);
+        }
+        for (int c = 0; c < L.channels; ++c) {
+            const std::size_t i = c * n + p, j = c * n + q;
+            // NaN (no interval) fails the comparison: such a pixel joins none. A borrowing
+            // pixel (no interval) takes any that has one.
+            const double diff = double(L.log_centre[i]) - L.log_centre[j];
+            const bool member =
+                diff * diff <= L.z2 * (double(L.log_se2[i]) + L.log_se2[j]) ||
+                (L.borrow && std::isnan(L.log_centre[i]) && !std::isnan(L.log_centre[j]));
+            const double term = wij * L.s2[j];
+            if (member) {
+                s.sum[c] += term;
+                s.weight[c] += wij;
+            }
+            if (L.usable[j]) {
+                s.prior_sum[c] += term;
+                s.prior_weight[c] += wij;
+            }
+        }
+    }
+}
+
+detail::VarianceKernel kernel_at(SimdLevel level)
+{
+    if (level == SimdLevel::Auto)
+        level = detected_simd_level();
+    const std::vector<SimdLevel> supported = supported_simd_levels();
+    if (std::find(supported.begin(), supported.end(), level) == supported.end())
+        throw std::invalid_argument(std::string("variance filter: this CPU cannot run the ") +
+                                    simd_level_name(level) + " kernel");
+    switch (level) {
+    case SimdLevel::Avx512:
+        return detail::variance_kernel_avx512();
+    case SimdLevel::Avx2:
+        return detail::variance_kernel_avx2();
+    default:
+        return {1, nullptr};
+    }
 }
 
 }  // namespace
 
 std::vector<float> denoise_variances(const StatisticsView& view, TestDomain domain,
                                      const Guides& guides, const VarianceFilterOptions& options,
-                                     int nthreads)
+                                     int nthreads, SimdLevel level)
 {
     require_valid(view, domain, options);
+    const detail::VarianceKernel kernel = kernel_at(level);
     const DomainPlanes d = planes_of(view, domain);
     const double z = normal_critical_value(options.alpha);
-    const int w = view.width, h = view.height, r = options.radius;
-    const int channels = view.channels;
-    const std::size_t n = std::size_t(w) * h;
-    std::vector<float> out(n * channels);
-    LogIntervals log;
-    run_with_threads(nthreads, [&] { log = intervals_of(view, d, z); });
-    // What the disk loop reads of a neighbour, made once per pixel rather than once per tap:
-    // its s² and whether the moderation may use it.
-    std::vector<double> s2(n * channels);
-    std::vector<char> usable(n * channels);
     const bool moderate = options.prior_dof > 0;
+    detail::VarianceLayout L;
+    L.width = view.width;
+    L.height = view.height;
+    L.channels = view.channels;
+    L.radius = options.radius;
+    L.pixels = std::size_t(view.width) * view.height;
+    L.z2 = z * z;
+    L.borrow = options.borrow_without_interval;
+    fill_taps_and_guides(view, guides, options, L);
+    const std::size_t n = L.pixels;
+    std::vector<float> out(n * L.channels);
     run_with_threads(nthreads, [&] {
-        tbb::parallel_for(0, h, [&](int y) {
-            for (int c = 0; c < channels; ++c)
-                for (int x = 0; x < w; ++x) {
-                    const double count = view.count(x, y);
-                    const std::size_t k = c * n + std::size_t(y) * w + x;
-                    s2[k] = d.s2(c, x, y, count);
-                    usable[k] = moderate && count >= 2 && std::isfinite(s2[k]);
-                }
-        });
-    });
-    // The disk's offsets in raster order, the centre left out, with the spatial part of w_ij;
-    // the guides' part is exp(−|g_i − g_j|²/(2σ²)) per guide present. Each pair's weight is
-    // computed once for all channels.
-    struct Tap {
-        int dx, dy;
-        double spatial;
-    };
-    std::vector<Tap> taps;
-    const double falloff = 1.0 / (2.0 * double(options.sigma_spatial) * options.sigma_spatial);
-    for (int dy = -r; dy <= r; ++dy)
-        for (int dx = -r; dx <= r; ++dx) {
-            const int d2 = dx * dx + dy * dy;
-            if (d2 <= r * r && d2 != 0)
-                taps.push_back({dx, dy, std::exp(-double(d2) * falloff)});
-        }
-    const double albedo_falloff = 1.0 / (2.0 * double(options.sigma_albedo) * options.sigma_albedo);
-    const double normal_falloff = 1.0 / (2.0 * double(options.sigma_normal) * options.sigma_normal);
-    const bool guided = guides.has_albedo() || guides.has_normal();
-    auto guide_exponent = [&](int x, int y, int xx, int yy) {
-        double exponent = 0;
-        auto add = [&](const std::array<ConstPlane, 3>& g, double f) {
-            double d2 = 0;
-            for (int k = 0; k < 3; ++k) {
-                const double d = double(g[k](x, y)) - g[k](xx, yy);
-                d2 += d * d;
-            }
-            exponent += d2 * f;
-        };
-        if (guides.has_albedo())
-            add(guides.albedo, albedo_falloff);
-        if (guides.has_normal())
-            add(guides.normal, normal_falloff);
-        return exponent;
-    };
-    const double z2 = z * z;
-    constexpr int kMaxChannels = 4;
-    run_with_threads(nthreads, [&] {
-        tbb::parallel_for(0, h, [&](int y) {
-            for (int x = 0; x < w; ++x) {
-                const std::size_t p = std::size_t(y) * w + x;
-                const double count = view.count(x, y);
-                // Per channel: the tested sum (centre first, then the disk in raster order:
-                // a fixed summation order, whichever thread runs the row) and, for the
-                // moderation, the untested one over every neighbour with a variance.
-                double own[kMaxChannels], sum[kMaxChannels], weight[kMaxChannels];
-                double prior_sum[kMaxChannels], prior_weight[kMaxChannels];
-                bool has_interval[kMaxChannels], active = moderate;
-                for (int c = 0; c < channels; ++c) {
-                    own[c] = s2[c * n + p];
-                    has_interval[c] = !std::isnan(log.centre[c * n + p]);
-                    active |= has_interval[c] || options.borrow_without_interval;
-                    sum[c] = has_interval[c] ? own[c] : 0;
-                    weight[c] = has_interval[c] ? 1 : 0;
-                    const bool own_usable = count >= 2 && std::isfinite(own[c]);
-                    prior_sum[c] = own_usable ? own[c] : 0;
-                    prior_weight[c] = own_usable ? 1 : 0;
-                }
-                const bool interior = x >= r && x < w - r && y >= r && y < h - r;
-                for (std::size_t t = 0; active && t < taps.size(); ++t) {
-                    const int xx = x + taps[t].dx, yy = y + taps[t].dy;
-                    if (!interior && (xx < 0 || xx >= w || yy < 0 || yy >= h))
-                        continue;
-                    const std::size_t q = std::size_t(yy) * w + xx;
-                    double wij = -1;  // computed on first use
-                    for (int c = 0; c < channels; ++c) {
-                        const std::size_t i = c * n + p, j = c * n + q;
-                        // NaN (no interval) fails the comparison: such a pixel joins none.
-                        // A borrowing pixel (no interval) takes any that has one.
-                        const double diff = double(log.centre[i]) - log.centre[j];
-                        const bool member =
-                            has_interval[c]
-                                ? diff * diff <= z2 * (double(log.se2[i]) + log.se2[j])
-                                : options.borrow_without_interval && !std::isnan(log.centre[j]);
-                        if (!member && !usable[j])
-                            continue;
-                        if (wij < 0)
-                            wij = taps[t].spatial *
-                                  (guided ? std::exp(-guide_exponent(x, y, xx, yy)) : 1.0);
-                        if (member) {
-                            sum[c] += wij * s2[j];
-                            weight[c] += wij;
-                        }
-                        if (usable[j]) {
-                            prior_sum[c] += wij * s2[j];
-                            prior_weight[c] += wij;
-                        }
-                    }
-                }
-                for (int c = 0; c < channels; ++c) {
-                    const double tested = weight[c] > 0 ? sum[c] / weight[c] : own[c];
-                    if (!moderate || prior_weight[c] <= 0) {
+        fill_pixel_planes(view, d, z, moderate, L);
+        tbb::parallel_for(0, L.height, [&](int y) {
+            std::vector<detail::VarianceSums> row(L.width);
+            for (int x = 0; x < L.width; ++x)
+                row[x] = own_terms(L, std::size_t(y) * L.width + x);
+            // Chunks of interior pixels go to the SIMD kernel, the rest to the scalar loop;
+            // both give the same bits, so the split cannot change the result.
+            int x = 0;
+            if (kernel.add_disk && L.interior(L.radius, y))
+                for (x = L.radius; x + kernel.lanes <= L.width - L.radius; x += kernel.lanes)
+                    kernel.add_disk(L, x, y, &row[x]);
+            for (int rest = 0; rest < L.width; ++rest)
+                if (rest < L.radius || rest >= x)
+                    add_disk_scalar(L, rest, y, row[rest]);
+            for (int xx = 0; xx < L.width; ++xx) {
+                const std::size_t p = std::size_t(y) * L.width + xx;
+                const double count = view.count(xx, y);
+                const detail::VarianceSums& s = row[xx];
+                for (int c = 0; c < L.channels; ++c) {
+                    const double own = L.s2[c * n + p];
+                    const double tested = s.weight[c] > 0 ? s.sum[c] / s.weight[c] : own;
+                    if (!moderate || s.prior_weight[c] <= 0) {
                         out[c * n + p] = float(tested);
                         continue;
                     }
                     // Empirical Bayes (Smyth 2004): the neighbourhood's variance as a prior
                     // worth prior_dof degrees of freedom against the pixel's n − 1.
-                    const double prior = prior_sum[c] / prior_weight[c];
+                    const double prior = s.prior_sum[c] / s.prior_weight[c];
                     const double dof = std::max(count - 1, 0.0);
                     out[c * n + p] = dof > 0 && std::isfinite(tested)
                                          ? float((options.prior_dof * prior + dof * tested) /

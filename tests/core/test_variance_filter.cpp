@@ -2,6 +2,7 @@
 // bring the estimates closer to the truth, keep a strong variance edge, and give the same
 // bits for any thread count.
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -187,6 +188,64 @@ TEST(VarianceFilter, ModerationLiftsVariancesThatFewSamplesUnderestimate)
     moderated.prior_dof = -1;
     EXPECT_THROW(denoise_variances(stats.view(), TestDomain::Untransformed, {}, moderated),
                  std::invalid_argument);
+}
+
+// Bit patterns, so that the NaN a NaN variance leaves compares equal to itself.
+bool same_bits(const std::vector<float>& a, const std::vector<float>& b)
+{
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+TEST(VarianceFilter, EverySimdLevelGivesTheScalarLoopsBits)
+{
+    // Three channels, both guides, pixels without an interval (n < 4), an infinite and a
+    // NaN variance, both ways of treating no-interval pixels, with and without the
+    // moderation: the SIMD kernels add the same double products in the same order as the
+    // scalar loop, so the floats must be equal, not close. 53 columns leave a ragged tail
+    // after the 8- and 4-lane chunks.
+    constexpr int w = 53, h = 21;
+    std::mt19937_64 rng(17);
+    std::exponential_distribution<float> e(1.f);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    StatisticsImage<3> img(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int s = 0; s < 6; ++s) {
+                const float v[3] = {e(rng) * (x < w / 2 ? 0.3f : 2.f), e(rng), u(rng)};
+                img.add(x, y, v);
+            }
+    StatisticsPlanes stats = img.planes();
+    const std::size_t n = std::size_t(w) * h;
+    for (int x : {5, 20, 33})
+        stats.count[9 * w + x] = 3;  // no Bonett interval
+    stats.variance[0 * n + 10 * w + 12] = INFINITY;
+    stats.variance[1 * n + 11 * w + 30] = NAN;
+    std::vector<float> albedo(3 * n), normal(3 * n);
+    for (float& a : albedo)
+        a = u(rng) < 0.5f ? 0.2f : 0.21f;
+    for (float& v : normal)
+        v = u(rng);
+    Guides guides;
+    for (int k = 0; k < 3; ++k) {
+        guides.albedo[k] = dense_plane(albedo.data() + k * n, w);
+        guides.normal[k] = dense_plane(normal.data() + k * n, w);
+    }
+    ASSERT_TRUE(stats.view().has_moments());
+    for (const Guides& g : {Guides{}, guides})
+        for (const bool borrow : {false, true})
+            for (const double prior_dof : {0.0, 16.0}) {
+                VarianceFilterOptions o;
+                o.borrow_without_interval = borrow;
+                o.prior_dof = prior_dof;
+                const std::vector<float> scalar = denoise_variances(
+                    stats.view(), TestDomain::Untransformed, g, o, 2, SimdLevel::Scalar);
+                for (SimdLevel level : supported_simd_levels())
+                    EXPECT_TRUE(
+                        same_bits(scalar, denoise_variances(stats.view(), TestDomain::Untransformed,
+                                                            g, o, 2, level)))
+                        << simd_level_name(level) << " guides " << g.has_albedo() << " borrow "
+                        << borrow << " d0 " << prior_dof;
+            }
 }
 
 TEST(VarianceFilter, RefusesBadOptionsAndMissingMoments)

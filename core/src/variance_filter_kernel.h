@@ -1,0 +1,152 @@
+// The variance filter's disk loop across W consecutive pixels of a row, written once with
+// GCC's vector extensions and compiled per instruction set (variance_filter_avx2.cpp,
+// variance_filter_avx512.cpp). Each lane computes exactly what the scalar loop in
+// variance_filter.cpp computes for its pixel: the same double products and sums in the
+// same tap order, no fused multiply-add (those files build with -ffp-contract=off), and the
+// guide weight's exp by the same std::exp, lane by lane. So the output's bits do not depend
+// on the level.
+//
+// Internal linkage on purpose: the header is compiled once per instruction set.
+#pragma once
+
+#include <cmath>
+#include <cstring>
+
+#include "variance_filter_layout.h"
+
+namespace statmc::detail {
+namespace {
+
+// GCC ignores vector_size on a type that depends on a template parameter, so the two
+// widths are spelled out.
+typedef double Double4 __attribute__((vector_size(32)));
+typedef float Float4 __attribute__((vector_size(16)));
+typedef char Char4 __attribute__((vector_size(4)));
+typedef double Double8 __attribute__((vector_size(64)));
+typedef float Float8 __attribute__((vector_size(32)));
+typedef char Char8 __attribute__((vector_size(8)));
+
+template <int W>
+struct VectorTypes;
+template <>
+struct VectorTypes<4> {
+    using D = Double4;
+    using Fl = Float4;
+    using Ch = Char4;
+};
+template <>
+struct VectorTypes<8> {
+    using D = Double8;
+    using Fl = Float8;
+    using Ch = Char8;
+};
+
+template <int W>
+struct Lanes {
+    using D = typename VectorTypes<W>::D;
+    using Mask = decltype(D{} < D{});  // all ones where true
+    using Fl = typename VectorTypes<W>::Fl;
+    using Ch = typename VectorTypes<W>::Ch;
+
+    static D splat(double x)
+    {
+        D v;
+        for (int k = 0; k < W; ++k)
+            v[k] = x;
+        return v;
+    }
+    static D load(const double* p)
+    {
+        D v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+    }
+    static D load(const float* p)
+    {
+        Fl v;
+        std::memcpy(&v, p, sizeof v);
+        return __builtin_convertvector(v, D);
+    }
+    static Mask load_flags(const char* p)
+    {
+        Ch v;
+        std::memcpy(&v, p, sizeof v);
+        return __builtin_convertvector(v, Mask) != 0;
+    }
+    static bool any(Mask m)
+    {
+        for (int k = 0; k < W; ++k)
+            if (m[k])
+                return true;
+        return false;
+    }
+};
+
+template <int W>
+void add_variance_disk(const VarianceLayout& L, int x0, int y, VarianceSums* sums)
+{
+    using V = Lanes<W>;
+    using D = typename V::D;
+    using Mask = typename V::Mask;
+    const int channels = L.channels, groups = L.guide_groups();
+    const std::size_t n = L.pixels, p0 = std::size_t(y) * L.width + x0;
+    const D z2 = V::splat(L.z2);
+    D centre[4], se2[4], sum[4], weight[4], prior_sum[4], prior_weight[4];
+    Mask borrows[4];  // lanes without an interval that take any neighbour with one
+    for (int c = 0; c < channels; ++c) {
+        centre[c] = V::load(L.log_centre.data() + c * n + p0);
+        se2[c] = V::load(L.log_se2.data() + c * n + p0);
+        borrows[c] = L.borrow ? centre[c] != centre[c] : Mask{};
+        for (int k = 0; k < W; ++k) {
+            sum[c][k] = sums[k].sum[c];
+            weight[c][k] = sums[k].weight[c];
+            prior_sum[c][k] = sums[k].prior_sum[c];
+            prior_weight[c][k] = sums[k].prior_weight[c];
+        }
+    }
+    D guide[6];
+    for (int g = 0; g < 3 * groups; ++g)
+        guide[g] = V::load(L.guide[g].data() + p0);
+
+    for (const VarianceTap& tap : L.taps) {
+        const std::size_t q0 = p0 + std::ptrdiff_t(tap.dy) * L.width + tap.dx;
+        D w = V::splat(tap.spatial);
+        if (groups > 0) {
+            D exponent = V::splat(0.0);
+            for (int group = 0; group < groups; ++group) {
+                D d2 = V::splat(0.0);
+                for (int k = 0; k < 3; ++k) {
+                    const D d = guide[3 * group + k] - V::load(L.guide[3 * group + k].data() + q0);
+                    d2 = d2 + d * d;
+                }
+                exponent = exponent + d2 * V::splat(L.guide_falloff[group]);
+            }
+            for (int k = 0; k < W; ++k)
+                w[k] = tap.spatial * std::exp(-exponent[k]);
+        }
+        for (int c = 0; c < channels; ++c) {
+            const D other = V::load(L.log_centre.data() + c * n + q0);
+            const D diff = centre[c] - other;
+            // A NaN centre (no interval) fails the comparison: such a pixel joins none.
+            const Mask member =
+                (diff * diff <= z2 * (se2[c] + V::load(L.log_se2.data() + c * n + q0))) |
+                (borrows[c] & (other == other));
+            const Mask usable = V::load_flags(L.usable.data() + c * n + q0);
+            const D term = w * V::load(L.s2.data() + c * n + q0);
+            sum[c] = member ? sum[c] + term : sum[c];
+            weight[c] = member ? weight[c] + w : weight[c];
+            prior_sum[c] = usable ? prior_sum[c] + term : prior_sum[c];
+            prior_weight[c] = usable ? prior_weight[c] + w : prior_weight[c];
+        }
+    }
+    for (int c = 0; c < channels; ++c)
+        for (int k = 0; k < W; ++k) {
+            sums[k].sum[c] = sum[c][k];
+            sums[k].weight[c] = weight[c][k];
+            sums[k].prior_sum[c] = prior_sum[c][k];
+            sums[k].prior_weight[c] = prior_weight[c][k];
+        }
+}
+
+}  // namespace
+}  // namespace statmc::detail

@@ -1,0 +1,58 @@
+// What the variance filter's disk loop reads (variance_filter.cpp builds it once per call)
+// and the SIMD kernels that walk it (variance_filter_kernel.h). The kernels add the same
+// products in the same order as the scalar loop, in double, so every level gives the
+// scalar loop's bits (docs/filter-design.md, "The variance filter across x").
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace statmc::detail {
+
+/// One tap of the disk: its offset and the spatial part of w_ij.
+struct VarianceTap {
+    int dx, dy;
+    double spatial;
+};
+
+struct VarianceLayout {
+    int width = 0, height = 0, channels = 0, radius = 0;
+    std::size_t pixels = 0;         ///< per channel; every plane below is channel-major
+    std::vector<float> log_centre;  ///< centre of the interval on ln σ²; NaN: no interval
+    std::vector<float> log_se2;     ///< its squared standard error
+    std::vector<double> s2;         ///< the per-sample s² that is averaged
+    std::vector<char> usable;       ///< whether the moderation may use s2
+    std::vector<VarianceTap> taps;  ///< raster order, the centre left out
+    /// Dense copies of the guides present, three planes per group (albedo, then normal),
+    /// and each group's 1/(2σ²).
+    std::vector<std::vector<float>> guide;
+    double guide_falloff[2] = {0, 0};
+    double z2 = 0;        ///< the squared critical value of the test on ln σ²
+    bool borrow = false;  ///< VarianceFilterOptions::borrow_without_interval
+
+    int guide_groups() const { return int(guide.size()) / 3; }
+    bool interior(int x, int y) const
+    {
+        return x >= radius && x < width - radius && y >= radius && y < height - radius;
+    }
+};
+
+/// One pixel's weighted sums per channel: over the members (tested) and over every
+/// neighbour the moderation may use (prior). They arrive holding the centre's own terms.
+struct VarianceSums {
+    double sum[4], weight[4], prior_sum[4], prior_weight[4];
+};
+
+/// Adds the disk's taps to the sums of `lanes` pixels (x0, y) … (x0 + lanes − 1, y), all
+/// interior (their whole disk inside the image).
+using VarianceChunkFn = void (*)(const VarianceLayout& layout, int x0, int y, VarianceSums* sums);
+
+struct VarianceKernel {
+    int lanes;
+    VarianceChunkFn add_disk;
+};
+
+VarianceKernel variance_kernel_avx2();
+VarianceKernel variance_kernel_avx512();
+
+}  // namespace statmc::detail
