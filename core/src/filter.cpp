@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -122,36 +123,30 @@ void check_arguments(const EstimatorImage& est, const DenoiseOptions& options,
 
 namespace {
 
-void filter_at_level(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
-                     const NoiseLevels* given_noise, const std::vector<Plane>& out,
-                     const FilterDiagnostics& diagnostics, int nthreads, SimdLevel level)
+detail::FilterRowsFn checked_kernel(SimdLevel& level)
 {
-    check_arguments(est, options, out);
     if (level == SimdLevel::Auto)
         level = detected_simd_level();
     if (level > hardware_simd_level())
         throw std::invalid_argument(std::string("this CPU cannot run the ") +
                                     simd_level_name(level) + " kernel");
-    const detail::FilterRowsFn rows = kernel(level);
-    const int lanes = detail::kernel_width(level);
+    return kernel(level);
+}
 
-    run_with_threads(nthreads, [&] {
-        const NoiseLevels own_noise =
-            given_noise ? NoiseLevels{} : detail::guard_levels(est, options);
-        const detail::FilterLayout layout =
-            detail::make_filter_layout(est, guides, options, given_noise ? *given_noise : own_noise,
-                                       nthreads, lanes, diagnostics.any());
-        // Tiles of a few rows by 64 columns keep the window's planes in L2. Each pixel
-        // is computed alone, so the tiling cannot change the result.
-        const int chunk_grain = std::max(1, 64 / lanes);
-        tbb::parallel_for(
-            tbb::blocked_range2d<int>(0, est.height, 4, 0, layout.chunks, chunk_grain),
-            [&](const tbb::blocked_range2d<int>& r) {
-                rows(layout, out, diagnostics, r.rows().begin(), r.rows().end(), r.cols().begin(),
-                     r.cols().end());
-            },
-            tbb::simple_partitioner());
-    });
+// Runs the kernel over the whole image. Tiles of a few rows by 64 columns keep the
+// window's planes in L2. Each pixel is computed alone, so the tiling cannot change the
+// result.
+void run_kernel(detail::FilterRowsFn rows, const detail::FilterLayout& layout, int height,
+                const std::vector<Plane>& out, const FilterDiagnostics& diagnostics)
+{
+    const int chunk_grain = std::max(1, 64 / layout.lanes);
+    tbb::parallel_for(
+        tbb::blocked_range2d<int>(0, height, 4, 0, layout.chunks, chunk_grain),
+        [&](const tbb::blocked_range2d<int>& r) {
+            rows(layout, out, diagnostics, r.rows().begin(), r.rows().end(), r.cols().begin(),
+                 r.cols().end());
+        },
+        tbb::simple_partitioner());
 }
 
 }  // namespace
@@ -160,16 +155,43 @@ void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOption
             const std::vector<Plane>& out, const FilterDiagnostics& diagnostics, int nthreads,
             SimdLevel level)
 {
-    filter_at_level(est, guides, options, nullptr, out, diagnostics, nthreads, level);
+    check_arguments(est, options, out);
+    const detail::FilterRowsFn rows = checked_kernel(level);
+    run_with_threads(nthreads, [&] {
+        const detail::FilterLayout layout =
+            detail::make_filter_layout(est, guides, options, detail::guard_levels(est, options),
+                                       nthreads, detail::kernel_width(level), diagnostics.any());
+        run_kernel(rows, layout, est.height, out, diagnostics);
+    });
 }
 
 namespace detail {
-void filter_with_levels(const EstimatorImage& est, const Guides& guides,
-                        const DenoiseOptions& options, const NoiseLevels& noise,
-                        const std::vector<Plane>& out, const FilterDiagnostics& diagnostics,
-                        int nthreads)
+void filter_rungs(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
+                  const std::vector<int>& radii, const std::vector<Plane>& out,
+                  const FilterDiagnostics& diagnostics, int nthreads, SimdLevel level,
+                  const std::function<void(int radius)>& rung_done)
 {
-    filter_at_level(est, guides, options, &noise, out, diagnostics, nthreads, SimdLevel::Auto);
+    check_arguments(est, options, out);
+    for (std::size_t k = 0; k < radii.size(); ++k)
+        if (radii[k] < 1 || radii[k] > options.radius || (k > 0 && radii[k] <= radii[k - 1]))
+            throw std::invalid_argument("filter rungs: radii must ascend within [1, radius]");
+    const FilterRowsFn rows = checked_kernel(level);
+    run_with_threads(nthreads, [&] {
+        FilterLayout layout = make_filter_layout(est, guides, options, guard_levels(est, options),
+                                                 nthreads, kernel_width(level), diagnostics.any());
+        std::vector<float> sums(FilterLayout::kCarryPlanes * layout.stride *
+                                std::size_t(est.height));
+        for (int k = 0; k < FilterLayout::kCarryPlanes; ++k)
+            layout.carry[k] = sums.data() + k * layout.stride * std::size_t(est.height);
+        int inner = 0;
+        for (int radius : radii) {
+            set_window(layout, radius, inner);
+            layout.carry_from_previous = inner > 0;
+            run_kernel(rows, layout, est.height, out, diagnostics);
+            rung_done(radius);
+            inner = radius;
+        }
+    });
 }
 }  // namespace detail
 

@@ -154,25 +154,32 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
     };
     auto tap = [&](auto row, int dx, int wy)
                    STATMC_INLINE { taps(row, Row<decltype(row)::value + 1>{}, dx, wy); };
-    auto half_width = [&](int k, int wy) {  // −1 where row wy is outside centre k's window
+    // Row wy of centre k's window: columns inner < |dx| ≤ outer (−1: none, or from dx = 0).
+    auto half_width = [&](int k, int wy) {
         const int dy = wy - (y + k);
         return std::abs(dy) <= L.pad_y ? L.half_width[dy + L.pad_y] : -1;
     };
-    // One centre's taps of a row, dx ascending; the centre itself is in already.
-    auto row_of_one = [&](auto row, int wy, int hw) STATMC_INLINE {
-        const bool own_row = wy == y + decltype(row)::value;
-        for (int dx = -hw; dx < 0; ++dx)
+    auto inner_half_width = [&](int k, int wy) {
+        const int dy = wy - (y + k);
+        return std::abs(dy) <= L.pad_y ? L.inner_half_width[dy + L.pad_y] : -1;
+    };
+    // One centre's taps of a row, dx ascending, leaving out the inner disk (at least the
+    // centre, which is in already).
+    auto row_of_one = [&](auto row, int wy, int hw, int inner) STATMC_INLINE {
+        for (int dx = -hw; dx <= std::min(-inner - 1, -1); ++dx)
             tap(row, dx, wy);
-        if (!own_row && hw >= 0)
+        if (inner < 0 && hw >= 0)
             tap(row, 0, wy);
-        for (int dx = 1; dx <= hw; ++dx)
+        for (int dx = std::max(inner + 1, 1); dx <= hw; ++dx)
             tap(row, dx, wy);
     };
 
     for (int wy = y_first; wy <= y_last; ++wy) {
         if constexpr (R == 1) {
-            row_of_one(Row<0>{}, wy, half_width(0, wy));
+            row_of_one(Row<0>{}, wy, half_width(0, wy), inner_half_width(0, wy));
         } else {
+            // Two centre rows walk whole disks (inner radius 0: filter_rows_diag pairs rows
+            // only then), so the own row is the only one without dx = 0.
             // Both centres take the columns both disks cover, sharing the neighbour's
             // loads; the wider disk's rim goes alone. Each centre still sums its taps in
             // dx order, as with R = 1: the bits do not depend on how rows were paired.
@@ -180,9 +187,9 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
             const int narrow = std::min(hw0, hw1), wide = std::max(hw0, hw1);
             if (narrow < 0) {
                 if (hw0 >= 0)
-                    row_of_one(Row<0>{}, wy, hw0);
+                    row_of_one(Row<0>{}, wy, hw0, inner_half_width(0, wy));
                 else
-                    row_of_one(Row<1>{}, wy, hw1);
+                    row_of_one(Row<1>{}, wy, hw1, inner_half_width(1, wy));
                 continue;
             }
             auto rim = [&](int dx0, int dx1) STATMC_INLINE {
@@ -255,25 +262,48 @@ constexpr int centre_rows()
     return V::kWidth == 16 && NC <= 3 && !kDiagnostics ? 2 : 1;
 }
 
-template <class V, int NC, int NG, bool kDiagnostics>
+/// The radius ladder's running sums of one chunk (FilterLayout::carry), in and out.
+template <class V, int NC>
+void load_carry(const FilterLayout& L, std::ptrdiff_t at, Partial<V, NC>& p)
+{
+    for (int c = 0; c < NC; ++c)
+        p.acc[c] = V::load(L.carry[c] + at);
+    p.weight_sum = V::load(L.carry[4] + at);
+    p.member_count = V::load(L.carry[5] + at);
+    p.inverse_sum = V::load(L.carry[6] + at);
+}
+
+template <class V, int NC>
+void store_carry(const FilterLayout& L, std::ptrdiff_t at, const Partial<V, NC>& p)
+{
+    for (int c = 0; c < NC; ++c)
+        V::store(L.carry[c] + at, p.acc[c]);
+    V::store(L.carry[4] + at, p.weight_sum);
+    V::store(L.carry[5] + at, p.member_count);
+    V::store(L.carry[6] + at, p.inverse_sum);
+}
+
+template <class V, int NC, int NG, bool kDiagnostics, int R>
 void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
                       const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
-    constexpr int R = centre_rows<V, NC, kDiagnostics>();
     std::vector<std::array<Partial<V, NC>, R>> partials(chunk1 - chunk0);
+    const bool carrying = L.carry[4] != nullptr;
     for (int y = y0; y < y1; y += R) {
         const int rows = std::min(R, y1 - y);
         for (int k = chunk0; k < chunk1; ++k)
             for (int r = 0; r < rows; ++r) {
                 Partial<V, NC>& p = partials[k - chunk0][r];
+                const std::ptrdiff_t at = std::ptrdiff_t(y + r) * L.stride + k * V::kWidth;
+                if (L.carry_from_previous) {
+                    load_carry(L, at, p);
+                    continue;
+                }
                 for (int c = 0; c < NC; ++c)
                     p.acc[c] = V::zero();
                 p.weight_sum = V::set1(1.f);  // the centre
                 p.member_count = V::set1(1.f);
-                p.inverse_sum = kDiagnostics
-                                    ? V::load(L.inverse_count + std::ptrdiff_t(y + r) * L.stride +
-                                              k * V::kWidth)
-                                    : V::zero();
+                p.inverse_sum = kDiagnostics ? V::load(L.inverse_count + at) : V::zero();
             }
         auto add = [&](auto centre_rows, int k, int wy0, int wy1) {
             constexpr int kRows = decltype(centre_rows)::value;
@@ -289,8 +319,8 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
         // Bands of window rows in a fixed order, and taps in a fixed order within each:
         // every pixel sums its taps in the same order whatever the tiling and pairing of
         // rows, so results stay bitwise identical for any thread count.
-        const int last_row = y + rows - 1 + L.pad_y;
-        for (int wy0 = y - L.pad_y; wy0 <= last_row; wy0 += kBandRows) {
+        const int last_row = y + rows - 1 + L.reach_y;
+        for (int wy0 = y - L.reach_y; wy0 <= last_row; wy0 += kBandRows) {
             const int wy1 = std::min(wy0 + kBandRows - 1, last_row);
             for (int k = chunk0; k < chunk1; ++k) {
                 if (rows == R)
@@ -300,9 +330,12 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
             }
         }
         for (int k = chunk0; k < chunk1; ++k)
-            for (int r = 0; r < rows; ++r)
-                write_chunk<V, NC, kDiagnostics>(L, out, diag, y + r, k * V::kWidth,
-                                                 partials[k - chunk0][r]);
+            for (int r = 0; r < rows; ++r) {
+                const Partial<V, NC>& p = partials[k - chunk0][r];
+                if (carrying)
+                    store_carry(L, std::ptrdiff_t(y + r) * L.stride + k * V::kWidth, p);
+                write_chunk<V, NC, kDiagnostics>(L, out, diag, y + r, k * V::kWidth, p);
+            }
     }
 }
 
@@ -310,10 +343,21 @@ template <class V, int NC, int NG>
 void filter_rows_diag(const FilterLayout& L, const std::vector<Plane>& out,
                       const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
-    if (diag.any())
-        filter_rows_impl<V, NC, NG, true>(L, out, diag, y0, y1, chunk0, chunk1);
-    else
-        filter_rows_impl<V, NC, NG, false>(L, out, diag, y0, y1, chunk0, chunk1);
+    // The ladder's annuli take one centre row at a time (the pairing assumes whole disks).
+    const bool paired = L.carry[4] == nullptr;
+    if (diag.any()) {
+        constexpr int R = centre_rows<V, NC, true>();
+        if (paired)
+            filter_rows_impl<V, NC, NG, true, R>(L, out, diag, y0, y1, chunk0, chunk1);
+        else
+            filter_rows_impl<V, NC, NG, true, 1>(L, out, diag, y0, y1, chunk0, chunk1);
+    } else {
+        constexpr int R = centre_rows<V, NC, false>();
+        if (paired)
+            filter_rows_impl<V, NC, NG, false, R>(L, out, diag, y0, y1, chunk0, chunk1);
+        else
+            filter_rows_impl<V, NC, NG, false, 1>(L, out, diag, y0, y1, chunk0, chunk1);
+    }
 }
 
 template <class V, int NC>

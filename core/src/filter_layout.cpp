@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
-#include <mutex>
 #include <new>
 
 #include <sys/mman.h>
@@ -29,75 +28,46 @@ constexpr float kGuideBound = 1e17f;
 
 float finite_or_zero(float v) { return std::isfinite(v) ? v : 0.f; }
 
+// The disk at radius r: row dy's half width, −1 where the row is outside it.
+int disk_half_width(const FilterLayout& L, int r, int dy)
+{
+    if (std::abs(dy) > r)
+        return -1;
+    const int hw = int(std::floor(std::sqrt(std::max(0.0, double(r) * r - double(dy) * dy))));
+    return std::min(hw, L.pad_x);
+}
+
 void build_window(FilterLayout& L, const DenoiseOptions& options)
 {
-    const int r = options.radius;
-    const double r2 = double(r) * r;
     const double inv_two_sigma2 =
         1.0 / (2.0 * double(options.sigma_spatial) * options.sigma_spatial);
     const int cols = 2 * L.pad_x + 1;
-    L.half_width.resize(2 * L.pad_y + 1);
+    set_window(L, options.radius, 0);
     L.spatial_weight.assign(std::size_t(cols) * (2 * L.pad_y + 1), 0.f);
     L.spatial_log2_weight.assign(L.spatial_weight.size(), kNever);
-    for (int dy = -L.pad_y; dy <= L.pad_y; ++dy) {
-        const int hw = int(std::floor(std::sqrt(std::max(0.0, r2 - double(dy) * dy))));
-        L.half_width[dy + L.pad_y] = std::min(hw, L.pad_x);
+    for (int dy = -L.pad_y; dy <= L.pad_y; ++dy)
         for (int dx = -L.half_width[dy + L.pad_y]; dx <= L.half_width[dy + L.pad_y]; ++dx) {
             const double log_w = -(double(dx) * dx + double(dy) * dy) * inv_two_sigma2;
             L.spatial_log2_weight[L.table_index(dx, dy)] = float(log_w * kLog2e);
             L.spatial_weight[L.table_index(dx, dy)] = float(std::exp(log_w));
         }
-    }
 }
 
 constexpr std::size_t kHugePage = std::size_t(2) << 20;
 
-// The block a LayoutMemoryReuse keeps, shared by every thread (one at a time).
-struct SpareBlock {
-    std::mutex mutex;
-    float* block = nullptr;
-    std::size_t bytes = 0;
-    int keepers = 0;
-};
-SpareBlock& spare()
+/// Uninitialised floats for the padded planes. Large blocks are aligned to 2 MiB and
+/// marked for transparent huge pages: a fresh 50 MB block otherwise takes ~13000 page
+/// faults, a fifth of the filter's time on a small radius.
+float* page_memory(std::size_t floats)
 {
-    static SpareBlock s;
-    return s;
-}
-
-std::size_t whole_huge_pages(std::size_t bytes)
-{
-    return (bytes + kHugePage - 1) / kHugePage * kHugePage;
-}
-
-/// Uninitialised floats for the padded planes, and the block's size in bytes. Large
-/// blocks are aligned to 2 MiB and marked for transparent huge pages: a fresh 50 MB block
-/// otherwise takes ~13000 page faults, a fifth of the filter's time on a small radius.
-/// While reuse is on, a kept block that is large enough (and not twice too large) is taken,
-/// and new blocks get an eighth more room, so that the ladder's growing radii fit in them.
-std::pair<float*, std::size_t> page_memory(std::size_t floats)
-{
-    const std::size_t needed = floats * sizeof(float);
-    std::size_t bytes = whole_huge_pages(needed);
-    {
-        SpareBlock& s = spare();
-        const std::lock_guard<std::mutex> lock(s.mutex);
-        if (s.block && s.bytes >= needed && s.bytes <= 2 * needed) {
-            const std::pair<float*, std::size_t> taken{s.block, s.bytes};
-            s.block = nullptr;
-            s.bytes = 0;
-            return taken;
-        }
-        if (s.keepers > 0)
-            bytes = whole_huge_pages(needed + needed / 8);
-    }
+    const std::size_t bytes = (floats * sizeof(float) + kHugePage - 1) / kHugePage * kHugePage;
     void* p = std::aligned_alloc(kHugePage, bytes);
     if (!p)
         throw std::bad_alloc();
 #ifdef MADV_HUGEPAGE
     madvise(p, bytes, MADV_HUGEPAGE);  // advice only: without THP it is ignored
 #endif
-    return {static_cast<float*>(p), bytes};
+    return static_cast<float*>(p);
 }
 
 /// Marks the chunks whose window may hold a level above some centre's limit. The
@@ -143,39 +113,17 @@ void mark_guarded_chunks(FilterLayout& L, const NoiseLevels& noise)
 
 }  // namespace
 
-void FilterLayout::Release::operator()(float* p) const
-{
-    SpareBlock& s = spare();
-    {
-        const std::lock_guard<std::mutex> lock(s.mutex);
-        if (s.keepers > 0 && bytes > s.bytes) {  // keep the larger of the two
-            std::swap(p, s.block);
-            s.bytes = bytes;
-        }
-    }
-    std::free(p);
-}
+void FilterLayout::Release::operator()(float* p) const { std::free(p); }
 
-LayoutMemoryReuse::LayoutMemoryReuse()
+void set_window(FilterLayout& L, int outer, int inner)
 {
-    SpareBlock& s = spare();
-    const std::lock_guard<std::mutex> lock(s.mutex);
-    ++s.keepers;
-}
-
-LayoutMemoryReuse::~LayoutMemoryReuse()
-{
-    SpareBlock& s = spare();
-    float* kept = nullptr;
-    {
-        const std::lock_guard<std::mutex> lock(s.mutex);
-        if (--s.keepers == 0) {
-            kept = s.block;
-            s.block = nullptr;
-            s.bytes = 0;
-        }
+    L.reach_y = std::min(outer, L.pad_y);
+    L.half_width.resize(2 * L.pad_y + 1);
+    L.inner_half_width.resize(2 * L.pad_y + 1);
+    for (int dy = -L.pad_y; dy <= L.pad_y; ++dy) {
+        L.half_width[dy + L.pad_y] = disk_half_width(L, outer, dy);
+        L.inner_half_width[dy + L.pad_y] = disk_half_width(L, inner, dy);
     }
-    std::free(kept);
 }
 
 NoiseLevels guard_levels(const EstimatorImage& est, const DenoiseOptions& options)
@@ -223,9 +171,7 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         3 * L.channels + L.guide_count + (guard ? 2 : 0) + (with_inverse_count ? 1 : 0);
     // Not zeroed: every float, padding included, is written once below, by the thread
     // that will mostly read it (zeroing 50 MB first cost as much as filling it).
-    const auto [block, block_bytes] = page_memory(L.plane_size * planes);
-    L.storage =
-        std::unique_ptr<float[], FilterLayout::Release>(block, FilterLayout::Release{block_bytes});
+    L.storage = std::unique_ptr<float[], FilterLayout::Release>(page_memory(L.plane_size * planes));
     const std::ptrdiff_t origin = std::ptrdiff_t(L.pad_y) * L.stride + L.pad_x;
     auto plane_origin = [&](int k) { return L.storage.get() + k * L.plane_size + origin; };
     float* mean[4];

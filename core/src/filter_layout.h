@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -20,7 +21,6 @@ struct FilterLayout {
     std::ptrdiff_t stride = 0;   // floats per padded row
     std::size_t plane_size = 0;  // floats per padded plane
     struct Release {
-        std::size_t bytes;  ///< the block's size, for a LayoutMemoryReuse to keep it
         void operator()(float* p) const;
     };
     std::unique_ptr<float[], Release> storage;  // all padded planes, back to back (page_memory)
@@ -44,12 +44,24 @@ struct FilterLayout {
     int guide_count = 0;                   // 0, 3 (albedo or normal) or 6 (both)
     const float* guide[6] = {};  // scaled by √(log2 e)/(√2·σ): −Σ (Δg)² is the log2-weight
 
-    // The disk: for row offset dy ∈ [−pad_y, pad_y], |dx| ≤ half_width[dy + pad_y];
-    // spatial weight and its base-2 logarithm at (dx, dy) are at [(dy + pad_y)*(2*pad_x+1) + dx +
-    // pad_x].
+    // The window walked: rows |dy| ≤ reach_y, and in row dy the columns
+    // inner_half_width[dy] < |dx| ≤ half_width[dy] (index dy + pad_y; −1 where the row is
+    // outside that disk). A plain filter walks its disk less the centre (inner radius 0);
+    // the radius ladder walks one annulus per rung (set_window). Spatial weight and its
+    // base-2 logarithm at (dx, dy) are at [(dy + pad_y)*(2*pad_x+1) + dx + pad_x], for the
+    // whole disk of the layout's radius.
+    int reach_y = 0;
     std::vector<int> half_width;
+    std::vector<int> inner_half_width;
     std::vector<float> spatial_weight;
     std::vector<float> spatial_log2_weight;
+
+    // The radius ladder's running sums (filter_rungs): planes of Σ W(F_j − F_i) per channel,
+    // Σ W, the member count and Σ W²/n, `stride` floats per row. When set, each pixel's sums
+    // are stored there after a call, and start from them when carry_from_previous.
+    static constexpr int kCarryPlanes = 7;
+    float* carry[kCarryPlanes] = {};
+    bool carry_from_previous = false;
 
     float spatial(int dx, int dy) const { return spatial_weight[table_index(dx, dy)]; }
     float spatial_log2(int dx, int dy) const { return spatial_log2_weight[table_index(dx, dy)]; }
@@ -59,21 +71,8 @@ struct FilterLayout {
     }
 };
 
-/// While one is alive, a layout's freed planes are kept for the next layout rather than
-/// returned to the system, which hands back fresh pages that must be faulted in and
-/// zeroed again (a tenth of a guided radius ladder's time); released with the last one.
-/// For callers that filter one image several times (the radius ladder).
-class LayoutMemoryReuse {
-public:
-    LayoutMemoryReuse();
-    ~LayoutMemoryReuse();
-    LayoutMemoryReuse(const LayoutMemoryReuse&) = delete;
-    LayoutMemoryReuse& operator=(const LayoutMemoryReuse&) = delete;
-};
-
 /// The firefly guard's levels for `est` under `options` (empty where the guard does not
-/// apply): they depend on neither the radius nor the guides, so a caller that filters one
-/// image at several radii computes them once.
+/// apply).
 NoiseLevels guard_levels(const EstimatorImage& est, const DenoiseOptions& options);
 
 /// `lanes`: the kernel's SIMD width, which sets the chunks of `guarded`.
@@ -83,11 +82,20 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                                 const DenoiseOptions& options, const NoiseLevels& noise,
                                 int nthreads, int lanes, bool with_inverse_count = false);
 
-/// filter() with the guard's levels given (guard_levels of the same image and options).
-void filter_with_levels(const EstimatorImage& est, const Guides& guides,
-                        const DenoiseOptions& options, const NoiseLevels& noise,
-                        const std::vector<Plane>& out, const FilterDiagnostics& diagnostics,
-                        int nthreads);
+/// Makes the layout walk the annulus inner < |d| ≤ outer (radii ≤ the layout's own; inner
+/// 0 is the whole disk less the centre).
+void set_window(FilterLayout& layout, int outer, int inner);
+
+/// filter() at each radius of `radii` (ascending, in [1, options.radius]) from one layout:
+/// each rung adds only its annulus to the previous rung's sums, so the ladder costs one
+/// pass of the largest radius. After each rung, `out` and `diagnostics` hold that rung's
+/// result and `rung_done(radius)` is called (serially). A rung sums its taps in another
+/// order than filter() at its radius, so it agrees with it to float rounding; bitwise the
+/// same for any thread count.
+void filter_rungs(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
+                  const std::vector<int>& radii, const std::vector<Plane>& out,
+                  const FilterDiagnostics& diagnostics, int nthreads, SimdLevel level,
+                  const std::function<void(int radius)>& rung_done);
 
 /// Filters output rows [y0, y1), chunks of kernel-width columns [chunk0, chunk1).
 using FilterRowsFn = void (*)(const FilterLayout& layout, const std::vector<Plane>& out,

@@ -71,14 +71,8 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
         rung_planes.push_back(dense_plane(rung_out.data() + c * pixels, w));
     FilterDiagnostics diagnostics;
     diagnostics.effective_samples = dense_plane(effective.data(), w);
-    // What every rung shares: one block for the layouts, and the guard's levels.
-    const detail::LayoutMemoryReuse reuse;
-    NoiseLevels noise;
-    run_with_threads(nthreads, [&] { noise = detail::guard_levels(est, options); });
-    for (int radius : rungs(ladder, options.radius)) {
-        DenoiseOptions at = options;
-        at.radius = radius;
-        detail::filter_with_levels(est, guides, at, noise, rung_planes, diagnostics, nthreads);
+    // One walk of the largest disk: each rung adds its annulus to the one before.
+    auto take_rung = [&](int) {
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 const std::size_t i = std::size_t(y) * w + x;
@@ -104,7 +98,9 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
                     out[c](x, y) = rung_out[k];
                 }
             }
-    }
+    };
+    detail::filter_rungs(est, guides, options, rungs(ladder, options.radius), rung_planes,
+                         diagnostics, nthreads, SimdLevel::Auto, take_rung);
 }
 
 }  // namespace statmc

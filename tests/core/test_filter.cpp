@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "estimator_fixtures.h"
+#include "filter_layout.h"
 #include "statmc/core/filter.h"
 #include "statmc/core/firefly_guard.h"
 
@@ -87,13 +88,9 @@ struct GuideImages {
     }
 };
 
-void expect_matches_reference(const EstimatorImage& est, const Guides& guides,
-                              const DenoiseOptions& opt, SimdLevel level)
+// Membership must agree exactly; values up to float accumulation order.
+void expect_agree(const Output& fast, const Output& ref)
 {
-    Output fast(est.width, est.height, est.channels), ref(est.width, est.height, est.channels);
-    filter(est, guides, opt, fast.planes(), fast.diagnostics(), 0, level);
-    filter_reference(est, guides, opt, ref.planes(), ref.diagnostics());
-    // Membership must agree exactly; values up to float accumulation order.
     for (std::size_t i = 0; i < ref.members.size(); ++i)
         ASSERT_EQ(fast.members[i], ref.members[i]) << "pixel " << i;
     for (std::size_t i = 0; i < ref.values.size(); ++i)
@@ -104,6 +101,15 @@ void expect_matches_reference(const EstimatorImage& est, const Guides& guides,
     for (std::size_t i = 0; i < ref.effective.size(); ++i)
         ASSERT_NEAR(fast.effective[i], ref.effective[i], 2e-4f * ref.effective[i])
             << "effective samples " << i;
+}
+
+void expect_matches_reference(const EstimatorImage& est, const Guides& guides,
+                              const DenoiseOptions& opt, SimdLevel level)
+{
+    Output fast(est.width, est.height, est.channels), ref(est.width, est.height, est.channels);
+    filter(est, guides, opt, fast.planes(), fast.diagnostics(), 0, level);
+    filter_reference(est, guides, opt, ref.planes(), ref.diagnostics());
+    expect_agree(fast, ref);
 }
 
 struct Case {
@@ -212,6 +218,66 @@ TEST(Filter, VectorKernelsAgree)
             ASSERT_NEAR(avx512.values[i], avx2.values[i], 1e-6f * (1 + std::abs(avx2.values[i])))
                 << "value " << i;
     }
+}
+
+// The radius ladder's one walk (detail::filter_rungs): each rung adds its annulus to the
+// sums of the rung before, so after each rung the output must be the filter at that
+// radius (the double reference), with the same members.
+TEST(FilterRungs, EachRungIsTheFilterAtItsRadius)
+{
+    const EstimatorImage est = random_estimators(45, 29, 3, 21);
+    const std::vector<int> radii = {1, 2, 4, 9};
+    for (bool guided : {false, true}) {
+        GuideImages g(45, 29, guided, guided, 8);
+        DenoiseOptions opt;
+        opt.radius = 9;
+        opt.sigma_spatial = 3.f;
+        opt.sigma_albedo = 0.05f;
+        opt.sigma_normal = 0.2f;
+        for (SimdLevel level : supported_simd_levels()) {
+            SCOPED_TRACE(std::string(simd_level_name(level)) + (guided ? " guided" : ""));
+            Output fast(est.width, est.height, est.channels);
+            std::vector<int> seen;
+            detail::filter_rungs(est, g.guides, opt, radii, fast.planes(), fast.diagnostics(), 0,
+                                 level, [&](int radius) {
+                                     seen.push_back(radius);
+                                     DenoiseOptions at = opt;
+                                     at.radius = radius;
+                                     Output ref(est.width, est.height, est.channels);
+                                     filter_reference(est, g.guides, at, ref.planes(),
+                                                      ref.diagnostics());
+                                     SCOPED_TRACE("radius " + std::to_string(radius));
+                                     expect_agree(fast, ref);
+                                 });
+            EXPECT_EQ(seen, radii);
+        }
+    }
+}
+
+TEST(FilterRungs, BitwiseIdenticalForAnyThreadCountAndRefusesBadRadii)
+{
+    const EstimatorImage est = random_estimators(150, 97, 3, 5);
+    GuideImages g(150, 97, true, true, 6);
+    DenoiseOptions opt;
+    opt.radius = 12;
+    auto rungs_with = [&](int nthreads) {
+        Output o(150, 97, 3);
+        std::vector<float> all;
+        detail::filter_rungs(est, g.guides, opt, {1, 3, 8, 12}, o.planes(), o.diagnostics(),
+                             nthreads, SimdLevel::Auto, [&](int) {
+                                 all.insert(all.end(), o.values.begin(), o.values.end());
+                                 all.insert(all.end(), o.effective.begin(), o.effective.end());
+                             });
+        return all;
+    };
+    const std::vector<float> one = rungs_with(1), two = rungs_with(2);
+    ASSERT_EQ(one.size(), two.size());
+    EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(float)), 0);
+    Output o(150, 97, 3);
+    for (const std::vector<int>& bad : {std::vector<int>{3, 2}, {0, 4}, {4, 13}})
+        EXPECT_THROW(
+            detail::filter_rungs(est, {}, opt, bad, o.planes(), {}, 1, SimdLevel::Auto, [](int) {}),
+            std::invalid_argument);
 }
 
 TEST(Filter, WritesThroughStridedInterleavedOutput)
