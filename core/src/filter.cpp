@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -12,7 +13,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
+#include "filter_cuda.h"
 #include "filter_layout.h"
+#include "statmc/core/cuda_device.h"
 #include "statmc/core/thread_limit.h"
 
 namespace statmc {
@@ -149,6 +152,23 @@ void run_kernel(detail::FilterRowsFn rows, const detail::FilterLayout& layout, i
         tbb::simple_partitioner());
 }
 
+// Whether options.device sends this image to the GPU (docs/gpu.md).
+bool on_cuda(const EstimatorImage& est, const DenoiseOptions& options)
+{
+    switch (options.device) {
+    case Device::Cpu:
+        return false;
+    case Device::Auto:
+        return est.pixels() >= kAutoCudaPixels && cuda_available();
+    case Device::Cuda:
+        break;
+    }
+    std::string why;
+    if (!cuda_available(&why))
+        throw std::runtime_error("device=cuda: " + why);
+    return true;
+}
+
 }  // namespace
 
 void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
@@ -156,12 +176,16 @@ void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOption
             SimdLevel level)
 {
     check_arguments(est, options, out);
+    const bool gpu = on_cuda(est, options);
     const detail::FilterRowsFn rows = checked_kernel(level);
     run_with_threads(nthreads, [&] {
         const detail::FilterLayout layout =
             detail::make_filter_layout(est, guides, options, detail::guard_levels(est, options),
                                        nthreads, detail::kernel_width(level), diagnostics.any());
-        run_kernel(rows, layout, est.height, out, diagnostics);
+        if (gpu)
+            detail::CudaFilter(layout, false).run(layout, out, diagnostics);
+        else
+            run_kernel(rows, layout, est.height, out, diagnostics);
     });
 }
 
@@ -175,19 +199,29 @@ void filter_rungs(const EstimatorImage& est, const Guides& guides, const Denoise
     for (std::size_t k = 0; k < radii.size(); ++k)
         if (radii[k] < 1 || radii[k] > options.radius || (k > 0 && radii[k] <= radii[k - 1]))
             throw std::invalid_argument("filter rungs: radii must ascend within [1, radius]");
+    const bool gpu = on_cuda(est, options);
     const FilterRowsFn rows = checked_kernel(level);
     run_with_threads(nthreads, [&] {
         FilterLayout layout = make_filter_layout(est, guides, options, guard_levels(est, options),
                                                  nthreads, kernel_width(level), diagnostics.any());
-        std::vector<float> sums(FilterLayout::kCarryPlanes * layout.stride *
-                                std::size_t(est.height));
-        for (int k = 0; k < FilterLayout::kCarryPlanes; ++k)
-            layout.carry[k] = sums.data() + k * layout.stride * std::size_t(est.height);
+        // The running sums: on the GPU they stay in device memory between rungs.
+        std::vector<float> sums;
+        std::unique_ptr<CudaFilter> device;
+        if (gpu) {
+            device = std::make_unique<CudaFilter>(layout, true);
+        } else {
+            sums.resize(FilterLayout::kCarryPlanes * layout.stride * std::size_t(est.height));
+            for (int k = 0; k < FilterLayout::kCarryPlanes; ++k)
+                layout.carry[k] = sums.data() + k * layout.stride * std::size_t(est.height);
+        }
         int inner = 0;
         for (int radius : radii) {
             set_window(layout, radius, inner);
             layout.carry_from_previous = inner > 0;
-            run_kernel(rows, layout, est.height, out, diagnostics);
+            if (device)
+                device->run(layout, out, diagnostics);
+            else
+                run_kernel(rows, layout, est.height, out, diagnostics);
             rung_done(radius);
             inner = radius;
         }

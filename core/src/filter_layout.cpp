@@ -171,7 +171,8 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         3 * L.channels + L.guide_count + (guard ? 2 : 0) + (with_inverse_count ? 1 : 0);
     // Not zeroed: every float, padding included, is written once below, by the thread
     // that will mostly read it (zeroing 50 MB first cost as much as filling it).
-    L.storage = std::unique_ptr<float[], FilterLayout::Release>(page_memory(L.plane_size * planes));
+    L.storage_floats = L.plane_size * planes;
+    L.storage = std::unique_ptr<float[], FilterLayout::Release>(page_memory(L.storage_floats));
     const std::ptrdiff_t origin = std::ptrdiff_t(L.pad_y) * L.stride + L.pad_x;
     auto plane_origin = [&](int k) { return L.storage.get() + k * L.plane_size + origin; };
     float* mean[4];

@@ -20,6 +20,7 @@ struct FilterLayout {
     int pad_x = 0, pad_y = 0;    // the window never reaches further than the image
     std::ptrdiff_t stride = 0;   // floats per padded row
     std::size_t plane_size = 0;  // floats per padded plane
+    std::size_t storage_floats = 0;  // all planes together (what a GPU copy takes)
     struct Release {
         void operator()(float* p) const;
     };

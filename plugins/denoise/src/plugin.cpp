@@ -34,6 +34,11 @@ const std::vector<std::pair<std::string, statmc::DenoiseImageOptions (*)()>> kMe
     {"classic", &statmc::DenoiseImageOptions::classic},
     {"paper", &statmc::DenoiseImageOptions::paper},
 };
+const std::vector<std::pair<std::string, statmc::Device>> kDevices = {
+    {"cpu", statmc::Device::Cpu},
+    {"cuda", statmc::Device::Cuda},
+    {"auto", statmc::Device::Auto},
+};
 const std::vector<std::pair<std::string, statmc::NonfinitePolicy>> kNonfinite = {
     {"error", statmc::NonfinitePolicy::Error},
     {"zero", statmc::NonfinitePolicy::Zero},
@@ -90,6 +95,8 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.guides.albedo_layer = p.get_string("albedo_layer", opt.guides.albedo_layer);
     opt.guides.normal_layer = p.get_string("normal_layer", opt.guides.normal_layer);
     opt.test = chosen(kTests, p.get_string("test", spelling(kTests, opt.test)), opt.test);
+    opt.filter.device = chosen(
+        kDevices, p.get_string("device", spelling(kDevices, opt.filter.device)), opt.filter.device);
     opt.nonfinite = chosen(
         kNonfinite, p.get_string("nonfinite", spelling(kNonfinite, opt.nonfinite)), opt.nonfinite);
     opt.from = p.get_string("from", opt.from);
@@ -150,6 +157,11 @@ std::vector<statmc::ParameterSpec> parameters()
         choice_parameter("test", spellings(kTests), spelling(kTests, kDefaults.test),
                          "test domain: auto = boxcox when the Box-Cox layers are present, "
                          "else untransformed"),
+        choice_parameter("device", spellings(kDevices), spelling(kDevices, kDefaults.filter.device),
+                         "where the filter kernel runs: cpu (the reference bits), cuda (a CUDA "
+                         "GPU: the same members, values within float summation order; an error "
+                         "where none is present), auto (a GPU when present and the image has at "
+                         "least 512x512 pixels) (docs/gpu.md)"),
         choice_parameter("nonfinite", spellings(kNonfinite),
                          spelling(kNonfinite, kDefaults.nonfinite),
                          "NaN/Inf in the statistics: error refuses the image, zero counts "

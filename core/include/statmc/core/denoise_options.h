@@ -5,6 +5,13 @@
 
 namespace statmc {
 
+/// Where the filter kernel runs (docs/gpu.md).
+enum class Device {
+    Cpu,   ///< the reference: the same bits on every machine
+    Cuda,  ///< a CUDA GPU (core/cuda/); an error where there is none or the build has no CUDA
+    Auto,  ///< a CUDA GPU when one is present and the image is large enough to pay for it
+};
+
 struct DenoiseOptions {
     int radius = 20;             ///< disk radius in pixels, ≥ 0
     double alpha = 0.005;        ///< significance level of the t-test, in (0, 1)
@@ -15,6 +22,9 @@ struct DenoiseOptions {
     /// (the Box-Cox sample variance, or s²/μ for the untransformed test) exceeds this many
     /// times its own reference level. 0 = off, the paper's filter; else ≥ 1.
     float firefly_ratio = 256.f;
+    /// The GPU gives the same members and values within float summation order (docs/gpu.md);
+    /// only the CPU gives the paper's bits.
+    Device device = Device::Cpu;
 
     /// Empty when valid, else a message naming the offending parameter.
     std::string validate() const;

@@ -1,0 +1,32 @@
+# The CUDA path of the filter (core/cuda/, docs/gpu.md). STATMC_CUDA=AUTO builds it where
+# nvcc is found (on PATH, in CUDACXX, or Debian/NVIDIA's /usr/local/cuda/bin), ON insists,
+# OFF never. Sets STATMC_WITH_CUDA. The kernels are built for Hopper (sm_90) machine code
+# plus Turing-level PTX, which the driver compiles for any other GPU at start.
+set(STATMC_CUDA AUTO CACHE STRING "Build the CUDA filter path: AUTO (where nvcc is found), ON, OFF")
+set_property(CACHE STATMC_CUDA PROPERTY STRINGS AUTO ON OFF)
+set(STATMC_WITH_CUDA OFF)
+if(STATMC_FUZZ AND NOT STATMC_CUDA STREQUAL "OFF")
+  message(STATUS "statmc: the fuzz build leaves the CUDA path out")
+elseif(NOT STATMC_CUDA STREQUAL "OFF")
+  if(NOT DEFINED CMAKE_CUDA_COMPILER AND NOT DEFINED ENV{CUDACXX} AND EXISTS /usr/local/cuda/bin/nvcc)
+    set(CMAKE_CUDA_COMPILER /usr/local/cuda/bin/nvcc)
+  endif()
+  include(CheckLanguage)
+  check_language(CUDA)
+  if(CMAKE_CUDA_COMPILER)
+    if(NOT DEFINED CMAKE_CUDA_ARCHITECTURES)
+      set(CMAKE_CUDA_ARCHITECTURES 90-real 75-virtual)
+    endif()
+    set(CMAKE_CUDA_STANDARD 17)
+    set(CMAKE_CUDA_STANDARD_REQUIRED ON)
+    enable_language(CUDA)
+    find_package(CUDAToolkit REQUIRED)
+    set(STATMC_WITH_CUDA ON)
+    message(STATUS "statmc: CUDA path on (${CMAKE_CUDA_COMPILER}, ${CMAKE_CUDA_ARCHITECTURES})")
+  elseif(STATMC_CUDA STREQUAL "ON")
+    message(FATAL_ERROR "STATMC_CUDA=ON, but no nvcc was found: install the CUDA toolkit or "
+                        "set CUDACXX")
+  else()
+    message(STATUS "statmc: no nvcc found, so the CUDA path is not built (STATMC_CUDA=AUTO)")
+  endif()
+endif()

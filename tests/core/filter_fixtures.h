@@ -1,0 +1,87 @@
+// Random estimator images and guides for comparing filter paths (SIMD levels, the double
+// reference, the GPU), and the outputs they write. Header-only; core only.
+#pragma once
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "statmc/core/filter.h"
+
+namespace statmc {
+
+struct Output {
+    int w, h, c;
+    std::vector<float> values, members, weights, effective;
+    Output(int w_, int h_, int c_)
+        : w(w_), h(h_), c(c_), values(std::size_t(w) * h * c), members(std::size_t(w) * h),
+          weights(std::size_t(w) * h), effective(std::size_t(w) * h)
+    {
+    }
+    std::vector<Plane> planes()
+    {
+        std::vector<Plane> p;
+        for (int k = 0; k < c; ++k)
+            p.push_back(dense_plane(values.data() + std::size_t(k) * w * h, w));
+        return p;
+    }
+    FilterDiagnostics diagnostics()
+    {
+        return {dense_plane(members.data(), w), dense_plane(weights.data(), w),
+                dense_plane(effective.data(), w)};
+    }
+};
+
+// Random estimators with region structure, so that the test both accepts and rejects,
+// and a few fireflies, so that the firefly guard's second step is compared too.
+inline EstimatorImage random_estimators(int w, int h, int channels, std::uint64_t seed)
+{
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    EstimatorImage est(w, h, channels);
+    est.domain = TestDomain::BoxCox;  // so that the firefly guard takes part
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            est.count[est.index(0, x, y)] = float(2 + rng() % 64);
+            const float level = ((x / 5 + y / 4) % 3) * 0.5f;
+            for (int c = 0; c < channels; ++c) {
+                const std::size_t i = est.index(c, x, y);
+                est.value[i] = level + 0.2f * u(rng);
+                est.test_mean[i] = level + 0.1f * u(rng);
+                est.test_variance[i] = 0.002f * u(rng);
+            }
+            if (rng() % 23 == 0)  // a few untestable pixels
+                est.test_variance[est.index(0, x, y)] = NAN;
+            else if (rng() % 31 == 0)  // a few fireflies
+                for (int c = 0; c < channels; ++c) {
+                    est.value[est.index(c, x, y)] += 40.f;
+                    est.test_mean[est.index(c, x, y)] += 0.5f;
+                    est.test_variance[est.index(c, x, y)] *= 3000.f;
+                }
+        }
+    return est;
+}
+
+struct GuideImages {
+    std::vector<float> data;
+    Guides guides;
+    GuideImages(int w, int h, bool albedo, bool normal, std::uint64_t seed)
+        : data(std::size_t(w) * h * 6)
+    {
+        std::mt19937_64 rng(seed);
+        std::uniform_real_distribution<float> u(0.f, 1.f);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                for (int k = 0; k < 6; ++k)
+                    data[std::size_t(k) * w * h + std::size_t(y) * w + x] =
+                        ((x / 7) % 2) * 0.05f + 0.03f * u(rng) + 0.1f * k;
+        for (int k = 0; k < 3; ++k) {
+            if (albedo)
+                guides.albedo[k] = dense_plane(data.data() + std::size_t(k) * w * h, w);
+            if (normal)
+                guides.normal[k] = dense_plane(data.data() + std::size_t(k + 3) * w * h, w);
+        }
+    }
+};
+
+}  // namespace statmc
