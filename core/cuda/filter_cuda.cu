@@ -10,8 +10,9 @@
 // not depend on scheduling, and the output is the same run to run.
 //
 // The planes are the host layout's (filter_layout.h), copied as one block: thresholds,
-// firefly levels and scaled guides are the CPU's floats, and the test is the CPU's
-// fmaf(d, d, −T_j) ≤ T_i, so every membership decision is the CPU's.
+// firefly levels and scaled guides are the CPU's floats, and the test is the AVX2/AVX-512
+// kernels' fmaf(d, d, −T_j) ≤ T_i, so every membership decision is theirs. (The portable
+// scalar kernel rounds d² before subtracting, and can differ at exact ties.)
 #include <algorithm>
 #include <cstddef>
 #include <mutex>
@@ -30,9 +31,9 @@ namespace {
 void check(cudaError_t status, const char* what)
 {
     if (status != cudaSuccess)
-        throw std::runtime_error(std::string("CUDA: ") + what + " failed: " +
-                                 cudaGetErrorString(status) + " (" + cudaGetErrorName(status) +
-                                 ")");
+        throw std::runtime_error(std::string("CUDA: ") + what +
+                                 " failed: " + cudaGetErrorString(status) + " (" +
+                                 cudaGetErrorName(status) + ")");
 }
 
 /// Device memory that frees itself.
@@ -196,21 +197,22 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
                 // log2 w = spatial − Σ (Δg)², in two chains as on the CPU.
                 constexpr int kHalf = (NG + 1) / 2;
                 float near = p.spatial_log2[table_row + dx], far = 0;
+                // __fmul_rn/__fsub_rn: rounded as on the CPU, never fused by the compiler.
                 for (int g = 0; g < NG; ++g) {
                     const float d = guide_i[g] - s_guide[g * span + k];
                     if (g < kHalf)
                         near = fmaf(-d, d, near);
                     else
-                        far = g == kHalf ? d * d : fmaf(d, d, far);
+                        far = g == kHalf ? __fmul_rn(d, d) : fmaf(d, d, far);
                 }
-                w = exp2f(near - far);
+                w = exp2f(__fsub_rn(near, far));
             }
             for (int c = 0; c < NC; ++c)
                 acc[c] = fmaf(w, s_value[c * span + k] - value_i[c], acc[c]);
             weight_sum += w;
             if (diagnostics) {
                 member_count += 1;
-                inverse_sum = fmaf(w * w, s_inverse[k], inverse_sum);
+                inverse_sum = fmaf(__fmul_rn(w, w), s_inverse[k], inverse_sum);
             }
         };
         for (int dx = -hw; dx <= min(-inner - 1, -1); ++dx)
@@ -281,6 +283,7 @@ void launch_kernel(int channels, int guides, const KernelParams& params, dim3 gr
 struct Presence {
     bool present = false;
     std::string why, description;
+    std::size_t shared_per_block = 0;  ///< the most a block may opt in to
 };
 
 const Presence& presence()
@@ -308,12 +311,23 @@ const Presence& presence()
             p.why = "no CUDA device is present";
             return;
         }
+        int device = 0;
         cudaDeviceProp prop{};
-        if (cudaGetDeviceProperties(&prop, 0) != cudaSuccess) {
+        if (cudaGetDevice(&device) != cudaSuccess ||
+            cudaGetDeviceProperties(&prop, device) != cudaSuccess) {
+            cudaGetLastError();
             p.why = "the CUDA device's properties cannot be read";
             return;
         }
+        // The build carries sm_90 code and compute_75 PTX: nothing older can run it.
+        if (prop.major * 10 + prop.minor < 75) {
+            p.why = std::string(prop.name) + " has compute capability " +
+                    std::to_string(prop.major) + "." + std::to_string(prop.minor) +
+                    "; statmc's kernels need 7.5 (Turing) or later";
+            return;
+        }
         p.present = true;
+        p.shared_per_block = prop.sharedMemPerBlockOptin;
         p.description = std::string(prop.name) + ", compute capability " +
                         std::to_string(prop.major) + "." + std::to_string(prop.minor) + ", " +
                         std::to_string(prop.multiProcessorCount) + " multiprocessors";
@@ -321,31 +335,38 @@ const Presence& presence()
     return p;
 }
 
+/// One CUDA event, destroyed with its owner. Blocking: a wait sleeps instead of spinning a
+/// core for the length of the kernel.
+class Event {
+public:
+    Event()
+    {
+        check(cudaEventCreateWithFlags(&event_, cudaEventBlockingSync), "creating an event");
+    }
+    ~Event() { cudaEventDestroy(event_); }
+    Event(const Event&) = delete;
+    Event& operator=(const Event&) = delete;
+    cudaEvent_t get() const { return event_; }
+
+private:
+    cudaEvent_t event_{};
+};
+
 /// CUDA events around one stretch of work.
 class EventTimer {
 public:
-    EventTimer()
-    {
-        check(cudaEventCreate(&start_), "creating an event");
-        check(cudaEventCreate(&stop_), "creating an event");
-    }
-    ~EventTimer()
-    {
-        cudaEventDestroy(start_);
-        cudaEventDestroy(stop_);
-    }
-    void start() { check(cudaEventRecord(start_), "recording an event"); }
+    void start() { check(cudaEventRecord(start_.get()), "recording an event"); }
     float stop()
     {
-        check(cudaEventRecord(stop_), "recording an event");
-        check(cudaEventSynchronize(stop_), "waiting for the GPU");
+        check(cudaEventRecord(stop_.get()), "recording an event");
+        check(cudaEventSynchronize(stop_.get()), "waiting for the GPU");
         float ms = 0;
-        check(cudaEventElapsedTime(&ms, start_, stop_), "reading an event");
+        check(cudaEventElapsedTime(&ms, start_.get(), stop_.get()), "reading an event");
         return ms;
     }
 
 private:
-    cudaEvent_t start_{}, stop_{};
+    Event start_, stop_;
 };
 
 }  // namespace
@@ -392,17 +413,15 @@ CudaFilter::CudaFilter(const FilterLayout& L, bool carry)
     m.guard = L.noise != nullptr;
     m.inverse = L.inverse_count != nullptr;
 
-    cudaDeviceProp prop{};
-    check(cudaGetDeviceProperties(&prop, 0), "reading the device's properties");
     const int span = kBlockX + 2 * L.pad_x;
     m.shared_bytes = std::size_t(staged_planes(L.channels, L.guide_count, m.guard, m.inverse)) *
                      span * sizeof(float);
-    if (m.shared_bytes > prop.sharedMemPerBlockOptin)
-        throw std::runtime_error(
-            "CUDA: radius " + std::to_string(L.pad_x) + " needs " +
-            std::to_string(m.shared_bytes / 1024) + " KB of shared memory per block, more than " +
-            std::string(prop.name) + "'s " + std::to_string(prop.sharedMemPerBlockOptin / 1024) +
-            " KB; use device=cpu");
+    if (m.shared_bytes > presence().shared_per_block)
+        throw std::runtime_error("CUDA: radius " + std::to_string(L.pad_x) + " needs " +
+                                 std::to_string(m.shared_bytes / 1024) +
+                                 " KB of shared memory per block, more than the GPU's " +
+                                 std::to_string(presence().shared_per_block / 1024) +
+                                 " KB; use device=cpu");
 
     m.timer.start();
     m.planes = upload(L.storage.get(), L.storage_floats, "copying the layout to the GPU");
@@ -469,6 +488,7 @@ void CudaFilter::run(const FilterLayout& L, const std::vector<Plane>& out,
     p.effective = diagnostics.effective_samples ? diag + 2 * m.pixels : nullptr;
 
     const dim3 grid((m.width + kBlockX - 1) / kBlockX, (m.height + kBlockY - 1) / kBlockY);
+    cudaGetLastError();  // an error left by earlier CUDA work is not this launch's
     m.timer.start();
     launch_kernel(m.channels, m.guides, p, grid, m.shared_bytes);
     check(cudaGetLastError(), "launching the filter kernel");

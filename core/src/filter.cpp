@@ -169,6 +169,23 @@ bool on_cuda(const EstimatorImage& est, const DenoiseOptions& options)
     return true;
 }
 
+// The GPU loaded with `layout` when on_cuda() chose it, else null for the CPU. device=cuda
+// reports what fails (too little memory, a radius beyond the GPU's shared memory); auto
+// takes the CPU instead.
+std::unique_ptr<detail::CudaFilter> gpu_for(const detail::FilterLayout& layout,
+                                            const DenoiseOptions& options, bool chosen, bool carry)
+{
+    if (!chosen)
+        return nullptr;
+    if (options.device == Device::Cuda)
+        return std::make_unique<detail::CudaFilter>(layout, carry);
+    try {
+        return std::make_unique<detail::CudaFilter>(layout, carry);
+    } catch (const std::runtime_error&) {
+        return nullptr;
+    }
+}
+
 }  // namespace
 
 void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
@@ -182,8 +199,8 @@ void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOption
         const detail::FilterLayout layout =
             detail::make_filter_layout(est, guides, options, detail::guard_levels(est, options),
                                        nthreads, detail::kernel_width(level), diagnostics.any());
-        if (gpu)
-            detail::CudaFilter(layout, false).run(layout, out, diagnostics);
+        if (const auto device = gpu_for(layout, options, gpu, false))
+            device->run(layout, out, diagnostics);
         else
             run_kernel(rows, layout, est.height, out, diagnostics);
     });
@@ -206,10 +223,8 @@ void filter_rungs(const EstimatorImage& est, const Guides& guides, const Denoise
                                                  nthreads, kernel_width(level), diagnostics.any());
         // The running sums: on the GPU they stay in device memory between rungs.
         std::vector<float> sums;
-        std::unique_ptr<CudaFilter> device;
-        if (gpu) {
-            device = std::make_unique<CudaFilter>(layout, true);
-        } else {
+        const std::unique_ptr<CudaFilter> device = gpu_for(layout, options, gpu, true);
+        if (!device) {
             sums.resize(FilterLayout::kCarryPlanes * layout.stride * std::size_t(est.height));
             for (int k = 0; k < FilterLayout::kCarryPlanes; ++k)
                 layout.carry[k] = sums.data() + k * layout.stride * std::size_t(est.height);
