@@ -25,52 +25,14 @@ namespace {
 
 using namespace statmc;
 
-/// The benchmark frame's estimators repeated to width × height.
-EstimatorImage tiled(const EstimatorImage& tile, int width, int height)
-{
-    EstimatorImage out(width, height, tile.channels);
-    out.domain = tile.domain;
-    for (int c = 0; c < tile.channels; ++c)
-        for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x) {
-                const std::size_t from = tile.index(c, x % tile.width, y % tile.height);
-                const std::size_t to = out.index(c, x, y);
-                out.value[to] = tile.value[from];
-                out.test_mean[to] = tile.test_mean[from];
-                out.test_variance[to] = tile.test_variance[from];
-                if (c == 0)
-                    out.count[to] = tile.count[from];
-            }
-    return out;
-}
-
-/// Albedo and normal planes with the frame's edges, at any size.
-struct Guide {
-    std::vector<float> data;
-    Guides guides;
-    Guide(int width, int height) : data(std::size_t(6) * width * height)
-    {
-        const std::size_t n = std::size_t(width) * height;
-        for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x)
-                for (int k = 0; k < 6; ++k)
-                    data[k * n + std::size_t(y) * width + x] =
-                        0.1f * k + ((x / 160 + y / 120) % 2) * 0.3f;
-        for (int k = 0; k < 3; ++k) {
-            guides.albedo[k] = dense_plane(data.data() + k * n, width);
-            guides.normal[k] = dense_plane(data.data() + (k + 3) * n, width);
-        }
-    }
-};
-
 struct Frame {
     EstimatorImage est;
-    Guide guide;
+    bench::GuidePlanes guide;
     std::vector<float> out;
     std::vector<Plane> planes;
     Frame(int width, int height)
-        : est(tiled(estimators_from_statistics(bench::frame().view(), TestDomain::BoxCox), width,
-                    height)),
+        : est(bench::tiled(estimators_from_statistics(bench::frame().view(), TestDomain::BoxCox),
+                           width, height)),
           guide(width, height), out(est.value.size())
     {
         for (int c = 0; c < est.channels; ++c)

@@ -5,6 +5,7 @@
 #include <random>
 #include <vector>
 
+#include "statmc/core/estimator_image.h"
 #include "statmc/core/filter.h"
 #include "statmc/core/statistics_image.h"
 
@@ -44,23 +45,43 @@ inline const StatisticsPlanes& frame(bool fireflies = false)
     return with_fireflies;
 }
 
-/// Albedo and normal planes with the frame's edges.
+/// Albedo and normal planes with the frame's edges, at the frame's size or another.
 struct GuidePlanes {
-    std::vector<float> data = std::vector<float>(std::size_t(6) * kWidth * kHeight);
+    std::vector<float> data;
     Guides guides;
-    GuidePlanes()
+    explicit GuidePlanes(int width = kWidth, int height = kHeight)
+        : data(std::size_t(6) * width * height)
     {
-        const std::size_t n = std::size_t(kWidth) * kHeight;
-        for (int y = 0; y < kHeight; ++y)
-            for (int x = 0; x < kWidth; ++x)
+        const std::size_t n = std::size_t(width) * height;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x)
                 for (int k = 0; k < 6; ++k)
-                    data[k * n + std::size_t(y) * kWidth + x] =
+                    data[k * n + std::size_t(y) * width + x] =
                         0.1f * k + ((x / 160 + y / 120) % 2) * 0.3f;
         for (int k = 0; k < 3; ++k) {
-            guides.albedo[k] = dense_plane(data.data() + k * n, kWidth);
-            guides.normal[k] = dense_plane(data.data() + (k + 3) * n, kWidth);
+            guides.albedo[k] = dense_plane(data.data() + k * n, width);
+            guides.normal[k] = dense_plane(data.data() + (k + 3) * n, width);
         }
     }
 };
+
+/// `tile`'s estimators repeated (or cut) to width × height.
+inline EstimatorImage tiled(const EstimatorImage& tile, int width, int height)
+{
+    EstimatorImage out(width, height, tile.channels);
+    out.domain = tile.domain;
+    for (int c = 0; c < tile.channels; ++c)
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const std::size_t from = tile.index(c, x % tile.width, y % tile.height);
+                const std::size_t to = out.index(c, x, y);
+                out.value[to] = tile.value[from];
+                out.test_mean[to] = tile.test_mean[from];
+                out.test_variance[to] = tile.test_variance[from];
+                if (c == 0)
+                    out.count[to] = tile.count[from];
+            }
+    return out;
+}
 
 }  // namespace statmc::bench

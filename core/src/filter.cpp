@@ -78,6 +78,16 @@ const char* simd_level_name(SimdLevel level)
     return "?";
 }
 
+SimdLevel usable_simd_level(SimdLevel level)
+{
+    if (level == SimdLevel::Auto)
+        return detected_simd_level();
+    if (level > hardware_simd_level())
+        throw std::invalid_argument(std::string("this CPU cannot run the ") +
+                                    simd_level_name(level) + " kernel");
+    return level;
+}
+
 namespace detail {
 int kernel_width(SimdLevel level)
 {
@@ -128,11 +138,7 @@ namespace {
 
 detail::FilterRowsFn checked_kernel(SimdLevel& level)
 {
-    if (level == SimdLevel::Auto)
-        level = detected_simd_level();
-    if (level > hardware_simd_level())
-        throw std::invalid_argument(std::string("this CPU cannot run the ") +
-                                    simd_level_name(level) + " kernel");
+    level = usable_simd_level(level);
     return kernel(level);
 }
 

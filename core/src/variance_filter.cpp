@@ -176,13 +176,7 @@ void add_disk_scalar(const detail::VarianceLayout& L, int x, int y, detail::Vari
 
 detail::VarianceKernel kernel_at(SimdLevel level)
 {
-    if (level == SimdLevel::Auto)
-        level = detected_simd_level();
-    const std::vector<SimdLevel> supported = supported_simd_levels();
-    if (std::find(supported.begin(), supported.end(), level) == supported.end())
-        throw std::invalid_argument(std::string("variance filter: this CPU cannot run the ") +
-                                    simd_level_name(level) + " kernel");
-    switch (level) {
+    switch (usable_simd_level(level)) {
     case SimdLevel::Avx512:
         return detail::variance_kernel_avx512();
     case SimdLevel::Avx2:

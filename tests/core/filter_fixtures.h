@@ -6,6 +6,8 @@
 #include <random>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "statmc/core/filter.h"
 
 namespace statmc {
@@ -83,5 +85,27 @@ struct GuideImages {
         }
     }
 };
+
+/// How far two filter paths may differ: values relative to 1 + |value|, weights and
+/// effective sample counts relative.
+struct Tolerance {
+    float value, weight, effective;
+};
+
+/// Members must agree exactly; values, weights and effective sample counts within `t`
+/// (summation order and precision differ between the paths).
+inline void expect_same_members(const Output& out, const Output& ref, Tolerance t)
+{
+    for (std::size_t i = 0; i < ref.members.size(); ++i)
+        ASSERT_EQ(out.members[i], ref.members[i]) << "members of pixel " << i;
+    for (std::size_t i = 0; i < ref.values.size(); ++i)
+        ASSERT_NEAR(out.values[i], ref.values[i], t.value * (1 + std::abs(ref.values[i])))
+            << "value " << i;
+    for (std::size_t i = 0; i < ref.weights.size(); ++i)
+        ASSERT_NEAR(out.weights[i], ref.weights[i], t.weight * ref.weights[i]) << "weight " << i;
+    for (std::size_t i = 0; i < ref.effective.size(); ++i)
+        ASSERT_NEAR(out.effective[i], ref.effective[i], t.effective * ref.effective[i])
+            << "effective samples " << i;
+}
 
 }  // namespace statmc

@@ -15,19 +15,10 @@
 namespace statmc {
 namespace {
 
-// Membership must agree exactly; values up to float accumulation order.
+// Against the double reference: members exactly, values up to float accumulation.
 void expect_agree(const Output& fast, const Output& ref)
 {
-    for (std::size_t i = 0; i < ref.members.size(); ++i)
-        ASSERT_EQ(fast.members[i], ref.members[i]) << "pixel " << i;
-    for (std::size_t i = 0; i < ref.values.size(); ++i)
-        ASSERT_NEAR(fast.values[i], ref.values[i], 2e-5f * (1 + std::abs(ref.values[i])))
-            << "value " << i;
-    for (std::size_t i = 0; i < ref.weights.size(); ++i)
-        ASSERT_NEAR(fast.weights[i], ref.weights[i], 1e-4f * ref.weights[i]) << "weight " << i;
-    for (std::size_t i = 0; i < ref.effective.size(); ++i)
-        ASSERT_NEAR(fast.effective[i], ref.effective[i], 2e-4f * ref.effective[i])
-            << "effective samples " << i;
+    expect_same_members(fast, ref, {2e-5f, 1e-4f, 2e-4f});
 }
 
 void expect_matches_reference(const EstimatorImage& est, const Guides& guides,

@@ -42,6 +42,9 @@ SimdLevel detected_simd_level();
 /// Every level this CPU runs, Scalar first: what the tests compare against each other.
 std::vector<SimdLevel> supported_simd_levels();
 const char* simd_level_name(SimdLevel level);
+/// `level` with Auto resolved to detected_simd_level(). Throws std::invalid_argument
+/// ("this CPU cannot run the avx512 kernel") for a level this CPU does not run.
+SimdLevel usable_simd_level(SimdLevel level);
 
 /// Filters `est` into `out` (one plane per channel). Bitwise identical for any thread
 /// count. Throws std::invalid_argument on invalid options, a channel count other than
