@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <tbb/parallel_for.h>
+
 #include "filter_layout.h"
 #include "statmc/core/thread_limit.h"
 #include "statmc/core/variance_interval.h"
@@ -51,19 +53,23 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
     auto half_width = [&](std::size_t k, double samples) {
         return samples > 0 ? z * std::sqrt(std::max(double(variance[k]), 0.0) / samples) : 0.0;
     };
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const std::size_t i = std::size_t(y) * w + x;
-            const double n = est.count[i];
-            open[i] = n >= 2;
-            for (int c = 0; c < channels; ++c) {
-                const std::size_t k = c * pixels + i;
-                const double v = est.value[k];
-                out[c](x, y) = float(v);
-                lo[k] = v - half_width(k, n);
-                hi[k] = v + half_width(k, n);
+    // Pixels are independent: rows run in parallel, with the same result for any count.
+    run_with_threads(nthreads, [&] {
+        tbb::parallel_for(0, h, [&](int y) {
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = std::size_t(y) * w + x;
+                const double n = est.count[i];
+                open[i] = n >= 2;
+                for (int c = 0; c < channels; ++c) {
+                    const std::size_t k = c * pixels + i;
+                    const double v = est.value[k];
+                    out[c](x, y) = float(v);
+                    lo[k] = v - half_width(k, n);
+                    hi[k] = v + half_width(k, n);
+                }
             }
-        }
+        });
+    });
 
     std::vector<float> rung_out(pixels * channels), effective(pixels);
     std::vector<Plane> rung_planes;
@@ -73,7 +79,7 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
     diagnostics.effective_samples = dense_plane(effective.data(), w);
     // One walk of the largest disk: each rung adds its annulus to the one before.
     auto take_rung = [&](int) {
-        for (int y = 0; y < h; ++y)
+        tbb::parallel_for(0, h, [&](int y) {
             for (int x = 0; x < w; ++x) {
                 const std::size_t i = std::size_t(y) * w + x;
                 if (!open[i])
@@ -98,6 +104,7 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
                     out[c](x, y) = rung_out[k];
                 }
             }
+        });
     };
     detail::filter_rungs(est, guides, options, rungs(ladder, options.radius), rung_planes,
                          diagnostics, nthreads, SimdLevel::Auto, take_rung);

@@ -151,7 +151,7 @@ void add_disk_scalar(const detail::VarianceLayout& L, int x, int y, detail::Vari
                 }
                 exponent = exponent + d2 * L.guide_falloff[group];
             }
-            wij = tap.spatial * std::exp(-exponent);
+            wij = detail::guide_weight(tap.spatial, exponent);
         }
         for (int c = 0; c < L.channels; ++c) {
             const std::size_t i = c * n + p, j = c * n + q;

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "variance_filter_layout.h"
 
@@ -90,6 +91,34 @@ void add_variance_disk(const VarianceLayout& L, int x0, int y, VarianceSums* sum
     using Mask = typename V::Mask;
     const int channels = L.channels, groups = L.guide_groups();
     const std::size_t n = L.pixels, p0 = std::size_t(y) * L.width + x0;
+    // The guides' weights of every tap first, then the taps: a call to std::exp inside the
+    // tap loop would spill every live vector around it (they are all caller-saved).
+    thread_local std::vector<double> weights;
+    if (groups > 0) {
+        weights.resize(L.taps.size() * W);
+        D guide[6];
+        for (int g = 0; g < 3 * groups; ++g)
+            guide[g] = V::load(L.guide[g].data() + p0);
+        for (std::size_t t = 0; t < L.taps.size(); ++t) {
+            const std::size_t q0 = p0 + std::ptrdiff_t(L.taps[t].dy) * L.width + L.taps[t].dx;
+            D exponent = V::splat(0.0);
+            for (int group = 0; group < groups; ++group) {
+                D d2 = V::splat(0.0);
+                for (int k = 0; k < 3; ++k) {
+                    const D d = guide[3 * group + k] - V::load(L.guide[3 * group + k].data() + q0);
+                    d2 = d2 + d * d;
+                }
+                exponent = exponent + d2 * V::splat(L.guide_falloff[group]);
+            }
+            std::memcpy(weights.data() + t * W, &exponent, sizeof exponent);
+        }
+        for (std::size_t t = 0; t < L.taps.size(); ++t)
+            for (int k = 0; k < W; ++k) {
+                double& w = weights[t * W + k];
+                w = guide_weight(L.taps[t].spatial, w);
+            }
+    }
+
     const D z2 = V::splat(L.z2);
     D centre[4], se2[4], sum[4], weight[4], prior_sum[4], prior_weight[4];
     Mask borrows[4];  // lanes without an interval that take any neighbour with one
@@ -104,26 +133,10 @@ void add_variance_disk(const VarianceLayout& L, int x0, int y, VarianceSums* sum
             prior_weight[c][k] = sums[k].prior_weight[c];
         }
     }
-    D guide[6];
-    for (int g = 0; g < 3 * groups; ++g)
-        guide[g] = V::load(L.guide[g].data() + p0);
-
-    for (const VarianceTap& tap : L.taps) {
+    for (std::size_t t = 0; t < L.taps.size(); ++t) {
+        const VarianceTap& tap = L.taps[t];
         const std::size_t q0 = p0 + std::ptrdiff_t(tap.dy) * L.width + tap.dx;
-        D w = V::splat(tap.spatial);
-        if (groups > 0) {
-            D exponent = V::splat(0.0);
-            for (int group = 0; group < groups; ++group) {
-                D d2 = V::splat(0.0);
-                for (int k = 0; k < 3; ++k) {
-                    const D d = guide[3 * group + k] - V::load(L.guide[3 * group + k].data() + q0);
-                    d2 = d2 + d * d;
-                }
-                exponent = exponent + d2 * V::splat(L.guide_falloff[group]);
-            }
-            for (int k = 0; k < W; ++k)
-                w[k] = tap.spatial * std::exp(-exponent[k]);
-        }
+        const D w = groups > 0 ? V::load(weights.data() + t * W) : V::splat(tap.spatial);
         for (int c = 0; c < channels; ++c) {
             const D other = V::load(L.log_centre.data() + c * n + q0);
             const D diff = centre[c] - other;

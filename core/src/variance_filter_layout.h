@@ -4,10 +4,23 @@
 // scalar loop's bits (docs/filter-design.md, "The variance filter across x").
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
 namespace statmc::detail {
+
+/// spatial · e^(−exponent) exactly as std::exp gives it, without the call where the answer
+/// is known: e^0 = 1 (flat guides), and e^(−x) rounds to 0 for every x > 745.14 (guides
+/// far apart). The call costs ~30 cycles and is most of the guided filter's time.
+inline double guide_weight(double spatial, double exponent)
+{
+    if (exponent == 0)
+        return spatial;
+    if (exponent > 746)
+        return 0;
+    return spatial * std::exp(-exponent);
+}
 
 /// One tap of the disk: its offset and the spatial part of w_ij.
 struct VarianceTap {

@@ -12,6 +12,7 @@
 #include "statmc/core/moments.h"
 #include "statmc/core/statistics_image.h"
 #include "statmc/core/variance_filter.h"
+#include "variance_filter_layout.h"
 
 namespace statmc {
 namespace {
@@ -246,6 +247,19 @@ TEST(VarianceFilter, EverySimdLevelGivesTheScalarLoopsBits)
                         << simd_level_name(level) << " guides " << g.has_albedo() << " borrow "
                         << borrow << " d0 " << prior_dof;
             }
+}
+
+TEST(VarianceFilter, TheGuideWeightsShortcutsAreStdExpsOwnAnswers)
+{
+    // guide_weight skips std::exp at 0 and beyond 746; the filter's bits rest on those
+    // being exactly what the call would give, here on this C library.
+    const double spatial = 0.8824969025845955;
+    for (double e : {0.0, -0.0, 1e-300, 0.5, 700.0, 745.0, 745.13, 745.14, 745.2, 746.0,
+                     746.0000001, 800.0, 1e300, double(INFINITY)}) {
+        const double called = spatial * std::exp(-e), shortcut = detail::guide_weight(spatial, e);
+        EXPECT_EQ(std::memcmp(&called, &shortcut, sizeof called), 0) << "exponent " << e;
+    }
+    EXPECT_TRUE(std::isnan(detail::guide_weight(spatial, NAN)));
 }
 
 TEST(VarianceFilter, RefusesBadOptionsAndMissingMoments)
