@@ -14,6 +14,7 @@
 
 #include "cli_images.h"
 #include "cli_runner.h"
+#include "statmc/core/cuda_device.h"
 #include "statmc/layers/statistics_layers.h"
 #include "temp_dir.h"
 #include "test_images.h"
@@ -199,6 +200,23 @@ TEST_F(CliError, TruncatedExr)
     expect_failure({in, "--denoise", "-o", out()}, in + ": not an OpenEXR/readable image: ");
 }
 
+TEST_F(CliError, DeviceCudaWithoutAGpuSaysWhyAndWritesNothing)
+{
+    std::string why;
+    if (statmc::cuda_available(&why))
+        GTEST_SKIP() << "this machine has a GPU: " << statmc::cuda_device_description();
+    const auto in = input("in.exr", cli_statistics_image());
+    expect_failure({in, "--denoise:device=cuda", "-o", out()},
+                   "--denoise: " + in + ": device=cuda: " + why);
+    // auto takes the CPU, and gives the CPU's image.
+    const CliResult cpu = run_cli({in, "--denoise", "-o", dir.file("cpu.exr")});
+    const CliResult automatic = run_cli({in, "--denoise:device=auto", "-o", dir.file("auto.exr")});
+    ASSERT_EQ(cpu.exit_code, 0) << cpu.err;
+    ASSERT_EQ(automatic.exit_code, 0) << automatic.err;
+    const CliResult same = run_cli({dir.file("cpu.exr"), dir.file("auto.exr"), "--compare"});
+    EXPECT_NE(same.out.find("  RMSE    0\n"), std::string::npos) << same.out;
+}
+
 TEST_F(CliError, TextFileIsNotAnImage)
 {
     const auto exr = text_input("notes.exr", "not an image\n");
@@ -257,9 +275,9 @@ TEST_F(CliError, AFullDiskKeepsThePreviousOutput)
 
     // The write limit of the process (RLIMIT_FSIZE, with SIGXFSZ ignored so that the write
     // fails instead of the process): a full disk as the writer sees it, on any machine.
-    const CliResult limited = run_program(
-        "/bin/sh", {"-c", "trap '' XFSZ; ulimit -f 64; exec \"$0\" \"$@\"", STATMC_CLI_PATH, in,
-                    "-o", target});
+    const CliResult limited =
+        run_program("/bin/sh", {"-c", "trap '' XFSZ; ulimit -f 64; exec \"$0\" \"$@\"",
+                                STATMC_CLI_PATH, in, "-o", target});
     expect_kept_after_full_disk(limited, target, "File too large");
 
     // A real full file system: a 256 KB tmpfs, where this machine lets the test mount one.
