@@ -45,6 +45,48 @@ struct CentreState {
 template <int K>
 using Row = std::integral_constant<int, K>;
 
+/// Which of two paired centre rows take a run of columns.
+enum Takers : int { kFirst = 1, kSecond = 2, kBoth = 3 };
+
+/// Up to three runs of columns, ascending, each taken by the same centres.
+struct ColumnPieces {
+    struct Piece {
+        int from, to, who;
+    } piece[3];
+    int count = 0;
+};
+
+/// Splits the columns [lo0, hi0] (the first centre's; empty when lo0 > hi0) and [lo1, hi1]
+/// (the second's) into runs taken by one centre or by both.
+inline void split_columns(int lo0, int hi0, int lo1, int hi1, ColumnPieces& out)
+{
+    auto add = [&](int from, int to, int who) { out.piece[out.count++] = {from, to, who}; };
+    const bool none0 = lo0 > hi0, none1 = lo1 > hi1;
+    if (none0 || none1) {
+        if (!none0)
+            add(lo0, hi0, kFirst);
+        if (!none1)
+            add(lo1, hi1, kSecond);
+        return;
+    }
+    const int from = std::max(lo0, lo1), to = std::min(hi0, hi1);
+    if (from > to) {  // apart: each alone, the nearer first
+        if (lo0 < lo1) {
+            add(lo0, hi0, kFirst);
+            add(lo1, hi1, kSecond);
+        } else {
+            add(lo1, hi1, kSecond);
+            add(lo0, hi0, kFirst);
+        }
+        return;
+    }
+    if (lo0 != lo1)
+        add(std::min(lo0, lo1), from - 1, lo0 < lo1 ? kFirst : kSecond);
+    add(from, to, kBoth);
+    if (hi0 != hi1)
+        add(to + 1, std::max(hi0, hi1), hi0 > hi1 ? kFirst : kSecond);
+}
+
 /// Adds the taps of absolute window rows [y_first, y_last] to the R chunks of lanes that
 /// start at (x0, y), (x0, y + 1), …: R = 2 centre rows share every neighbour load, which
 /// halves the loads per tap, and with guides lets two rows' weight chains overlap.
@@ -178,40 +220,32 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
         if constexpr (R == 1) {
             row_of_one(Row<0>{}, wy, half_width(0, wy), inner_half_width(0, wy));
         } else {
-            // Two centre rows walk whole disks (inner radius 0: filter_rows_diag pairs rows
-            // only then), so the own row is the only one without dx = 0.
-            // Both centres take the columns both disks cover, sharing the neighbour's
-            // loads; the wider disk's rim goes alone. Each centre still sums its taps in
-            // dx order, as with R = 1: the bits do not depend on how rows were paired.
+            // Both centres take the columns both windows cover, sharing the neighbour's
+            // loads; the rest go to one centre alone. Each centre still sums its taps in dx
+            // order, as with R = 1: the bits do not depend on how rows were paired.
             const int hw0 = half_width(0, wy), hw1 = half_width(1, wy);
-            const int narrow = std::min(hw0, hw1), wide = std::max(hw0, hw1);
-            if (narrow < 0) {
-                if (hw0 >= 0)
-                    row_of_one(Row<0>{}, wy, hw0, inner_half_width(0, wy));
-                else
-                    row_of_one(Row<1>{}, wy, hw1, inner_half_width(1, wy));
-                continue;
-            }
-            auto rim = [&](int dx0, int dx1) STATMC_INLINE {
-                for (int dx = dx0; dx <= dx1; ++dx) {
-                    if (hw0 > hw1)
+            const int in0 = inner_half_width(0, wy), in1 = inner_half_width(1, wy);
+            auto run = [&](int from, int to, int who) STATMC_INLINE {
+                if (who == kBoth)
+                    for (int dx = from; dx <= to; ++dx)
+                        taps(Row<0>{}, Row<2>{}, dx, wy);
+                else if (who == kFirst)
+                    for (int dx = from; dx <= to; ++dx)
                         tap(Row<0>{}, dx, wy);
-                    else
+                else
+                    for (int dx = from; dx <= to; ++dx)
                         tap(Row<1>{}, dx, wy);
-                }
             };
-            auto both = [&](int dx0, int dx1) STATMC_INLINE {
-                for (int dx = dx0; dx <= dx1; ++dx)
-                    taps(Row<0>{}, Row<2>{}, dx, wy);
-            };
-            rim(-wide, -narrow - 1);
-            both(-narrow, -1);
-            if (wy != y)
-                tap(Row<0>{}, 0, wy);
-            if (wy != y + 1)
-                tap(Row<1>{}, 0, wy);
-            both(1, narrow);
-            rim(narrow + 1, wide);
+            ColumnPieces right;  // dx ≥ 1; dx ≤ −1 is its mirror image
+            split_columns(std::max(in0 + 1, 1), hw0, std::max(in1 + 1, 1), hw1, right);
+            for (int k = right.count - 1; k >= 0; --k)
+                run(-right.piece[k].to, -right.piece[k].from, right.piece[k].who);
+            const int centre_column =
+                (in0 < 0 && hw0 >= 0 ? kFirst : 0) | (in1 < 0 && hw1 >= 0 ? kSecond : 0);
+            if (centre_column)
+                run(0, 0, centre_column);
+            for (int k = 0; k < right.count; ++k)
+                run(right.piece[k].from, right.piece[k].to, right.piece[k].who);
         }
     }
     for (int k = 0; k < R; ++k)
@@ -253,13 +287,15 @@ void write_chunk(const FilterLayout& L, const std::vector<Plane>& out,
 /// (~70 KB at r = 20) streams it from L2 and runs at half the speed.
 constexpr int kBandRows = 4;
 
-/// Centre rows per pass: two on AVX-512 (32 registers) for up to three channels without
-/// diagnostics, one elsewhere. With guides the two rows spill a few centre values to the
-/// stack, and still win: their two exp chains overlap (guided 350 → 293 ms).
-template <class V, int NC, bool kDiagnostics>
+/// Centre rows per pass: two on AVX-512 (32 registers) for up to three channels, one
+/// elsewhere. With guides or diagnostics the two rows spill a few centre values to the
+/// stack, and still win: with guides their two exp chains overlap (guided 350 → 293 ms),
+/// and the radius ladder's rungs (diagnostics, annuli) went from 488 to 454 ms
+/// (docs/filter-design.md).
+template <class V, int NC>
 constexpr int centre_rows()
 {
-    return V::kWidth == 16 && NC <= 3 && !kDiagnostics ? 2 : 1;
+    return V::kWidth == 16 && NC <= 3 ? 2 : 1;
 }
 
 /// The radius ladder's running sums of one chunk (FilterLayout::carry), in and out.
@@ -343,21 +379,12 @@ template <class V, int NC, int NG>
 void filter_rows_diag(const FilterLayout& L, const std::vector<Plane>& out,
                       const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
-    // The ladder's annuli take one centre row at a time (the pairing assumes whole disks).
-    const bool paired = L.carry[4] == nullptr;
-    if (diag.any()) {
-        constexpr int R = centre_rows<V, NC, true>();
-        if (paired)
-            filter_rows_impl<V, NC, NG, true, R>(L, out, diag, y0, y1, chunk0, chunk1);
-        else
-            filter_rows_impl<V, NC, NG, true, 1>(L, out, diag, y0, y1, chunk0, chunk1);
-    } else {
-        constexpr int R = centre_rows<V, NC, false>();
-        if (paired)
-            filter_rows_impl<V, NC, NG, false, R>(L, out, diag, y0, y1, chunk0, chunk1);
-        else
-            filter_rows_impl<V, NC, NG, false, 1>(L, out, diag, y0, y1, chunk0, chunk1);
-    }
+    if (diag.any())
+        filter_rows_impl<V, NC, NG, true, centre_rows<V, NC>()>(L, out, diag, y0, y1, chunk0,
+                                                                chunk1);
+    else
+        filter_rows_impl<V, NC, NG, false, centre_rows<V, NC>()>(L, out, diag, y0, y1, chunk0,
+                                                                 chunk1);
 }
 
 template <class V, int NC>
