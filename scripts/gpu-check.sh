@@ -7,7 +7,7 @@
 #                                            # Google Benchmark packages into .device-debs/
 #   bash scripts/gpu-check.sh                # there, with .device-debs carried along
 #
-# The second unpacks the packages into /tmp, configures core alone (STATMC_CORE_ONLY, CUDA
+# The second unpacks the packages into a temporary folder, configures core alone (STATMC_CORE_ONLY, CUDA
 # on) with every core, builds test_core, test_cuda and bench_cuda, runs the CUDA tests,
 # core's CPU tests and the GPU benchmark, and writes the logs and results.txt to $OUT (or
 # build-gpu/out). It stops itself well inside 10 minutes (TIME_LIMIT, seconds).
@@ -41,7 +41,7 @@ step() {  # step NAME COMMAND...: runs with the time left, logs to $out/NAME.log
 : > "$out/results.txt"
 { nvidia-smi; nvcc --version; nproc; } > "$out/device.log" 2>&1
 
-prefix=/tmp/statmc-deps
+prefix=$(mktemp -d -t statmc-deps.XXXXXX)
 ls "$debs"/*.deb > /dev/null 2>&1 || { echo "no $debs/*.deb: run --fetch-deps first" >&2; exit 1; }
 for f in "$debs"/*.deb; do dpkg -x "$f" "$prefix"; done
 export LD_LIBRARY_PATH="$prefix/usr/lib/x86_64-linux-gnu:${LD_LIBRARY_PATH:-}"
