@@ -7,10 +7,11 @@
 #                                            # Google Benchmark packages into .device-debs/
 #   bash scripts/gpu-check.sh                # there, with .device-debs carried along
 #
-# The second unpacks the packages into a temporary folder, configures core alone (STATMC_CORE_ONLY, CUDA
-# on) with every core, builds test_core, test_cuda and bench_cuda, runs the CUDA tests,
-# core's CPU tests and the GPU benchmark, and writes the logs and results.txt to $OUT (or
-# build-gpu/out). It stops itself well inside 10 minutes (TIME_LIMIT, seconds).
+# The second unpacks the packages into a temporary folder, configures core alone
+# (STATMC_CORE_ONLY, CUDA on) with every core, builds test_core, test_cuda and bench_cuda,
+# runs the CUDA tests, core's CPU tests and the GPU benchmark, and writes the logs and
+# results.txt to $OUT (or build-gpu/out). It stops itself well inside 10 minutes
+# (TIME_LIMIT, seconds).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 debs=.device-debs
