@@ -76,6 +76,7 @@ def test_denoise_equals_the_command_line_bitwise(tmp_path):
     ({"guides": ["albedo", "depth"]}, "guides=albedo,depth"),
     ({"sigma_s": "wide"}, "sigma_s=wide"),
     ({"no_such": 1}, "no_such=1"),
+    ({"device": "gpu"}, "device=gpu"),
 ])
 def test_options_are_checked_with_the_command_lines_messages(tmp_path, options, modifier):
     source = tmp_path / "stats.exr"
@@ -86,6 +87,28 @@ def test_options_are_checked_with_the_command_lines_messages(tmp_path, options, 
                           str(tmp_path / "x.exr")], capture_output=True, text=True)
     assert cli.returncode == 1
     assert cli.stderr.strip() == "statmc: error: " + str(raised.value)
+
+
+def test_device_cuda_runs_or_fails_as_the_command_line_does(tmp_path):
+    """Where a GPU is present both run on it and agree bit for bit (the GPU's sums have a
+    fixed order); elsewhere both fail with the same message, which names the reason."""
+    source = tmp_path / "stats.exr"
+    statmc.write_statistics(source, statistics_image())
+    out = tmp_path / "cli.exr"
+    cli = subprocess.run([CLI, str(source), "--denoise:device=cuda", "-o", str(out)],
+                         capture_output=True, text=True)
+    if cli.returncode == 0:
+        got = statmc.denoise(source, device="cuda")
+        assert np.array_equal(got["beauty"], statmc.read_statistics(out)["beauty"])
+        return
+    with pytest.raises(ValueError) as raised:
+        statmc.denoise(source, device="cuda")
+    # The command line names the file it read; the reason is the same words.
+    reason = str(raised.value).split("device=cuda: ", 1)[1]
+    assert reason
+    assert cli.stderr.strip() == ("statmc: error: --denoise: " + str(source) +
+                                  ": device=cuda: " + reason)
+    assert not out.exists()
 
 
 def test_bad_input_raises_and_writes_nothing(tmp_path):
