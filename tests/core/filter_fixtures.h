@@ -3,7 +3,9 @@
 #pragma once
 
 #include <cmath>
+#include <ostream>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -85,6 +87,52 @@ struct GuideImages {
         }
     }
 };
+
+/// One shape the filter paths are compared on: size, channels, radius and guides.
+struct FilterCase {
+    int w, h, channels, radius;
+    bool albedo, normal;
+};
+
+inline void PrintTo(const FilterCase& k, std::ostream* os)
+{
+    *os << k.w << "x" << k.h << ", " << k.channels << " channels, r " << k.radius;
+}
+
+/// The shapes every filter path is compared on, plus `more`: borders and sizes that are
+/// not a multiple of a SIMD width or a GPU block, r = 0, r larger than the image, one pixel,
+/// one column, one and four channels, and each guide.
+inline std::vector<FilterCase> filter_cases(std::vector<FilterCase> more = {})
+{
+    std::vector<FilterCase> cases = {{37, 23, 3, 5, false, false}, {37, 23, 3, 0, false, false},
+                                     {9, 6, 3, 20, false, false},  {1, 1, 3, 20, false, false},
+                                     {1, 17, 3, 4, false, false},  {40, 3, 1, 6, false, false},
+                                     {24, 16, 4, 6, false, false}, {33, 19, 3, 6, true, false},
+                                     {33, 19, 3, 6, false, true},  {33, 19, 3, 6, true, true}};
+    cases.insert(cases.end(), more.begin(), more.end());
+    return cases;
+}
+
+/// The test's name for a case: "37x23_c3_r5_albedo".
+inline std::string case_name(const ::testing::TestParamInfo<FilterCase>& info)
+{
+    const FilterCase& k = info.param;
+    return std::to_string(k.w) + "x" + std::to_string(k.h) + "_c" + std::to_string(k.channels) +
+           "_r" + std::to_string(k.radius) + (k.albedo ? "_albedo" : "") +
+           (k.normal ? "_normal" : "");
+}
+
+/// The options the cases run at: the case's radius, and falloffs that the fixtures'
+/// guides and distances make matter.
+inline DenoiseOptions case_options(const FilterCase& k)
+{
+    DenoiseOptions opt;
+    opt.radius = k.radius;
+    opt.sigma_spatial = 3.f;
+    opt.sigma_albedo = 0.05f;
+    opt.sigma_normal = 0.2f;
+    return opt;
+}
 
 /// How far two filter paths may differ: values relative to 1 + |value|, weights and
 /// effective sample counts relative.

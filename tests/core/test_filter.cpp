@@ -30,48 +30,24 @@ void expect_matches_reference(const EstimatorImage& est, const Guides& guides,
     expect_agree(fast, ref);
 }
 
-struct Case {
-    int w, h, channels, radius;
-    bool albedo, normal;
-};
-
-class FilterVsReference : public ::testing::TestWithParam<Case> {};
+class FilterVsReference : public ::testing::TestWithParam<FilterCase> {};
 
 TEST_P(FilterVsReference, Agree)
 {
-    const Case k = GetParam();
+    const FilterCase k = GetParam();
     const EstimatorImage est = random_estimators(k.w, k.h, k.channels, 100 + k.w + k.radius);
     GuideImages g(k.w, k.h, k.albedo, k.normal, 7);
-    DenoiseOptions opt;
-    opt.radius = k.radius;
-    opt.sigma_spatial = 3.f;
-    opt.sigma_albedo = 0.05f;
-    opt.sigma_normal = 0.2f;
+    DenoiseOptions opt = case_options(k);
     for (SimdLevel level : supported_simd_levels()) {
         SCOPED_TRACE(simd_level_name(level));
         expect_matches_reference(est, g.guides, opt, level);
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Shapes, FilterVsReference,
-    ::testing::Values(Case{37, 23, 3, 5, false, false},  // width not a multiple of 8
-                      Case{37, 23, 3, 1, false, false},  // r = 1
-                      Case{37, 23, 3, 0, false, false},  // r = 0: identity
-                      Case{9, 6, 3, 20, false, false},   // r larger than the image
-                      Case{1, 1, 3, 20, false, false},   // one pixel
-                      Case{1, 17, 3, 4, false, false},   // one column
-                      Case{40, 3, 1, 6, false, false},   // one channel
-                      Case{24, 16, 4, 6, false, false},  // four channels
-                      Case{33, 19, 3, 6, true, false},   // albedo guide
-                      Case{33, 19, 3, 6, false, true},   // normal guide
-                      Case{33, 19, 3, 6, true, true}),   // both guides
-    [](const ::testing::TestParamInfo<Case>& info) {
-        const Case& k = info.param;
-        return std::to_string(k.w) + "x" + std::to_string(k.h) + "_c" + std::to_string(k.channels) +
-               "_r" + std::to_string(k.radius) + (k.albedo ? "_albedo" : "") +
-               (k.normal ? "_normal" : "");
-    });
+INSTANTIATE_TEST_SUITE_P(Shapes, FilterVsReference,
+                         ::testing::ValuesIn(filter_cases({{37, 23, 3, 1, false,
+                                                            false}})),  // and r = 1
+                         case_name);
 
 TEST(Filter, TheFixturesFirefliesAreGuardedAgainst)
 {

@@ -30,31 +30,17 @@ void expect_same_members_close_values(const Output& gpu, const Output& cpu)
     expect_same_members(gpu, cpu, {1e-5f, 1e-5f, 1e-4f});
 }
 
-struct Case {
-    int w, h, channels, radius;
-    bool albedo, normal;
-};
-
-void PrintTo(const Case& k, std::ostream* os)
-{
-    *os << k.w << "x" << k.h << ", " << k.channels << " channels, r " << k.radius;
-}
-
-class CudaVsCpu : public ::testing::TestWithParam<Case> {};
+class CudaVsCpu : public ::testing::TestWithParam<FilterCase> {};
 
 TEST_P(CudaVsCpu, SameMembersAndValues)
 {
     REQUIRE_GPU();
-    const Case k = GetParam();
+    const FilterCase k = GetParam();
     // random_estimators holds untestable (NaN-variance) pixels and fireflies, so the guard
     // and the never-a-member padding are compared too.
     const EstimatorImage est = random_estimators(k.w, k.h, k.channels, 300 + k.w + k.radius);
     GuideImages g(k.w, k.h, k.albedo, k.normal, 9);
-    DenoiseOptions opt;
-    opt.radius = k.radius;
-    opt.sigma_spatial = 3.f;
-    opt.sigma_albedo = 0.05f;
-    opt.sigma_normal = 0.2f;
+    DenoiseOptions opt = case_options(k);
     Output cpu(k.w, k.h, k.channels), gpu(k.w, k.h, k.channels);
     filter(est, g.guides, opt, cpu.planes(), cpu.diagnostics());
     opt.device = Device::Cuda;
@@ -64,25 +50,12 @@ TEST_P(CudaVsCpu, SameMembersAndValues)
 
 INSTANTIATE_TEST_SUITE_P(
     Shapes, CudaVsCpu,
-    ::testing::Values(Case{37, 23, 3, 5, false, false},   // odd sizes, partial blocks
-                      Case{37, 23, 3, 0, false, false},   // r = 0: identity
-                      Case{9, 6, 3, 20, false, false},    // r larger than the image
-                      Case{1, 1, 3, 20, false, false},    // one pixel
-                      Case{1, 17, 3, 4, false, false},    // one column
-                      Case{40, 3, 1, 6, false, false},    // one channel
-                      Case{24, 16, 4, 6, false, false},   // four channels
-                      Case{70, 45, 3, 20, false, false},  // the default radius, several blocks
-                      Case{33, 19, 3, 6, true, false},    // albedo guide
-                      Case{33, 19, 3, 6, false, true},    // normal guide
-                      Case{70, 45, 3, 20, true, true},    // both guides
-                      // 17 staged planes of 832 floats: over the 48 KB a block gets unasked
-                      Case{900, 30, 3, 400, true, true}),
-    [](const ::testing::TestParamInfo<Case>& info) {
-        const Case& k = info.param;
-        return std::to_string(k.w) + "x" + std::to_string(k.h) + "_c" + std::to_string(k.channels) +
-               "_r" + std::to_string(k.radius) + (k.albedo ? "_albedo" : "") +
-               (k.normal ? "_normal" : "");
-    });
+    // And r = 20 over several blocks, with and without guides, and r = 400, whose 17
+    // staged planes of 832 floats need more than the 48 KB a block gets unasked.
+    ::testing::ValuesIn(filter_cases({{70, 45, 3, 20, false, false},
+                                      {70, 45, 3, 20, true, true},
+                                      {900, 30, 3, 400, true, true}})),
+    case_name);
 
 TEST(Cuda, WithoutDiagnosticsTheValuesAgreeToo)
 {
