@@ -181,12 +181,63 @@ std::vector<Check> checks_for(Statistic stat)
     }
 }
 
+// m2/n from a stored variance: s²·(n − 1)/n per sample (·n for a variance of the mean).
+double second_moment(const ConstPlane& count, const ConstPlane& variance, bool of_mean, int x,
+                     int y)
+{
+    const double n = count(x, y);
+    const double s2 = double(variance(x, y)) * (of_mean ? n : 1.0);
+    return n > 0 ? s2 * (n - 1) / n : 0.0;
+}
+
+bool sound(double v) { return std::isfinite(v) && v >= 0; }
+
 // A relation between stored statistics that any set of samples satisfies, checked per
-// pixel: `bad` says where it fails, `what` describes the failure at that pixel.
+// pixel: bad() says where it fails, what() describes the failure at that pixel. A plain
+// type rather than a std::function: the check runs for every pixel, and an indirect call
+// there was most of validation's time.
 struct Relation {
+    enum class Kind {
+        // M4/n ≥ (M2/n)² holds for any set of values (the mean of the squared squares is
+        // at least the square of their mean), so a stored fourth moment below it cannot
+        // come from samples. The slack absorbs float rounding of the two stored values.
+        FourthMoment,
+        // Cauchy–Schwarz: a co-moment per sample is at most sqrt(m2_f · m2_u) in size.
+        CoMoment,
+    };
+    Kind kind;
     std::string channel;  ///< the channel named in the message
-    std::function<bool(int, int)> bad;
-    std::function<std::string(int, int)> what;
+    ConstPlane count, variance;
+    ConstPlane moment;       ///< M4, or the co-moment
+    ConstPlane position_m2;  ///< the co-moment's position variance
+    bool of_mean = false;    ///< the variance is of the mean (fourth moment only)
+
+    double limit(int x, int y) const
+    {
+        if (kind == Kind::FourthMoment) {
+            const double m2 = second_moment(count, variance, of_mean, x, y);
+            return m2 * m2;
+        }
+        return std::sqrt(second_moment(count, variance, false, x, y) * double(position_m2(x, y)));
+    }
+    // A variance or moment that is itself wrong (negative, NaN) is reported by its own check.
+    bool bad(int x, int y) const
+    {
+        const double m = moment(x, y);
+        if (kind == Kind::FourthMoment)
+            return sound(m) && sound(variance(x, y)) && m < (1 - 1e-5) * limit(x, y) - 1e-30;
+        return std::isfinite(m) && sound(variance(x, y)) && sound(position_m2(x, y)) &&
+               std::abs(m) > (1 + 1e-4) * limit(x, y) + 1e-30;
+    }
+    std::string what(int x, int y) const
+    {
+        return OIIO::Strutil::fmt::format(kind == Kind::FourthMoment
+                                              ? "fourth moment {} below the square of the "
+                                                "second, {}: inconsistent moments"
+                                              : "co-moment {} larger than the variances allow, "
+                                                "{}: inconsistent moments",
+                                          moment(x, y), limit(x, y));
+    }
 };
 
 void check_relations(const std::vector<Relation>& relations, const Region& r,
@@ -218,61 +269,6 @@ void check_relations(const std::vector<Relation>& relations, const Region& r,
         if (p.pixels)
             problems.push_back(std::move(p));
     }
-}
-
-// m2/n from a stored variance: s²·(n − 1)/n per sample (·n for a variance of the mean).
-double second_moment(const ConstPlane& count, const ConstPlane& variance, bool of_mean, int x,
-                     int y)
-{
-    const double n = count(x, y);
-    const double s2 = double(variance(x, y)) * (of_mean ? n : 1.0);
-    return n > 0 ? s2 * (n - 1) / n : 0.0;
-}
-
-bool sound(double v) { return std::isfinite(v) && v >= 0; }
-
-// M4/n ≥ (M2/n)² holds for any set of values (the mean of the squared squares is at least
-// the square of their mean), so a stored fourth moment below it cannot come from samples.
-// The slack absorbs float rounding of the two stored values. A variance or fourth moment
-// that is itself wrong (negative, NaN) is reported by its own check.
-Relation fourth_moment_relation(ConstPlane count, ConstPlane variance, ConstPlane moment4,
-                                bool of_mean, std::string channel)
-{
-    auto floor_of = [=](int x, int y) {
-        const double m2 = second_moment(count, variance, of_mean, x, y);
-        return m2 * m2;
-    };
-    return {std::move(channel),
-            [=](int x, int y) {
-                const double m4 = moment4(x, y);
-                return sound(m4) && sound(variance(x, y)) &&
-                       m4 < (1 - 1e-5) * floor_of(x, y) - 1e-30;
-            },
-            [=](int x, int y) {
-                return OIIO::Strutil::fmt::format(
-                    "fourth moment {} below the square of the second, {}: inconsistent moments",
-                    moment4(x, y), floor_of(x, y));
-            }};
-}
-
-// Cauchy–Schwarz: a co-moment per sample is at most sqrt(m2_f · m2_u) in size.
-Relation co_moment_relation(ConstPlane count, ConstPlane variance, ConstPlane position_m2,
-                            ConstPlane co_moment, std::string channel)
-{
-    auto bound_of = [=](int x, int y) {
-        return std::sqrt(second_moment(count, variance, false, x, y) * double(position_m2(x, y)));
-    };
-    return {std::move(channel),
-            [=](int x, int y) {
-                const double c = co_moment(x, y);
-                return std::isfinite(c) && sound(variance(x, y)) && sound(position_m2(x, y)) &&
-                       std::abs(c) > (1 + 1e-4) * bound_of(x, y) + 1e-30;
-            },
-            [=](int x, int y) {
-                return OIIO::Strutil::fmt::format(
-                    "co-moment {} larger than the variances allow, {}: inconsistent moments",
-                    co_moment(x, y), bound_of(x, y));
-            }};
 }
 
 Region region_of(const OIIO::ImageBuf& buf, OIIO::ROI roi)
@@ -323,13 +319,21 @@ std::vector<StatisticsProblem> validate_statistics(const OIIO::ImageBuf& buf,
     for (int c = 0; c < channels.channels(); ++c) {
         // A fourth moment without its variance is not read (StatisticsView::has_moments).
         if (channels.has(Statistic::Moment4) && channels.has(Statistic::Variance))
-            relations.push_back(fourth_moment_relation(
-                count, plane(channels.variance, c), plane(channels.moment4, c),
-                channels.variance_of_mean, channels.channel(Statistic::Moment4, c)));
+            relations.push_back({Relation::Kind::FourthMoment,
+                                 channels.channel(Statistic::Moment4, c),
+                                 count,
+                                 plane(channels.variance, c),
+                                 plane(channels.moment4, c),
+                                 {},
+                                 channels.variance_of_mean});
         if (channels.has(Statistic::BoxCoxMoment4) && channels.has_box_cox())
-            relations.push_back(fourth_moment_relation(
-                count, plane(channels.bc_variance, c), plane(channels.bc_moment4, c), false,
-                channels.channel(Statistic::BoxCoxMoment4, c)));
+            relations.push_back({Relation::Kind::FourthMoment,
+                                 channels.channel(Statistic::BoxCoxMoment4, c),
+                                 count,
+                                 plane(channels.bc_variance, c),
+                                 plane(channels.bc_moment4, c),
+                                 {},
+                                 false});
         if (!positions || channels.variance_of_mean)
             continue;
         const struct {
@@ -342,10 +346,10 @@ std::vector<StatisticsProblem> validate_statistics(const OIIO::ImageBuf& buf,
                      {Statistic::BoxCoxCovarianceV, channels.bc_variance, 3}};
         for (const auto& pair : pairs)
             if (channels.has(pair.co_moment) && !pair.variance.empty())
-                relations.push_back(co_moment_relation(count, plane(pair.variance, c),
-                                                       plane(channels.subpixel, pair.position),
-                                                       plane(channels.indices(pair.co_moment), c),
-                                                       channels.channel(pair.co_moment, c)));
+                relations.push_back({Relation::Kind::CoMoment, channels.channel(pair.co_moment, c),
+                                     count, plane(pair.variance, c),
+                                     plane(channels.indices(pair.co_moment), c),
+                                     plane(channels.subpixel, pair.position)});
     }
     check_relations(relations, region, problems);
     return problems;
