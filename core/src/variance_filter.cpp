@@ -98,9 +98,10 @@ void fill_taps_and_guides(const StatisticsView& view, const Guides& guides,
         L.guide_falloff[L.guide_groups()] = 1.0 / (2.0 * double(sigma) * sigma);
         for (const ConstPlane& plane : g) {
             std::vector<float> dense(L.pixels);
-            for (int y = 0; y < view.height; ++y)
+            tbb::parallel_for(0, view.height, [&](int y) {
                 for (int x = 0; x < view.width; ++x)
                     dense[std::size_t(y) * view.width + x] = plane(x, y);
+            });
             L.guide.push_back(std::move(dense));
         }
     };
@@ -205,10 +206,10 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
     L.pixels = std::size_t(view.width) * view.height;
     L.z2 = z * z;
     L.borrow = options.borrow_without_interval;
-    fill_taps_and_guides(view, guides, options, L);
     const std::size_t n = L.pixels;
     std::vector<float> out(n * L.channels);
     run_with_threads(nthreads, [&] {
+        fill_taps_and_guides(view, guides, options, L);
         fill_pixel_planes(view, d, z, moderate, L);
         tbb::parallel_for(0, L.height, [&](int y) {
             std::vector<detail::VarianceSums> row(L.width);
