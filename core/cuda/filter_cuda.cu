@@ -82,6 +82,7 @@ struct KernelParams {
     const float* threshold[4];
     const float* value[4];
     const float* guide[6];
+    const float* guide_noise;  // u per pixel, with guides (filter_layout.h)
     const float* noise;
     const float* noise_limit;
     const float* inverse_count;  // present with diagnostics
@@ -98,11 +99,11 @@ struct KernelParams {
     int carry_from_previous;
 };
 
-/// Planes staged per window row: mean, threshold and value per channel, the guides, and
-/// the firefly level and 1/n where present.
+/// Planes staged per window row: mean, threshold and value per channel, the guides and
+/// their noise u, and the firefly level and 1/n where present.
 int staged_planes(int channels, int guides, bool guard, bool inverse)
 {
-    return 3 * channels + guides + (guard ? 1 : 0) + (inverse ? 1 : 0);
+    return 3 * channels + guides + (guides > 0 ? 1 : 0) + (guard ? 1 : 0) + (inverse ? 1 : 0);
 }
 
 template <int NC, int NG>
@@ -116,7 +117,8 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
     float* s_threshold = s_mean + NC * span;
     float* s_value = s_threshold + NC * span;
     float* s_guide = s_value + NC * span;
-    float* s_noise = s_guide + NG * span;
+    float* s_guide_noise = s_guide + NG * span;
+    float* s_noise = s_guide_noise + (NG > 0 ? span : 0);
     float* s_inverse = s_noise + (guard ? span : 0);
 
     const int x0 = blockIdx.x * kBlockX, y0 = blockIdx.y * kBlockY;
@@ -126,7 +128,7 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
     const long long at = (long long)y * p.width + x;
 
     float mean_i[NC], threshold_i[NC], value_i[NC], guide_i[NG > 0 ? NG : 1];
-    float limit_i = 0;
+    float guide_noise_i = 0, limit_i = 0;
     float acc[NC], weight_sum = 1, member_count = 1, inverse_sum = 0;
     if (inside) {
         for (int c = 0; c < NC; ++c) {
@@ -137,6 +139,8 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
         }
         for (int g = 0; g < NG; ++g)
             guide_i[g] = p.guide[g][centre];
+        if (NG > 0)
+            guide_noise_i = p.guide_noise[centre];
         if (guard)
             limit_i = p.noise_limit[centre];
         if (diagnostics)
@@ -169,6 +173,8 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
             }
             for (int g = 0; g < NG; ++g)
                 s_guide[g * span + k] = p.guide[g][from];
+            if (NG > 0)
+                s_guide_noise[k] = p.guide_noise[from];
             if (guard)
                 s_noise[k] = p.noise[from];
             if (diagnostics)
@@ -205,7 +211,10 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
                     else
                         far = g == kHalf ? __fmul_rn(d, d) : fmaf(d, d, far);
                 }
-                w = exp2f(__fsub_rn(near, far));
+                // Less the guides' noise, never above the spatial weight (filter_layout.h).
+                const float log2_weight =
+                    __fadd_rn(__fsub_rn(near, far), __fadd_rn(guide_noise_i, s_guide_noise[k]));
+                w = exp2f(fminf(log2_weight, p.spatial_log2[table_row + dx]));
             }
             for (int c = 0; c < NC; ++c)
                 acc[c] = fmaf(w, s_value[c * span + k] - value_i[c], acc[c]);
@@ -455,6 +464,7 @@ CudaFilter::CudaFilter(const FilterLayout& L, bool carry)
     }
     for (int g = 0; g < L.guide_count; ++g)
         p.guide[g] = on_device(L.guide[g]);
+    p.guide_noise = L.guide_noise ? on_device(L.guide_noise) : nullptr;
     p.noise = on_device(L.noise);
     p.noise_limit = on_device(L.noise_limit);
     p.inverse_count = on_device(L.inverse_count);

@@ -23,6 +23,7 @@ DenoiseOptions DenoiseOptions::paper()
 {
     DenoiseOptions o;
     o.firefly_ratio = 0;
+    o.guide_noise = false;
     return o;
 }
 

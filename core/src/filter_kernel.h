@@ -39,6 +39,7 @@ struct CentreState {
     F mean[NC], threshold[NC], noise_limit;
     F value[NC];
     F guide[NG > 0 ? NG : 1];
+    F guide_noise;
     Partial<V, NC> gathered;
 };
 
@@ -111,6 +112,8 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
             s.noise_limit = V::load(L.noise_limit + centre);
         for (int g = 0; g < NG; ++g)
             s.guide[g] = V::load(L.guide[g] + centre);
+        if constexpr (NG > 0)
+            s.guide_noise = V::load(L.guide_noise + centre);
         s.gathered = partial[k];
     }
 
@@ -156,9 +159,10 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
             // log2 w = spatial − Σ (Δg)² (guides are stored pre-scaled), summed as two
             // chains joined at the end: the weight's latency bounds this loop.
             constexpr int kHalf = (NG + 1) / 2;
-            F near[R], far[R];
+            F near[R], far[R], spatial[R];
             for (int k = First; k < Last; ++k) {
-                near[k] = V::set1(L.spatial_log2(dx, wy - y - k));
+                spatial[k] = V::set1(L.spatial_log2(dx, wy - y - k));
+                near[k] = spatial[k];
                 far[k] = V::zero();
             }
             for (int g = 0; g < NG; ++g) {
@@ -173,8 +177,14 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
                         far[k] = g == kHalf ? V::mul(d, d) : V::fmadd(d, d, far[k]);
                 }
             }
-            for (int k = First; k < Last; ++k)
-                w[k] = simd::exp2_nonpositive<V>(V::sub(near[k], far[k]));
+            // Guide noise: spatial − max(0, Σ(Δg)² − u_i − u_j). With u = 0 (no guide
+            // variances) the sum adds +0 and the min keeps it, so the bits are unchanged.
+            const F noise = V::load(L.guide_noise + off);
+            for (int k = First; k < Last; ++k) {
+                const F log2_weight =
+                    V::add(V::sub(near[k], far[k]), V::add(ctr[k].guide_noise, noise));
+                w[k] = simd::exp2_nonpositive<V>(V::min(log2_weight, spatial[k]));
+            }
         }
         for (int c = 0; c < NC; ++c) {
             F value = V::load(L.value[c] + off);

@@ -28,6 +28,22 @@ constexpr float kGuideBound = 1e17f;
 
 float finite_or_zero(float v) { return std::isfinite(v) ? v : 0.f; }
 
+// u of the pixel (filter_layout.h): Σ scale² · s²/n over the guides with a variance; 0 where
+// the count or a variance is not a positive finite number, bounded like the guides.
+float guide_noise_of(const std::vector<std::pair<ConstPlane, float>>& variances, int x, int y,
+                     double n)
+{
+    if (!(n > 0) || !std::isfinite(n))
+        return 0.f;
+    double u = 0;
+    for (const auto& [plane, scale2] : variances) {
+        const float v = plane(x, y);
+        if (v > 0 && std::isfinite(v))
+            u += double(scale2) * v / n;
+    }
+    return float(std::min(u, double(kGuideBound)));
+}
+
 // The disk at radius r: row dy's half width, −1 where the row is outside it.
 int disk_half_width(const FilterLayout& L, int r, int dy)
 {
@@ -163,12 +179,24 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         for (const ConstPlane& p : guides.normal)
             guide_planes.emplace_back(p, guide_scale(options.sigma_normal));
     L.guide_count = int(guide_planes.size());
+    // Each guide's variance of the mean in the scaled units, when the image has it.
+    std::vector<std::pair<ConstPlane, float>> guide_variances;
+    auto add_variance = [&](const ConstPlane& v, float sigma) {
+        const float scale = guide_scale(sigma);
+        if (v && options.guide_noise)
+            guide_variances.emplace_back(v, scale * scale);
+    };
+    if (guides.has_albedo())
+        add_variance(guides.albedo_variance, options.sigma_albedo);
+    if (guides.has_normal())
+        add_variance(guides.normal_variance, options.sigma_normal);
 
     // The guard's planes exist only where some chunk needs them.
     mark_guarded_chunks(L, noise);
     const bool guard = std::find(L.guarded.begin(), L.guarded.end(), 1) != L.guarded.end();
-    const int planes =
-        3 * L.channels + L.guide_count + (guard ? 2 : 0) + (with_inverse_count ? 1 : 0);
+    const int noise_planes = L.guide_count > 0 ? 1 : 0;
+    const int planes = 3 * L.channels + L.guide_count + noise_planes + (guard ? 2 : 0) +
+                       (with_inverse_count ? 1 : 0);
     // Not zeroed: every float, padding included, is written once below, by the thread
     // that will mostly read it (zeroing 50 MB first cost as much as filling it).
     L.storage_floats = L.plane_size * planes;
@@ -191,13 +219,15 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         guide[g] = plane_origin(3 * L.channels + g);
         L.guide[g] = guide[g];
     }
-    float* noise_level = guard ? plane_origin(3 * L.channels + L.guide_count) : nullptr;
-    float* noise_limit = guard ? plane_origin(3 * L.channels + L.guide_count + 1) : nullptr;
+    const int first_after_guides = 3 * L.channels + L.guide_count + noise_planes;
+    float* guide_noise = noise_planes ? plane_origin(3 * L.channels + L.guide_count) : nullptr;
+    L.guide_noise = guide_noise;
+    float* noise_level = guard ? plane_origin(first_after_guides) : nullptr;
+    float* noise_limit = guard ? plane_origin(first_after_guides + 1) : nullptr;
     L.noise = noise_level;
     L.noise_limit = noise_limit;
-    float* inverse_count = with_inverse_count
-                               ? plane_origin(3 * L.channels + L.guide_count + (guard ? 2 : 0))
-                               : nullptr;
+    float* inverse_count =
+        with_inverse_count ? plane_origin(first_after_guides + (guard ? 2 : 0)) : nullptr;
     L.inverse_count = inverse_count;
 
     const float max_count = tbb::parallel_reduce(
@@ -220,6 +250,8 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         }
         for (int g = 0; g < L.guide_count; ++g)
             std::fill(guide[g] + p + x0, guide[g] + p + x1, 0.f);
+        if (guide_noise)
+            std::fill(guide_noise + p + x0, guide_noise + p + x1, 0.f);
         if (guard) {
             std::fill(noise_level + p + x0, noise_level + p + x1, 0.f);
             std::fill(noise_limit + p + x0, noise_limit + p + x1, 0.f);
@@ -261,6 +293,8 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                     guide[g][p] = std::clamp(finite_or_zero(guide_planes[g].first(x, y)) *
                                                  guide_planes[g].second,
                                              -kGuideBound, kGuideBound);
+                if (guide_noise)
+                    guide_noise[p] = guide_noise_of(guide_variances, x, y, n);
                 if (guard) {
                     noise_level[p] = noise.level[std::size_t(y) * est.width + x];
                     noise_limit[p] = noise.limit[std::size_t(y) * est.width + x];

@@ -17,9 +17,9 @@ namespace statmc::detail {
 /// threshold −∞ (never members), test mean 0 and value 0.
 struct FilterLayout {
     int width = 0, height = 0, channels = 0;
-    int pad_x = 0, pad_y = 0;    // the window never reaches further than the image
-    std::ptrdiff_t stride = 0;   // floats per padded row
-    std::size_t plane_size = 0;  // floats per padded plane
+    int pad_x = 0, pad_y = 0;        // the window never reaches further than the image
+    std::ptrdiff_t stride = 0;       // floats per padded row
+    std::size_t plane_size = 0;      // floats per padded plane
     std::size_t storage_floats = 0;  // all planes together (what a GPU copy takes)
     struct Release {
         void operator()(float* p) const;
@@ -44,6 +44,10 @@ struct FilterLayout {
     const float* inverse_count = nullptr;  // 1/n (0 in the padding), for diagnostics only
     int guide_count = 0;                   // 0, 3 (albedo or normal) or 6 (both)
     const float* guide[6] = {};  // scaled by √(log2 e)/(√2·σ): −Σ (Δg)² is the log2-weight
+    // With guides: u = Σ_guides (scale² · s²/n), the part of E[Σ (Δg)²] a pixel's own guide
+    // noise adds (0 without the guides' variances). The log2-weight is then
+    // spatial − max(0, Σ (Δg)² − u_i − u_j) (docs/method.md §5, guide noise).
+    const float* guide_noise = nullptr;
 
     // The window walked: rows |dy| ≤ reach_y, and in row dy the columns
     // inner_half_width[dy] < |dx| ≤ half_width[dy] (index dy + pad_y; −1 where the row is

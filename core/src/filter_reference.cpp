@@ -1,5 +1,6 @@
 // docs/method.md §5 written as plainly as possible, in double precision: the yardstick for
 // the optimised filter in tests and benchmarks.
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -20,6 +21,37 @@ double squared_distance(const std::array<ConstPlane, 3>& guide, int xi, int yi, 
         d2 += (a - b) * (a - b);
     }
     return d2;
+}
+
+// A guide's variance of the mean at a pixel: s²/n, 0 where either is not positive finite.
+double variance_of_mean(const ConstPlane& variance, const EstimatorImage& est, int x, int y)
+{
+    if (!variance)  // absent, or the correction is off (guide_exponent)
+        return 0.0;
+    const double v = variance(x, y), n = est.count[est.index(0, x, y)];
+    return v > 0 && std::isfinite(v) && n > 0 && std::isfinite(n) ? v / n : 0.0;
+}
+
+// The guides' part of −log w: Σ_guides (|g_i − g_j|² − s²_i/n_i − s²_j/n_j) / (2σ²),
+// at least 0 — the distance less what the guides' own noise explains.
+double guide_exponent(const EstimatorImage& est, const Guides& guides,
+                      const DenoiseOptions& options, int xi, int yi, int xj, int yj)
+{
+    double e = 0, noise = 0;
+    auto add = [&](const std::array<ConstPlane, 3>& g, ConstPlane variance, float sigma) {
+        const double falloff = 1.0 / (2.0 * double(sigma) * sigma);
+        if (!options.guide_noise)
+            variance = {};
+        e += squared_distance(g, xi, yi, xj, yj) * falloff;
+        noise +=
+            (variance_of_mean(variance, est, xi, yi) + variance_of_mean(variance, est, xj, yj)) *
+            falloff;
+    };
+    if (guides.has_albedo())
+        add(guides.albedo, guides.albedo_variance, options.sigma_albedo);
+    if (guides.has_normal())
+        add(guides.normal, guides.normal_variance, options.sigma_normal);
+    return std::max(0.0, e - noise);
 }
 
 }  // namespace
@@ -71,14 +103,9 @@ void filter_reference(const EstimatorImage& est, const Guides& guides,
                     }
                     if (!member)
                         continue;
-                    double log_w =
-                        -p2 / (2.0 * double(options.sigma_spatial) * options.sigma_spatial);
-                    if (guides.has_albedo())
-                        log_w -= squared_distance(guides.albedo, xi, yi, xj, yj) /
-                                 (2.0 * double(options.sigma_albedo) * options.sigma_albedo);
-                    if (guides.has_normal())
-                        log_w -= squared_distance(guides.normal, xi, yi, xj, yj) /
-                                 (2.0 * double(options.sigma_normal) * options.sigma_normal);
+                    const double log_w =
+                        -p2 / (2.0 * double(options.sigma_spatial) * options.sigma_spatial) -
+                        guide_exponent(est, guides, options, xi, yi, xj, yj);
                     const double w = std::exp(log_w);
                     for (int c = 0; c < est.channels; ++c)
                         sum[c] += w * est.value[est.index(c, xj, yj)];

@@ -16,6 +16,7 @@ struct Scalar {
     static F zero() { return 0.f; }
     static F add(F a, F b) { return a + b; }
     static F sub(F a, F b) { return a - b; }
+    static F min(F a, F b) { return a < b ? a : b; }  // as minps, ties to b
     static F mul(F a, F b) { return a * b; }
     static F div(F a, F b) { return a / b; }
     // Unfused on purpose: without hardware FMA, std::fma is a slow library call.

@@ -60,6 +60,19 @@ std::array<ConstPlane, 3> guide_planes(const OIIO::ImageBuf& buf, const std::vec
             channel_plane(buf, indices[2])};
 }
 
+std::string guide_variance_layer(std::string_view guide_layer)
+{
+    return std::string(guide_layer) + "Variance";
+}
+
+ConstPlane guide_variance_plane(const OIIO::ImageBuf& buf, std::string_view guide_layer)
+{
+    static const std::vector<std::string> kY = {"Y"};
+    const std::vector<int> index =
+        optional_layer(buf.spec(), guide_variance_layer(guide_layer), kY);
+    return index.empty() ? ConstPlane{} : channel_plane(buf, index[0]);
+}
+
 std::array<ConstPlane, 2> motion_planes(const OIIO::ImageBuf& buf)
 {
     static const std::vector<std::string> kSuffixes = {"X", "Y"};

@@ -217,6 +217,12 @@ Channels layout_channels(const StatisticsView& stats, const StatisticsMetadata& 
     };
     add_guide(kAlbedoLayer, colour_suffixes(), guides.albedo);
     add_guide(kNormalLayer, vector_suffixes(), guides.normal);
+    if (guides.albedo_variance)
+        out.emplace_back(channel_name(guide_variance_layer(kAlbedoLayer), "Y"),
+                         guides.albedo_variance);
+    if (guides.normal_variance)
+        out.emplace_back(channel_name(guide_variance_layer(kNormalLayer), "Y"),
+                         guides.normal_variance);
     if (guides.depth)
         out.emplace_back(channel_name(kDepthLayer, "Z"), guides.depth);
     if (guides.motion[0] && guides.motion[1]) {

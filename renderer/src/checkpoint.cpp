@@ -19,7 +19,7 @@ namespace statmc::render {
 namespace {
 
 constexpr char kMagic[8] = {'S', 'T', 'A', 'T', 'M', 'C', 'C', 'K'};
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // 2: the guides' squares
 
 static_assert(std::is_trivially_copyable_v<StatisticsImage<3>::Pixel> &&
                   std::is_trivially_copyable_v<StatisticsImage<3>::Position> &&
@@ -37,6 +37,8 @@ void for_each_buffer(FilmRef& film, Visit&& visit)
     visit(film.albedo_sum);
     visit(film.normal_sum);
     visit(film.depth_sum);
+    visit(film.albedo_squares);
+    visit(film.normal_squares);
     if (film.bounces)
         for (auto& group : film.bounces->groups()) {
             visit(group.accumulators());
@@ -199,9 +201,12 @@ CheckpointProgress read_checkpoint(const std::string& path, Film& film,
     // The render it belongs to, field by field, so that the message says what differs.
     const Fields want = identity_fields(expected);
     const std::pair<const char*, const char*> checks[] = {
-        {"scene", "scene"},         {"sceneCrc", "scene file's contents (it changed since)"},
-        {"seed", "seed"},           {"resolution", "resolution"},
-        {"task", "task"},           {"samples", "sample range"},
+        {"scene", "scene"},
+        {"sceneCrc", "scene file's contents (it changed since)"},
+        {"seed", "seed"},
+        {"resolution", "resolution"},
+        {"task", "task"},
+        {"samples", "sample range"},
         {"settings", "render settings"}};
     for (const auto& [key, what] : checks)
         if (fields[key] != want.at(key))

@@ -23,6 +23,10 @@ OIIO::ImageBuf make_output_image(const Film& film, const OutputInfo& info)
         guides.normal[c] = dense_plane(normal.data() + c * n, film.width);
     }
     guides.depth = dense_plane(depth.data(), film.width);
+    const std::vector<float> albedo_variance = film.albedo_variance();
+    const std::vector<float> normal_variance = film.normal_variance();
+    guides.albedo_variance = dense_plane(albedo_variance.data(), film.width);
+    guides.normal_variance = dense_plane(normal_variance.data(), film.width);
     const std::vector<float> motion = film.motion();
     if (!motion.empty())
         guides.motion = {dense_plane(motion.data(), film.width),

@@ -12,7 +12,8 @@ namespace statmc::render {
 Film::Film(int w, int h, BounceLayout bounce_layout)
     : width(w), height(h), stats(w, h, /*track_positions=*/true),
       albedo_sum(std::size_t(w) * h * 3), normal_sum(std::size_t(w) * h * 3),
-      depth_sum(std::size_t(w) * h)
+      depth_sum(std::size_t(w) * h), albedo_squares(std::size_t(w) * h),
+      normal_squares(std::size_t(w) * h)
 {
     if (!bounce_layout.empty())
         bounces = std::make_unique<BounceStatistics>(w, h, bounce_layout);
@@ -34,7 +35,36 @@ std::vector<float> average(const std::vector<double>& sums, int channels, const 
     return out;
 }
 
+// Σ_c s²_c = (Σ|g|² − n·Σ_c mean_c²)/(n − 1), from the sums of a 3-channel guide.
+std::vector<float> summed_variance(const std::vector<double>& sums,
+                                   const std::vector<double>& squares, const Film& film)
+{
+    const std::size_t n = std::size_t(film.width) * film.height;
+    std::vector<float> out(n);
+    for (int y = 0; y < film.height; ++y)
+        for (int x = 0; x < film.width; ++x) {
+            const std::size_t i = std::size_t(y) * film.width + x;
+            const double count = film.stats.at(x, y).n;
+            if (count < 2)
+                continue;
+            double mean_squares = 0;
+            for (int c = 0; c < 3; ++c)
+                mean_squares += sums[c * n + i] * sums[c * n + i] / count;
+            out[i] = float(std::max(0.0, (squares[i] - mean_squares) / (count - 1)));
+        }
+    return out;
+}
+
 }  // namespace
+
+std::vector<float> Film::albedo_variance() const
+{
+    return summed_variance(albedo_sum, albedo_squares, *this);
+}
+std::vector<float> Film::normal_variance() const
+{
+    return summed_variance(normal_sum, normal_squares, *this);
+}
 
 std::vector<float> Film::albedo() const { return average(albedo_sum, 3, *this); }
 std::vector<float> Film::normal() const { return average(normal_sum, 3, *this); }
@@ -70,7 +100,7 @@ double Film::bytes_needed(int width, int height, const BounceLayout& bounce_layo
         (bounce_layout.quantities() + BounceStatistics::kGroup - 1) / BounceStatistics::kGroup;
     // Every accumulated double, and the output's float planes (at most one of each per
     // statistic and channel, written once).
-    const double per_pixel = sizeof(Stats3::Pixel) + sizeof(Stats3::Position) + 7 * sizeof(double) +
+    const double per_pixel = sizeof(Stats3::Pixel) + sizeof(Stats3::Position) + 9 * sizeof(double) +
                              groups * (sizeof(Stats4::Pixel) + 16 * 4.0 * sizeof(float)) +
                              64 * sizeof(float);
     return double(width) * double(height) * per_pixel;

@@ -205,10 +205,15 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
                             if (profiling)
                                 bounce_cycles_local += __rdtsc() - b0;
                         }
+                        double albedo_square = 0, normal_square = 0;
                         for (int c = 0; c < 3; ++c) {
                             film.albedo_sum[c * npix + pixel] += guide.albedo[c];
                             film.normal_sum[c * npix + pixel] += guide.normal[c];
+                            albedo_square += double(guide.albedo[c]) * guide.albedo[c];
+                            normal_square += double(guide.normal[c]) * guide.normal[c];
                         }
+                        film.albedo_squares[pixel] += albedo_square;
+                        film.normal_squares[pixel] += normal_square;
                         film.depth_sum[pixel] += guide.depth;
                         if (!film.motion_sum.empty())
                             add_motion(film, pixel, npix, *settings.previous_camera, ray, guide,

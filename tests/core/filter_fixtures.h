@@ -67,10 +67,13 @@ inline EstimatorImage random_estimators(int w, int h, int channels, std::uint64_
 }
 
 struct GuideImages {
-    std::vector<float> data;
+    std::vector<float> data, variance;
     Guides guides;
-    GuideImages(int w, int h, bool albedo, bool normal, std::uint64_t seed)
-        : data(std::size_t(w) * h * 6)
+    /// `noise`: also the guides' per-sample variances, at a size that makes some guide
+    /// distances wholly and some partly explained by noise (filter_layout.h), and 0 on
+    /// every fifth pixel.
+    GuideImages(int w, int h, bool albedo, bool normal, std::uint64_t seed, bool noise = false)
+        : data(std::size_t(w) * h * 6), variance(std::size_t(w) * h * 2)
     {
         std::mt19937_64 rng(seed);
         std::uniform_real_distribution<float> u(0.f, 1.f);
@@ -85,6 +88,14 @@ struct GuideImages {
             if (normal)
                 guides.normal[k] = dense_plane(data.data() + std::size_t(k + 3) * w * h, w);
         }
+        if (!noise)
+            return;
+        for (std::size_t i = 0; i < variance.size(); ++i)
+            variance[i] = i % 5 == 0 ? 0.f : 0.4f * u(rng);
+        if (albedo)
+            guides.albedo_variance = dense_plane(variance.data(), w);
+        if (normal)
+            guides.normal_variance = dense_plane(variance.data() + std::size_t(w) * h, w);
     }
 };
 
@@ -92,6 +103,7 @@ struct GuideImages {
 struct FilterCase {
     int w, h, channels, radius;
     bool albedo, normal;
+    bool guide_noise = false;  ///< the guides come with their variances
 };
 
 inline void PrintTo(const FilterCase& k, std::ostream* os)
@@ -104,11 +116,13 @@ inline void PrintTo(const FilterCase& k, std::ostream* os)
 /// one column, one and four channels, and each guide.
 inline std::vector<FilterCase> filter_cases(std::vector<FilterCase> more = {})
 {
-    std::vector<FilterCase> cases = {{37, 23, 3, 5, false, false}, {37, 23, 3, 0, false, false},
-                                     {9, 6, 3, 20, false, false},  {1, 1, 3, 20, false, false},
-                                     {1, 17, 3, 4, false, false},  {40, 3, 1, 6, false, false},
-                                     {24, 16, 4, 6, false, false}, {33, 19, 3, 6, true, false},
-                                     {33, 19, 3, 6, false, true},  {33, 19, 3, 6, true, true}};
+    std::vector<FilterCase> cases = {
+        {37, 23, 3, 5, false, false},      {37, 23, 3, 0, false, false},
+        {9, 6, 3, 20, false, false},       {1, 1, 3, 20, false, false},
+        {1, 17, 3, 4, false, false},       {40, 3, 1, 6, false, false},
+        {24, 16, 4, 6, false, false},      {33, 19, 3, 6, true, false},
+        {33, 19, 3, 6, false, true},       {33, 19, 3, 6, true, true},
+        {33, 19, 3, 6, true, false, true}, {33, 19, 3, 6, true, true, true}};
     cases.insert(cases.end(), more.begin(), more.end());
     return cases;
 }
@@ -119,7 +133,7 @@ inline std::string case_name(const ::testing::TestParamInfo<FilterCase>& info)
     const FilterCase& k = info.param;
     return std::to_string(k.w) + "x" + std::to_string(k.h) + "_c" + std::to_string(k.channels) +
            "_r" + std::to_string(k.radius) + (k.albedo ? "_albedo" : "") +
-           (k.normal ? "_normal" : "");
+           (k.normal ? "_normal" : "") + (k.guide_noise ? "_noise" : "");
 }
 
 /// The options the cases run at: the case's radius, and falloffs that the fixtures'

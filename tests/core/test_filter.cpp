@@ -36,7 +36,7 @@ TEST_P(FilterVsReference, Agree)
 {
     const FilterCase k = GetParam();
     const EstimatorImage est = random_estimators(k.w, k.h, k.channels, 100 + k.w + k.radius);
-    GuideImages g(k.w, k.h, k.albedo, k.normal, 7);
+    GuideImages g(k.w, k.h, k.albedo, k.normal, 7, k.guide_noise);
     DenoiseOptions opt = case_options(k);
     for (SimdLevel level : supported_simd_levels()) {
         SCOPED_TRACE(simd_level_name(level));
@@ -63,10 +63,77 @@ TEST(Filter, TheFixturesFirefliesAreGuardedAgainst)
     EXPECT_GT(refused, 5);
 }
 
+// Guide noise (docs/method.md §5): the weight of a pair is spatial · exp(−max(0, D − U)),
+// D = Σ_guides |g_i − g_j|²/(2σ²) and U = Σ_guides (s²_i/n_i + s²_j/n_j)/(2σ²). Two pixels
+// that the test cannot tell apart, so the output is (F_0 + w F_1)/(1 + w), written out.
+TEST(Filter, GuideNoiseTakesWhatItExplainsOutOfTheGuideDistance)
+{
+    EstimatorImage est(2, 1, 1);
+    est.domain = TestDomain::BoxCox;
+    const float values[2] = {1.f, 3.f}, counts[2] = {4.f, 8.f};
+    for (int x = 0; x < 2; ++x) {
+        est.count[x] = counts[x];
+        est.value[x] = values[x];
+        est.test_mean[x] = 1.f;
+        est.test_variance[x] = 0.01f;
+    }
+    const float albedo[2] = {0.2f, 0.3f};  // D = 3 · 0.01/(2 · 0.05²) = 6
+    const float normal[2] = {0.f, 0.f};
+    DenoiseOptions opt;
+    opt.radius = 1;
+    opt.sigma_spatial = 2.f;
+    opt.sigma_albedo = 0.05f;
+    opt.firefly_ratio = 0;
+    const double spatial = std::exp(-1.0 / (2 * 2.0 * 2.0)), falloff = 1 / (2 * 0.05 * 0.05);
+    for (const float s2 : {0.f, 0.02f, 0.2f}) {  // U = 0, 1.5 (partly) and 15 (wholly)
+        SCOPED_TRACE("s² = " + std::to_string(s2));
+        const float variance[2] = {s2, s2};
+        Guides g;
+        for (int c = 0; c < 3; ++c) {
+            g.albedo[c] = dense_plane(albedo, 2);
+            g.normal[c] = dense_plane(normal, 2);
+        }
+        g.albedo_variance = dense_plane(variance, 2);
+        const double D = 3 * 0.1 * 0.1 * falloff, U = (s2 / 4 + s2 / 8) * falloff;
+        const double w = spatial * std::exp(-std::max(0.0, D - U));
+        for (SimdLevel level : supported_simd_levels()) {
+            SCOPED_TRACE(simd_level_name(level));
+            Output fast(2, 1, 1), ref(2, 1, 1);
+            filter(est, g, opt, fast.planes(), fast.diagnostics(), 1, level);
+            filter_reference(est, g, opt, ref.planes(), ref.diagnostics());
+            EXPECT_NEAR(fast.values[0], (1 + w * 3) / (1 + w), 2e-6);
+            EXPECT_NEAR(fast.values[1], (3 + w * 1) / (1 + w), 2e-6);
+            EXPECT_NEAR(ref.values[0], (1 + w * 3) / (1 + w), 1e-6);
+            EXPECT_NEAR(fast.weights[0], 1 + w, 2e-6);
+        }
+    }
+}
+
+// Without the guides' variances the kernel adds u = 0 and keeps the sum; so an image
+// without them, and one with all-zero ones, give the same bits as the filter before guide
+// noise existed (method=classic on old files).
+TEST(Filter, ZeroGuideVariancesAreBitwiseNoGuideVariances)
+{
+    const EstimatorImage est = random_estimators(77, 41, 3, 13);
+    GuideImages without(77, 41, true, true, 5);
+    GuideImages zero(77, 41, true, true, 5, /*noise=*/true);
+    std::fill(zero.variance.begin(), zero.variance.end(), 0.f);
+    DenoiseOptions opt;
+    opt.radius = 7;
+    for (SimdLevel level : supported_simd_levels()) {
+        SCOPED_TRACE(simd_level_name(level));
+        Output a(77, 41, 3), b(77, 41, 3);
+        filter(est, without.guides, opt, a.planes(), a.diagnostics(), 0, level);
+        filter(est, zero.guides, opt, b.planes(), b.diagnostics(), 0, level);
+        EXPECT_EQ(std::memcmp(a.values.data(), b.values.data(), a.values.size() * 4), 0);
+        EXPECT_EQ(std::memcmp(a.weights.data(), b.weights.data(), a.weights.size() * 4), 0);
+    }
+}
+
 TEST(Filter, BitwiseIdenticalForAnyThreadCount)
 {
     const EstimatorImage est = random_estimators(150, 97, 3, 3);
-    GuideImages g(150, 97, true, true, 4);
+    GuideImages g(150, 97, true, true, 4, /*noise=*/true);
     DenoiseOptions opt;
     opt.radius = 9;
     Output one(150, 97, 3), two(150, 97, 3), all(150, 97, 3);
@@ -90,7 +157,7 @@ TEST(Filter, VectorKernelsAgree)
     const EstimatorImage est = random_estimators(77, 41, 3, 11);
     for (bool guided : {false, true}) {
         SCOPED_TRACE(guided ? "guided" : "unguided");
-        GuideImages g(77, 41, guided, guided, 5);
+        GuideImages g(77, 41, guided, guided, 5, /*noise=*/guided);
         DenoiseOptions opt;
         opt.radius = 7;
         Output avx2(77, 41, 3), avx512(77, 41, 3);
@@ -122,7 +189,7 @@ TEST(FilterRungs, EachRungIsTheFilterAtItsRadius)
     const EstimatorImage est = random_estimators(45, 29, 3, 21);
     const std::vector<int> radii = {1, 2, 4, 9};
     for (bool guided : {false, true}) {
-        GuideImages g(45, 29, guided, guided, 8);
+        GuideImages g(45, 29, guided, guided, 8, /*noise=*/guided);
         DenoiseOptions opt;
         opt.radius = 9;
         opt.sigma_spatial = 3.f;
@@ -151,7 +218,7 @@ TEST(FilterRungs, EachRungIsTheFilterAtItsRadius)
 TEST(FilterRungs, BitwiseIdenticalForAnyThreadCountAndRefusesBadRadii)
 {
     const EstimatorImage est = random_estimators(150, 97, 3, 5);
-    GuideImages g(150, 97, true, true, 6);
+    GuideImages g(150, 97, true, true, 6, /*noise=*/true);
     DenoiseOptions opt;
     opt.radius = 12;
     auto rungs_with = [&](int nthreads) {

@@ -39,7 +39,7 @@ TEST_P(CudaVsCpu, SameMembersAndValues)
     // random_estimators holds untestable (NaN-variance) pixels and fireflies, so the guard
     // and the never-a-member padding are compared too.
     const EstimatorImage est = random_estimators(k.w, k.h, k.channels, 300 + k.w + k.radius);
-    GuideImages g(k.w, k.h, k.albedo, k.normal, 9);
+    GuideImages g(k.w, k.h, k.albedo, k.normal, 9, k.guide_noise);
     DenoiseOptions opt = case_options(k);
     Output cpu(k.w, k.h, k.channels), gpu(k.w, k.h, k.channels);
     filter(est, g.guides, opt, cpu.planes(), cpu.diagnostics());

@@ -109,6 +109,62 @@ TEST(Merge, FarmTasksMergeToTheAllAtOnceStatistics)
     EXPECT_EQ(merged.spec().find_attribute(layers::attr::kSeed), nullptr);
 }
 
+TEST(Merge, GuideVariancesPoolExactly)
+{
+    // Parts with different guide means and spreads: the merged albedoVariance is the
+    // summed per-sample variance of all their albedo samples together, as one render of
+    // them all would write it.
+    const FarmRender farm;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    std::vector<std::vector<float>> albedo(kTasks, std::vector<float>(std::size_t(kW) * kH * 3));
+    std::vector<std::vector<float>> variance(kTasks, std::vector<float>(std::size_t(kW) * kH));
+    std::vector<OIIO::ImageBuf> parts;
+    const std::size_t n = std::size_t(kW) * kH;
+    std::vector<double> sum_all(n * 3), squares_all(n), count_all(n);
+    for (int k = 0; k < kTasks; ++k) {
+        const StatisticsPlanes planes = farm.tasks[k].planes();
+        for (std::size_t i = 0; i < n; ++i) {
+            const int count = int(planes.count[i]);
+            double sum[3] = {}, squares = 0;
+            for (int s = 0; s < count; ++s)
+                for (int c = 0; c < 3; ++c) {
+                    const double a = 0.3 * k + 0.2 * u(rng);
+                    sum[c] += a;
+                    squares += a * a;
+                }
+            double mean_squares = 0;
+            for (int c = 0; c < 3; ++c) {
+                albedo[k][c * n + i] = count > 0 ? float(sum[c] / count) : 0.f;
+                mean_squares += count > 0 ? sum[c] * sum[c] / count : 0;
+                sum_all[c * n + i] += sum[c];
+            }
+            variance[k][i] = count > 1 ? float((squares - mean_squares) / (count - 1)) : 0.f;
+            squares_all[i] += squares;
+            count_all[i] += count;
+        }
+        layers::GuidePlanes guides;
+        for (int c = 0; c < 3; ++c)
+            guides.albedo[c] = dense_plane(albedo[k].data() + c * n, kW);
+        guides.albedo_variance = dense_plane(variance[k].data(), kW);
+        parts.push_back(named(
+            layers::make_statistics_image(farm.tasks[k].planes(), {"", 10 + k, 100 + k}, guides),
+            "guided" + std::to_string(k) + ".exr"));
+    }
+    const OIIO::ImageBuf merged = merge(pointers(parts));
+    ASSERT_FALSE(merged.has_error()) << merged.geterror();
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const std::size_t i = std::size_t(y) * kW + x;
+            double mean_squares = 0;
+            for (int c = 0; c < 3; ++c)
+                mean_squares += sum_all[c * n + i] * sum_all[c * n + i] / count_all[i];
+            const double want = (squares_all[i] - mean_squares) / (count_all[i] - 1);
+            EXPECT_NEAR(channel_value(merged, "albedoVariance.Y", x, y), want, 1e-5 * (1 + want))
+                << x << "," << y;
+        }
+}
+
 TEST(Merge, SameBitsForAnyThreadCount)
 {
     // nthreads follows ImageBufAlgo (0 = OIIO's global setting) and never changes a bit:
@@ -199,10 +255,10 @@ TEST(Merge, RefusesDenoisedInputsAndSingleImages)
 // Farm task k of `count` with `seed`: samples 10k..10k+9 (the header is what is checked).
 OIIO::ImageBuf task_image(const FarmRender& farm, int k, int count, int seed = 5)
 {
-    OIIO::ImageBuf img = layers::make_statistics_image(farm.tasks[k % kTasks].planes(),
-                                                       {"", 10, seed});
-    layers::write_sample_provenance(img.specmod(), {seed, layers::SampleRange{10 * k, 10 * k + 10},
-                                                    k, count});
+    OIIO::ImageBuf img =
+        layers::make_statistics_image(farm.tasks[k % kTasks].planes(), {"", 10, seed});
+    layers::write_sample_provenance(img.specmod(),
+                                    {seed, layers::SampleRange{10 * k, 10 * k + 10}, k, count});
     return named(img, "farm-task" + std::to_string(k) + "-of-" + std::to_string(count) + "-seed" +
                           std::to_string(seed) + ".exr");
 }
@@ -214,8 +270,7 @@ TEST(Merge, RefusesTheSameSamplesTwice)
     const std::vector<OIIO::ImageBuf> parts = {image(farm.tasks[0], 10, "seed1-a.exr", 1),
                                                image(farm.tasks[1], 11, "seed1-b.exr", 1)};
     EXPECT_NE(merge_error(parts).find("part 0 (" + path("seed1-a.exr") +
-                                      ": seed 1, samples 0..9) and part 1 (" +
-                                      path("seed1-b.exr") +
+                                      ": seed 1, samples 0..9) and part 1 (" + path("seed1-b.exr") +
                                       ": seed 1, samples 0..10) drew the same samples"),
               std::string::npos)
         << merge_error(parts);

@@ -80,6 +80,8 @@ TEST(PassesOperator, MeanVarianceAndCountAreTheHandComputedOnes)
             }
             EXPECT_EQ(channel_value(stats, "A", x, y), 1.f);
             EXPECT_EQ(channel_value(stats, "albedo.G", x, y), 0.5f);
+            // Each render one sample: albedo 0.25, 0.5, 0.75 per channel, s² = 0.0625.
+            EXPECT_EQ(channel_value(stats, "albedoVariance.Y", x, y), 3 * 0.0625f);
         }
     const OIIO::ImageSpec& spec = stats.spec();
     EXPECT_EQ(spec.get_string_attribute("statmc:variance"), "sample");

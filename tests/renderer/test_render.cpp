@@ -441,3 +441,56 @@ TEST(Render, AreaLightsAreOneSidedUnlessTwoSided)
     const double plain = seen("", bare), reversed = seen("", "ReverseOrientation\n" + bare);
     EXPECT_EQ(plain + reversed, 1.0);  // exactly one of the two faces the camera
 }
+
+TEST(Render, GuideVarianceIsTheSamplesSummedVariance)
+{
+    // Four samples of one pixel, albedos a_s: Σ_c s²_c with n − 1, written out.
+    Film film(1, 1);
+    const float albedo[4][3] = {
+        {0.2f, 0.4f, 0.6f}, {0.f, 0.f, 0.f}, {0.2f, 0.4f, 0.6f}, {0.6f, 0.2f, 0.f}};
+    double want = 0;
+    for (int c = 0; c < 3; ++c) {
+        double mean = 0, squares = 0;
+        for (const auto& a : albedo)
+            mean += a[c] / 4.0;
+        for (const auto& a : albedo)
+            squares += (a[c] - mean) * (a[c] - mean);
+        want += squares / 3;
+    }
+    const float value[3] = {1, 1, 1};
+    for (const auto& a : albedo) {
+        film.stats.add(0, 0, value, 0.5, 0.5);
+        for (int c = 0; c < 3; ++c) {
+            film.albedo_sum[c] += a[c];
+            film.albedo_squares[0] += double(a[c]) * a[c];
+        }
+    }
+    EXPECT_NEAR(film.albedo_variance()[0], want, 1e-7);
+    EXPECT_EQ(film.normal_variance()[0], 0.f);  // every normal sample was 0
+}
+
+TEST(Render, GuideVariancesVanishOnAPlaneAndNotAtItsEdges)
+{
+    // A small plane in the furnace: inside it every sample has the same albedo, so the
+    // guide variance is 0 (to rounding); pixels its edge crosses mix plane and walls.
+    const auto desc = parse_scene_string(
+        furnace_scene(1.f, "Material \"matte\" \"rgb Kd\" [0.2 0.5 0.8]",
+                      quad("-0.1 0 -0.1  0.1 0 -0.1  0.1 0 0.1  -0.1 0 0.1", "0 1 0")),
+        "furnace.pbrt");
+    const auto r = render_scene(desc, 16, 16, 32, 3, 0);
+    const std::vector<float> variance = r.film->albedo_variance();
+    const std::vector<float> albedo = r.film->albedo();
+    int edges = 0, inside = 0;
+    for (std::size_t i = 0; i < variance.size(); ++i) {
+        const float green = albedo[variance.size() + i];
+        if (green > 0.49f) {  // every sample on the plane
+            ++inside;
+            EXPECT_LT(variance[i], 1e-6f) << "pixel " << i;
+        } else if (green > 0.02f && green < 0.48f) {  // a mix
+            ++edges;
+            EXPECT_GT(variance[i], 0.01f) << "pixel " << i;
+        }
+    }
+    EXPECT_GT(inside, 0);
+    EXPECT_GT(edges, 0);
+}

@@ -664,6 +664,10 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
     layers::GuidePlanes guides;
     guides.albedo = guide(in, opt.guides.albedo, opt.guides.albedo_layer, true);
     guides.normal = guide(in, opt.guides.normal, opt.guides.normal_layer, false);
+    if (guides.albedo[0])
+        guides.albedo_variance = layers::guide_variance_plane(in, opt.guides.albedo_layer);
+    if (guides.normal[0])
+        guides.normal_variance = layers::guide_variance_plane(in, opt.guides.normal_layer);
 
     StatisticsView full = layers::statistics_view(in, ch);
     StatisticsPlanes merged;
@@ -676,7 +680,9 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
     StatisticsView window =
         layers::view_window(full, x0, y0, regions.input.width(), regions.input.height());
     const Guides window_guides{layers::shifted(guides.albedo, x0, y0),
-                               layers::shifted(guides.normal, x0, y0)};
+                               layers::shifted(guides.normal, x0, y0),
+                               layers::shifted(guides.albedo_variance, x0, y0),
+                               layers::shifted(guides.normal_variance, x0, y0)};
     ExplainedVariance explained;
     if (stages.explained_variance) {
         explained =

@@ -57,6 +57,7 @@ DenoiseImageOptions DenoiseImageOptions::classic()
     DenoiseImageOptions o;
     o.ici_alpha = 0;
     o.variance_prior_dof = 0;
+    o.filter.guide_noise = false;
     return o;
 }
 

@@ -89,6 +89,7 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.filter.sigma_albedo = float(p.get_float("sigma_albedo", opt.filter.sigma_albedo));
     opt.filter.sigma_normal = float(p.get_float("sigma_normal", opt.filter.sigma_normal));
     opt.filter.firefly_ratio = float(p.get_float("fireflies", opt.filter.firefly_ratio));
+    opt.filter.guide_noise = p.get_bool("guide_noise", opt.filter.guide_noise);
     const std::vector<std::string> guides = p.get_list("guides", {"auto"});
     opt.guides.albedo = guide_use(guides, "albedo");
     opt.guides.normal = guide_use(guides, "normal");
@@ -147,6 +148,11 @@ std::vector<statmc::ParameterSpec> parameters()
                         "(halos of highlights, fireflies); 0 = off. Default and classic " +
                             number_text(f.firefly_ratio) + ", paper 0")
             .at_least(0),
+        bool_parameter("guide_noise", std::nullopt,
+                       "take the part of a guide distance that the guides' own sampling noise "
+                       "explains out of their weight (the albedoVariance/normalVariance layers; "
+                       "docs/method.md §5); no effect without them. Default 1, classic and "
+                       "paper 0"),
         list_parameter("guides", {"albedo", "normal"}, {"auto", "none"}, "auto",
                        "guide layers: a list is required to be present, auto uses those "
                        "present, none none"),

@@ -101,6 +101,53 @@ std::vector<float> merged_guide(const std::vector<const OIIO::ImageBuf*>& floats
     return sum;
 }
 
+// A guide's variance (albedoVariance.Y: per-sample, summed over channels) over the parts,
+// exactly as one render of all their samples would have it: the pooled within-part sums of
+// squares plus each part's spread about the merged mean `merged`. Empty unless every part
+// has the guide and its variance.
+std::vector<float> merged_guide_variance(const std::vector<const OIIO::ImageBuf*>& floats,
+                                         const std::vector<StatisticsView>& views,
+                                         const GuideChannels& guide, const char* guide_layer,
+                                         const std::vector<float>& merged)
+{
+    if (guide.empty())
+        return {};
+    std::vector<int> variance;
+    for (const OIIO::ImageBuf* part : floats) {
+        if (!layers::guide_variance_plane(*part, guide_layer))
+            return {};
+        variance.push_back(part->spec().channelindex(
+            layers::channel_name(layers::guide_variance_layer(guide_layer), "Y")));
+    }
+    const int w = views[0].width, h = views[0].height, nc = int(guide[0].size());
+    const std::size_t pixels = std::size_t(w) * h;
+    std::vector<double> squares(pixels, 0.0), count(pixels, 0.0);
+    for (std::size_t k = 0; k < floats.size(); ++k) {
+        const ConstPlane v = layers::channel_plane(*floats[k], variance[k]);
+        std::vector<ConstPlane> g;
+        for (int c = 0; c < nc; ++c)
+            g.push_back(layers::channel_plane(*floats[k], guide[k][c]));
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = std::size_t(y) * w + x;
+                const double n = views[k].count(x, y);
+                if (!(n > 0))
+                    continue;
+                double spread = 0;
+                for (int c = 0; c < nc; ++c) {
+                    const double d = double(g[c](x, y)) - merged[c * pixels + i];
+                    spread += d * d;
+                }
+                squares[i] += (n - 1) * double(v(x, y)) + n * spread;
+                count[i] += n;
+            }
+    }
+    std::vector<float> out(pixels);
+    for (std::size_t i = 0; i < pixels; ++i)
+        out[i] = count[i] > 1 ? float(squares[i] / (count[i] - 1)) : 0.f;
+    return out;
+}
+
 std::array<ConstPlane, 3> dense_planes(const std::vector<float>& planes, int w, int h)
 {
     if (planes.empty())
@@ -158,7 +205,7 @@ OIIO::ImageBuf merge_parts(const Parts& parts, const MergeOptions& options, int 
             box_cox_moment4 =
                 box_cox_moment4 && ch.has_box_cox() && ch.has(layers::Statistic::BoxCoxMoment4);
             views.push_back(with_stand_in_box_cox(layers::statistics_view(*floats[k], ch),
-                                          dense_plane(zeros.data(), first.width)));
+                                                  dense_plane(zeros.data(), first.width)));
         } catch (const layers::LayerError& e) {
             throw std::invalid_argument(label(parts, k) + ": " + e.what());
         }
@@ -173,24 +220,33 @@ OIIO::ImageBuf merge_parts(const Parts& parts, const MergeOptions& options, int 
         merged.bc_moment4.clear();
 
     const int w = first.width, h = first.height;
-    const std::vector<float> albedo = merged_guide(
-        floats, views, guide_channels(floats, [](const OIIO::ImageSpec& spec) {
-            return layers::find_guide_layer(spec, layers::kAlbedoLayer, true);
-        }));
-    const std::vector<float> normal = merged_guide(
-        floats, views, guide_channels(floats, [](const OIIO::ImageSpec& spec) {
-            return layers::find_guide_layer(spec, layers::kNormalLayer, false);
-        }));
-    const std::vector<float> depth = merged_guide(
-        floats, views, guide_channels(floats, [](const OIIO::ImageSpec& spec) {
-            const int i = spec.channelindex(layers::channel_name(layers::kDepthLayer, "Z"));
-            return i < 0 ? std::vector<int>{} : std::vector<int>{i};
-        }));
+    const GuideChannels albedo_channels = guide_channels(floats, [](const OIIO::ImageSpec& spec) {
+        return layers::find_guide_layer(spec, layers::kAlbedoLayer, true);
+    });
+    const GuideChannels normal_channels = guide_channels(floats, [](const OIIO::ImageSpec& spec) {
+        return layers::find_guide_layer(spec, layers::kNormalLayer, false);
+    });
+    const std::vector<float> albedo = merged_guide(floats, views, albedo_channels);
+    const std::vector<float> normal = merged_guide(floats, views, normal_channels);
+    const std::vector<float> albedo_variance =
+        merged_guide_variance(floats, views, albedo_channels, layers::kAlbedoLayer, albedo);
+    const std::vector<float> normal_variance =
+        merged_guide_variance(floats, views, normal_channels, layers::kNormalLayer, normal);
+    const std::vector<float> depth =
+        merged_guide(floats, views, guide_channels(floats, [](const OIIO::ImageSpec& spec) {
+                         const int i =
+                             spec.channelindex(layers::channel_name(layers::kDepthLayer, "Z"));
+                         return i < 0 ? std::vector<int>{} : std::vector<int>{i};
+                     }));
     layers::GuidePlanes guides;
     guides.albedo = dense_planes(albedo, w, h);
     guides.normal = dense_planes(normal, w, h);
     if (!depth.empty())
         guides.depth = dense_plane(depth.data(), w);
+    if (!albedo_variance.empty())
+        guides.albedo_variance = dense_plane(albedo_variance.data(), w);
+    if (!normal_variance.empty())
+        guides.normal_variance = dense_plane(normal_variance.data(), w);
     layers::StatisticsMetadata metadata;
     metadata.spp = summed_spp(parts);
     OIIO::ImageBuf out = layers::make_statistics_image(merged, metadata, guides);

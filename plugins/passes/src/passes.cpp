@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/strutil.h>
@@ -139,6 +140,61 @@ OIIO::ImageBuf mean_of_other_channels(const std::vector<const OIIO::ImageBuf*>& 
     return out;
 }
 
+// The guide variance layers (albedoVariance.Y, normalVariance.Y) that K passes give: each
+// render is one sample, so a guide's per-sample variance is the spread of the renders' guide
+// means, Σ_c over its channels. A layer for each guide every render has.
+OIIO::ImageBuf guide_variances(const std::vector<const OIIO::ImageBuf*>& floats,
+                               const OIIO::ROI& region)
+{
+    struct Guide {
+        const char* layer;
+        std::vector<std::vector<ConstPlane>> planes;  // per render, 3 channels
+    };
+    std::vector<Guide> present;
+    for (const auto& [layer, colour] :
+         {std::pair{layers::kAlbedoLayer, true}, std::pair{layers::kNormalLayer, false}}) {
+        Guide g{layer, {}};
+        for (const OIIO::ImageBuf* f : floats) {
+            const std::vector<int> indices = layers::find_guide_layer(f->spec(), layer, colour);
+            if (indices.empty())
+                break;
+            std::vector<std::string> names;
+            for (int i : indices)
+                names.push_back(f->spec().channel_name(i));
+            g.planes.push_back(region_planes(*f, names, region));
+        }
+        if (g.planes.size() == floats.size())
+            present.push_back(std::move(g));
+    }
+    if (present.empty())
+        return {};
+    OIIO::ImageSpec spec(region.width(), region.height(), int(present.size()),
+                         OIIO::TypeDesc::FLOAT);
+    for (std::size_t g = 0; g < present.size(); ++g)
+        spec.channelnames[g] =
+            layers::channel_name(layers::guide_variance_layer(present[g].layer), "Y");
+    OIIO::ImageBuf out(spec, OIIO::InitializePixels::No);
+    const double k = double(floats.size());
+    for (std::size_t g = 0; g < present.size(); ++g) {
+        const Plane to = layers::channel_plane(out, int(g));
+        for (int y = 0; y < region.height(); ++y)
+            for (int x = 0; x < region.width(); ++x) {
+                double variance = 0;
+                for (int c = 0; c < 3; ++c) {
+                    double sum = 0, squares = 0;
+                    for (const std::vector<ConstPlane>& render : present[g].planes) {
+                        const double v = render[c](x, y);
+                        sum += v;
+                        squares += v * v;
+                    }
+                    variance += std::max(0.0, (squares - sum * sum / k) / (k - 1));
+                }
+                to(x, y) = float(variance);
+            }
+    }
+    return out;
+}
+
 void keep_metadata(OIIO::ImageBuf& result, const OIIO::ImageBuf& first, const OIIO::ROI& region)
 {
     const OIIO::ParamValueList statmc_attribs = result.spec().extra_attribs;
@@ -200,18 +256,26 @@ bool passes_impl(OIIO::ImageBuf& dst, const Renders& given, const PassesOptions&
     const StatisticsPlanes stats = statistics_from_passes(beauty, region.width(), region.height());
 
     OIIO::ImageBuf result = layers::make_statistics_image(stats);
-    // Every other channel (AOVs, guides) is averaged over the renders.
+    // Every other channel (AOVs, guides) is averaged over the renders, but the guides'
+    // variances, which the renders' spread replaces.
+    const OIIO::ImageBuf variances = guide_variances(floats, region);
+    auto replaced = [&](const std::string& name) {
+        return variances.initialized() && variances.spec().channelindex(name) >= 0;
+    };
     std::vector<std::string> others;
     for (const std::string& name : first.spec().channelnames)
-        if (std::find(suffixes.begin(), suffixes.end(), name) == suffixes.end())
+        if (std::find(suffixes.begin(), suffixes.end(), name) == suffixes.end() && !replaced(name))
             others.push_back(name);
-    if (!others.empty()) {
+    auto append = [&](const OIIO::ImageBuf& more) {
         OIIO::ImageBuf appended;
-        if (!OIIO::ImageBufAlgo::channel_append(
-                appended, result, mean_of_other_channels(floats, others, region), {}, nthreads))
+        if (!OIIO::ImageBufAlgo::channel_append(appended, result, more, {}, nthreads))
             throw std::runtime_error(appended.geterror());
         result = std::move(appended);
-    }
+    };
+    if (!others.empty())
+        append(mean_of_other_channels(floats, others, region));
+    if (variances.initialized())
+        append(variances);
     keep_metadata(result, first, region);
     dst = std::move(result);
     return true;

@@ -134,9 +134,10 @@ ParameterSpec float_parameter(std::string name, std::optional<double> default_va
                 default_value ? number_text(*default_value) : "", std::move(help));
 }
 
-ParameterSpec bool_parameter(std::string name, bool default_value, std::string help)
+ParameterSpec bool_parameter(std::string name, std::optional<bool> default_value, std::string help)
 {
-    return make(std::move(name), ParameterType::Bool, default_value ? "1" : "0", std::move(help));
+    const std::string text = !default_value ? "" : *default_value ? "1" : "0";
+    return make(std::move(name), ParameterType::Bool, text, std::move(help));
 }
 
 ParameterSpec string_parameter(std::string name, std::string default_value, std::string help)

@@ -22,6 +22,10 @@ struct DenoiseOptions {
     /// (the Box-Cox sample variance, or s²/μ for the untransformed test) exceeds this many
     /// times its own reference level. 0 = off, the paper's filter; else ≥ 1.
     float firefly_ratio = 256.f;
+    /// Guide noise (docs/method.md §5): with the guides' variances (Guides), take the part
+    /// of a guide distance that their sampling noise explains out of the guide weight.
+    /// Off in the paper's filter; without the variances it changes nothing.
+    bool guide_noise = true;
     /// The GPU gives the same members and values within float summation order (docs/gpu.md);
     /// only the CPU gives the paper's bits.
     Device device = Device::Cpu;
@@ -29,7 +33,8 @@ struct DenoiseOptions {
     /// Empty when valid, else a message naming the offending parameter.
     std::string validate() const;
 
-    /// The filter as the paper describes it: these defaults with the firefly guard off.
+    /// The filter as the paper describes it: these defaults with the firefly guard and the
+    /// guide-noise correction off.
     static DenoiseOptions paper();
 };
 

@@ -15,6 +15,12 @@ namespace statmc {
 struct Guides {
     std::array<ConstPlane, 3> albedo{};
     std::array<ConstPlane, 3> normal{};
+    /// Optional, per guide: the per-sample variance of its samples, summed over its three
+    /// channels. With it the filter takes the part of a guide distance that the guides' own
+    /// sampling noise explains out of the weight (docs/method.md §5, guide noise), so a
+    /// pixel on an emitter edge or behind a glossy bounce is not cut off by a noisy guide.
+    ConstPlane albedo_variance{};
+    ConstPlane normal_variance{};
 
     bool has_albedo() const { return albedo[0] && albedo[1] && albedo[2]; }
     bool has_normal() const { return normal[0] && normal[1] && normal[2]; }

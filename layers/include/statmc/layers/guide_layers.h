@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -19,10 +20,20 @@ struct GuidePlanes {
     std::array<ConstPlane, 3> normal{};
     ConstPlane depth{};
     std::array<ConstPlane, 2> motion{};  ///< motion.X, motion.Y (kMotionLayer)
+    /// albedoVariance.Y, normalVariance.Y: each guide's per-sample variance summed over its
+    /// channels (guide_variance_layer), null when absent.
+    ConstPlane albedo_variance{};
+    ConstPlane normal_variance{};
 
     /// The guides the core filter takes.
-    Guides core() const { return {albedo, normal}; }
+    Guides core() const { return {albedo, normal, albedo_variance, normal_variance}; }
 };
+
+/// The layer holding a guide layer's variance: "albedo" → "albedoVariance" (channel .Y).
+std::string guide_variance_layer(std::string_view guide_layer);
+
+/// The plane of `guide_layer`'s variance in `buf` (local float pixels), null when absent.
+ConstPlane guide_variance_plane(const OIIO::ImageBuf& buf, std::string_view guide_layer);
 
 /// Indices of a three-channel guide layer. Colour suffixes R,G,B are tried first for
 /// albedo-like layers and X,Y,Z first otherwise (`prefer_colour`); either is accepted, so

@@ -18,14 +18,20 @@ struct Film {
     int width, height;
     StatisticsImage<3> stats;
     std::vector<double> albedo_sum, normal_sum, depth_sum;  ///< channel-major sums
+    /// Σ over samples of |albedo|² and |normal|²: the guides' noise (guide_variance).
+    std::vector<double> albedo_squares, normal_squares;
     /// Σ of the samples' motion to the previous frame (X then Y), empty unless tracked.
     std::vector<double> motion_sum;
-    std::unique_ptr<BounceStatistics> bounces;              ///< null when nothing is tracked
+    std::unique_ptr<BounceStatistics> bounces;  ///< null when nothing is tracked
 
     /// Guide averages as dense channel-major float planes (3, 3 and 1 channels).
     std::vector<float> albedo() const;
     std::vector<float> normal() const;
     std::vector<float> depth() const;
+    /// Per-sample variance of the albedo and normal guides, summed over their channels
+    /// (the albedoVariance/normalVariance layers; 0 below two samples).
+    std::vector<float> albedo_variance() const;
+    std::vector<float> normal_variance() const;
     /// Motion averages (X then Y), empty unless tracked.
     std::vector<float> motion() const;
     void track_motion() { motion_sum.assign(std::size_t(width) * height * 2, 0.0); }

@@ -61,7 +61,7 @@ std::string number_text(double value);
 ParameterSpec int_parameter(std::string name, std::optional<int> default_value, std::string help);
 ParameterSpec float_parameter(std::string name, std::optional<double> default_value,
                               std::string help);
-ParameterSpec bool_parameter(std::string name, bool default_value, std::string help);
+ParameterSpec bool_parameter(std::string name, std::optional<bool> default_value, std::string help);
 ParameterSpec string_parameter(std::string name, std::string default_value, std::string help);
 ParameterSpec choice_parameter(std::string name, std::vector<std::string> choices,
                                std::string default_value, std::string help);
