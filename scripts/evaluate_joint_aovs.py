@@ -64,7 +64,10 @@ def main():
         "noisy input": stats,
         "separate (default method)": statmc.denoise(stats, aovs="a,b"),
         "separate (classic)": statmc.denoise(stats, aovs="a,b", method="classic"),
-        "joint (joint=1)": statmc.denoise(stats, aovs="a,b", joint=True),
+        "joint, the beauty's test (joint_test=aov)": statmc.denoise(stats, aovs="a,b", joint=True,
+                                                                    joint_test="aov"),
+        "joint, every test (joint_test=all)": statmc.denoise(stats, aovs="a,b", joint=True,
+                                                             joint_test="all"),
     }
     print(f"{SIZE}, {SPP} spp per AOV, references {REFERENCE_SPP} spp\n")
     print("| | relMSE a | relMSE b | relMSE beauty | mean abs(a + b − beauty) / beauty |")

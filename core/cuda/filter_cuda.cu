@@ -213,7 +213,8 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
                 }
                 // Less the guides' noise, never above the spatial weight (filter_layout.h).
                 const float log2_weight =
-                    __fadd_rn(__fsub_rn(near, far), __fadd_rn(guide_noise_i, s_guide_noise[k]));
+                    __fadd_rn(__fsub_rn(near, far),
+                              __fadd_rn(guide_noise_i, fminf(guide_noise_i, s_guide_noise[k])));
                 w = exp2f(fminf(log2_weight, p.spatial_log2[table_row + dx]));
             }
             for (int c = 0; c < NC; ++c)
@@ -412,6 +413,10 @@ CudaFilter::CudaFilter(const FilterLayout& L, bool carry)
     std::string why;
     if (!cuda_available(&why))
         throw std::runtime_error("CUDA: " + why);
+    if (L.channels > 4)
+        throw std::runtime_error("CUDA: the GPU kernel takes 1 to 4 channels, not the " +
+                                 std::to_string(L.channels) +
+                                 " of jointly tested AOVs; use device=cpu");
     impl_ = std::make_unique<Impl>();
     Impl& m = *impl_;
     m.width = L.width;

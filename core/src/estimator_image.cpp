@@ -20,8 +20,9 @@ constexpr float kUntestable = std::numeric_limits<float>::quiet_NaN();
 
 void require_channels(int channels)
 {
-    if (channels < 1 || channels > 4)
-        throw std::invalid_argument("statistics must have 1 to 4 channels, got " +
+    if (channels < 1 || channels > kMaxEstimatorChannels)
+        throw std::invalid_argument("estimators have 1 to " +
+                                    std::to_string(kMaxEstimatorChannels) + " channels, got " +
                                     std::to_string(channels));
 }
 
@@ -107,6 +108,33 @@ EstimatorImage estimators_from_statistics(const StatisticsView& stats, TestDomai
                                   fill_estimator(est, stats, domain, x, y);
                       });
     return est;
+}
+
+EstimatorImage side_by_side(const std::vector<const EstimatorImage*>& parts)
+{
+    if (parts.empty())
+        throw std::invalid_argument("side_by_side: no images");
+    const EstimatorImage& first = *parts[0];
+    int channels = 0;
+    for (const EstimatorImage* p : parts) {
+        if (p->width != first.width || p->height != first.height || p->domain != first.domain)
+            throw std::invalid_argument("side_by_side: the images differ in size or test domain");
+        if (p->count != first.count)
+            throw std::invalid_argument("side_by_side: the images differ in their sample counts");
+        channels += p->channels;
+    }
+    EstimatorImage out(first.width, first.height, channels);
+    out.domain = first.domain;
+    out.count = first.count;
+    std::size_t at = 0;
+    for (const EstimatorImage* p : parts) {
+        const std::size_t n = p->value.size();
+        std::copy(p->value.begin(), p->value.end(), out.value.begin() + at);
+        std::copy(p->test_mean.begin(), p->test_mean.end(), out.test_mean.begin() + at);
+        std::copy(p->test_variance.begin(), p->test_variance.end(), out.test_variance.begin() + at);
+        at += n;
+    }
+    return out;
 }
 
 }  // namespace statmc

@@ -116,13 +116,20 @@ detail::FilterRowsFn kernel(SimdLevel level)
     }
 }
 
+}  // namespace
+
+bool filter_takes_channels(int channels) { return detail::kernel_takes_channels(channels); }
+
+namespace {
+
 void check_arguments(const EstimatorImage& est, const DenoiseOptions& options,
                      const std::vector<Plane>& out)
 {
     if (const std::string why = options.validate(); !why.empty())
         throw std::invalid_argument(why);
-    if (est.channels < 1 || est.channels > 4)
-        throw std::invalid_argument("the filter takes 1 to 4 channels");
+    if (!detail::kernel_takes_channels(est.channels))
+        throw std::invalid_argument("the filter takes 1 to 4, 6, 9 or 12 channels, got " +
+                                    std::to_string(est.channels));
     if (est.width <= 0 || est.height <= 0)
         throw std::invalid_argument("the image is empty");
     if (int(out.size()) < est.channels)

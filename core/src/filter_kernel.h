@@ -177,12 +177,13 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
                         far[k] = g == kHalf ? V::mul(d, d) : V::fmadd(d, d, far[k]);
                 }
             }
-            // Guide noise: spatial − max(0, Σ(Δg)² − u_i − u_j). With u = 0 (no guide
+            // Guide noise: spatial − max(0, Σ(Δg)² − (u_i + min(u_i, u_j))). With u = 0 (no guide
             // variances) the sum adds +0 and the min keeps it, so the bits are unchanged.
             const F noise = V::load(L.guide_noise + off);
             for (int k = First; k < Last; ++k) {
                 const F log2_weight =
-                    V::add(V::sub(near[k], far[k]), V::add(ctr[k].guide_noise, noise));
+                    V::add(V::sub(near[k], far[k]),
+                           V::add(ctr[k].guide_noise, V::min(ctr[k].guide_noise, noise)));
                 w[k] = simd::exp2_nonpositive<V>(V::min(log2_weight, spatial[k]));
             }
         }
@@ -312,6 +313,7 @@ constexpr int centre_rows()
 template <class V, int NC>
 void load_carry(const FilterLayout& L, std::ptrdiff_t at, Partial<V, NC>& p)
 {
+    static_assert(NC <= 4, "the ladder's carry planes hold four channels");
     for (int c = 0; c < NC; ++c)
         p.acc[c] = V::load(L.carry[c] + at);
     p.weight_sum = V::load(L.carry[4] + at);
@@ -334,17 +336,20 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
                       const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
     std::vector<std::array<Partial<V, NC>, R>> partials(chunk1 - chunk0);
-    const bool carrying = L.carry[4] != nullptr;
+    // Only the radius ladder carries, and it takes at most four channels.
+    constexpr bool kMayCarry = NC <= 4;
+    const bool carrying = kMayCarry && L.carry[4] != nullptr;
     for (int y = y0; y < y1; y += R) {
         const int rows = std::min(R, y1 - y);
         for (int k = chunk0; k < chunk1; ++k)
             for (int r = 0; r < rows; ++r) {
                 Partial<V, NC>& p = partials[k - chunk0][r];
                 const std::ptrdiff_t at = std::ptrdiff_t(y + r) * L.stride + k * V::kWidth;
-                if (L.carry_from_previous) {
-                    load_carry(L, at, p);
-                    continue;
-                }
+                if constexpr (kMayCarry)
+                    if (L.carry_from_previous) {
+                        load_carry(L, at, p);
+                        continue;
+                    }
                 for (int c = 0; c < NC; ++c)
                     p.acc[c] = V::zero();
                 p.weight_sum = V::set1(1.f);  // the centre
@@ -378,8 +383,9 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
         for (int k = chunk0; k < chunk1; ++k)
             for (int r = 0; r < rows; ++r) {
                 const Partial<V, NC>& p = partials[k - chunk0][r];
-                if (carrying)
-                    store_carry(L, std::ptrdiff_t(y + r) * L.stride + k * V::kWidth, p);
+                if constexpr (kMayCarry)
+                    if (carrying)
+                        store_carry(L, std::ptrdiff_t(y + r) * L.stride + k * V::kWidth, p);
                 write_chunk<V, NC, kDiagnostics>(L, out, diag, y + r, k * V::kWidth, p);
             }
     }
@@ -423,8 +429,14 @@ void filter_rows(const FilterLayout& L, const std::vector<Plane>& out,
         return filter_rows_guides<V, 2>(L, out, diag, y0, y1, chunk0, chunk1);
     case 3:
         return filter_rows_guides<V, 3>(L, out, diag, y0, y1, chunk0, chunk1);
-    default:
+    case 4:
         return filter_rows_guides<V, 4>(L, out, diag, y0, y1, chunk0, chunk1);
+    case 6:
+        return filter_rows_guides<V, 6>(L, out, diag, y0, y1, chunk0, chunk1);
+    case 9:
+        return filter_rows_guides<V, 9>(L, out, diag, y0, y1, chunk0, chunk1);
+    default:
+        return filter_rows_guides<V, 12>(L, out, diag, y0, y1, chunk0, chunk1);
     }
 }
 

@@ -203,9 +203,9 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
     L.storage = std::unique_ptr<float[], FilterLayout::Release>(page_memory(L.storage_floats));
     const std::ptrdiff_t origin = std::ptrdiff_t(L.pad_y) * L.stride + L.pad_x;
     auto plane_origin = [&](int k) { return L.storage.get() + k * L.plane_size + origin; };
-    float* mean[4];
-    float* threshold[4];
-    float* value[4];
+    float* mean[kMaxEstimatorChannels];
+    float* threshold[kMaxEstimatorChannels];
+    float* value[kMaxEstimatorChannels];
     for (int c = 0; c < L.channels; ++c) {
         mean[c] = plane_origin(c);
         threshold[c] = plane_origin(L.channels + c);

@@ -27,8 +27,9 @@ struct FilterLayout {
     std::unique_ptr<float[], Release> storage;  // all padded planes, back to back (page_memory)
 
     // Pointers to pixel (0, 0) inside the padding.
-    const float* mean[4] = {};           // μ̃, the tested quantity
-    const float* threshold[4] = {};      // T = γ²(df = 2n − 2)·v, or −∞ when untestable
+    const float* mean[kMaxEstimatorChannels] = {};  // μ̃, the tested quantity
+    const float* threshold[kMaxEstimatorChannels] =
+        {};                              // T = γ²(df = 2n − 2)·v, or −∞ when untestable
     const float* noise = nullptr;        // the level a neighbour presents (firefly_guard.h)
     const float* noise_limit = nullptr;  // the largest level a centre accepts
     // Per output row and chunk of `lanes` pixels: 1 where some window pixel's level may
@@ -40,13 +41,13 @@ struct FilterLayout {
     {
         return guarded[std::size_t(y) * chunks + chunk] != 0;
     }
-    const float* value[4] = {};            // F, what is averaged
-    const float* inverse_count = nullptr;  // 1/n (0 in the padding), for diagnostics only
-    int guide_count = 0;                   // 0, 3 (albedo or normal) or 6 (both)
+    const float* value[kMaxEstimatorChannels] = {};  // F, what is averaged
+    const float* inverse_count = nullptr;            // 1/n (0 in the padding), for diagnostics only
+    int guide_count = 0;                             // 0, 3 (albedo or normal) or 6 (both)
     const float* guide[6] = {};  // scaled by √(log2 e)/(√2·σ): −Σ (Δg)² is the log2-weight
     // With guides: u = Σ_guides (scale² · s²/n), the part of E[Σ (Δg)²] a pixel's own guide
     // noise adds (0 without the guides' variances). The log2-weight is then
-    // spatial − max(0, Σ (Δg)² − u_i − u_j) (docs/method.md §5, guide noise).
+    // spatial − max(0, Σ (Δg)² − (u_i + min(u_i, u_j))) (docs/method.md §5, guide noise).
     const float* guide_noise = nullptr;
 
     // The window walked: rows |dy| ≤ reach_y, and in row dy the columns
@@ -110,5 +111,10 @@ FilterRowsFn filter_rows_scalar();
 FilterRowsFn filter_rows_avx2();
 FilterRowsFn filter_rows_avx512();
 int kernel_width(SimdLevel level);
+/// The channel counts the kernels are built for: 1 to 4, and 6, 9 and 12 (joint AOVs).
+constexpr bool kernel_takes_channels(int channels)
+{
+    return (channels >= 1 && channels <= 4) || channels == 6 || channels == 9 || channels == 12;
+}
 
 }  // namespace statmc::detail

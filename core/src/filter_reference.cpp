@@ -32,26 +32,26 @@ double variance_of_mean(const ConstPlane& variance, const EstimatorImage& est, i
     return v > 0 && std::isfinite(v) && n > 0 && std::isfinite(n) ? v / n : 0.0;
 }
 
-// The guides' part of −log w: Σ_guides (|g_i − g_j|² − s²_i/n_i − s²_j/n_j) / (2σ²),
-// at least 0 — the distance less what the guides' own noise explains.
+// The guides' part of −log w: D − (U_i + min(U_i, U_j)), at least 0, with
+// D = Σ_guides |g_i − g_j|²/(2σ²) and U = Σ_guides (s²/n)/(2σ²): the distance less what
+// the guides' own noise explains, and only as much of j's as i's (docs/method.md §5).
 double guide_exponent(const EstimatorImage& est, const Guides& guides,
                       const DenoiseOptions& options, int xi, int yi, int xj, int yj)
 {
-    double e = 0, noise = 0;
+    double e = 0, noise_i = 0, noise_j = 0;
     auto add = [&](const std::array<ConstPlane, 3>& g, ConstPlane variance, float sigma) {
         const double falloff = 1.0 / (2.0 * double(sigma) * sigma);
         if (!options.guide_noise)
             variance = {};
         e += squared_distance(g, xi, yi, xj, yj) * falloff;
-        noise +=
-            (variance_of_mean(variance, est, xi, yi) + variance_of_mean(variance, est, xj, yj)) *
-            falloff;
+        noise_i += variance_of_mean(variance, est, xi, yi) * falloff;
+        noise_j += variance_of_mean(variance, est, xj, yj) * falloff;
     };
     if (guides.has_albedo())
         add(guides.albedo, guides.albedo_variance, options.sigma_albedo);
     if (guides.has_normal())
         add(guides.normal, guides.normal_variance, options.sigma_normal);
-    return std::max(0.0, e - noise);
+    return std::max(0.0, e - (noise_i + std::min(noise_i, noise_j)));
 }
 
 }  // namespace
@@ -74,7 +74,7 @@ void filter_reference(const EstimatorImage& est, const Guides& guides,
 
     for (int yi = 0; yi < est.height; ++yi)
         for (int xi = 0; xi < est.width; ++xi) {
-            double sum[4] = {}, weight_sum = 1, members = 1;
+            double sum[kMaxEstimatorChannels] = {}, weight_sum = 1, members = 1;
             const double ni = std::isfinite(est.count[est.index(0, xi, yi)])
                                   ? est.count[est.index(0, xi, yi)]
                                   : 0.0;

@@ -45,8 +45,11 @@ TEST_P(FilterVsReference, Agree)
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, FilterVsReference,
-                         ::testing::ValuesIn(filter_cases({{37, 23, 3, 1, false,
-                                                            false}})),  // and r = 1
+                         // and r = 1, and the channel counts of joint AOVs
+                         ::testing::ValuesIn(filter_cases({{37, 23, 3, 1, false, false},
+                                                           {29, 17, 6, 4, true, true},
+                                                           {29, 17, 9, 4, false, false},
+                                                           {21, 13, 12, 3, true, false, true}})),
                          case_name);
 
 TEST(Filter, TheFixturesFirefliesAreGuardedAgainst)
@@ -63,9 +66,10 @@ TEST(Filter, TheFixturesFirefliesAreGuardedAgainst)
     EXPECT_GT(refused, 5);
 }
 
-// Guide noise (docs/method.md §5): the weight of a pair is spatial · exp(−max(0, D − U)),
-// D = Σ_guides |g_i − g_j|²/(2σ²) and U = Σ_guides (s²_i/n_i + s²_j/n_j)/(2σ²). Two pixels
-// that the test cannot tell apart, so the output is (F_0 + w F_1)/(1 + w), written out.
+// Guide noise (docs/method.md §5): centre i weighs j by spatial · exp(−max(0, D − U)),
+// D = Σ_guides |g_i − g_j|²/(2σ²) and U = u_i + min(u_i, u_j), u = Σ_guides (s²/n)/(2σ²):
+// a noisy neighbour explains away no more than the centre's own noise. Two pixels that the
+// test cannot tell apart, so pixel i's output is (F_i + w_i F_j)/(1 + w_i), written out.
 TEST(Filter, GuideNoiseTakesWhatItExplainsOutOfTheGuideDistance)
 {
     EstimatorImage est(2, 1, 1);
@@ -85,7 +89,7 @@ TEST(Filter, GuideNoiseTakesWhatItExplainsOutOfTheGuideDistance)
     opt.sigma_albedo = 0.05f;
     opt.firefly_ratio = 0;
     const double spatial = std::exp(-1.0 / (2 * 2.0 * 2.0)), falloff = 1 / (2 * 0.05 * 0.05);
-    for (const float s2 : {0.f, 0.02f, 0.2f}) {  // U = 0, 1.5 (partly) and 15 (wholly)
+    for (const float s2 : {0.f, 0.02f, 0.2f}) {  // U = 0, about 1.5 (partly), 15 (wholly)
         SCOPED_TRACE("s² = " + std::to_string(s2));
         const float variance[2] = {s2, s2};
         Guides g;
@@ -94,17 +98,20 @@ TEST(Filter, GuideNoiseTakesWhatItExplainsOutOfTheGuideDistance)
             g.normal[c] = dense_plane(normal, 2);
         }
         g.albedo_variance = dense_plane(variance, 2);
-        const double D = 3 * 0.1 * 0.1 * falloff, U = (s2 / 4 + s2 / 8) * falloff;
-        const double w = spatial * std::exp(-std::max(0.0, D - U));
+        const double D = 3 * 0.1 * 0.1 * falloff, u0 = s2 / 4 * falloff, u1 = s2 / 8 * falloff;
+        const double w0 = spatial * std::exp(-std::max(0.0, D - (u0 + std::min(u0, u1))));
+        const double w1 = spatial * std::exp(-std::max(0.0, D - (u1 + std::min(u1, u0))));
         for (SimdLevel level : supported_simd_levels()) {
             SCOPED_TRACE(simd_level_name(level));
             Output fast(2, 1, 1), ref(2, 1, 1);
             filter(est, g, opt, fast.planes(), fast.diagnostics(), 1, level);
             filter_reference(est, g, opt, ref.planes(), ref.diagnostics());
-            EXPECT_NEAR(fast.values[0], (1 + w * 3) / (1 + w), 2e-6);
-            EXPECT_NEAR(fast.values[1], (3 + w * 1) / (1 + w), 2e-6);
-            EXPECT_NEAR(ref.values[0], (1 + w * 3) / (1 + w), 1e-6);
-            EXPECT_NEAR(fast.weights[0], 1 + w, 2e-6);
+            EXPECT_NEAR(fast.values[0], (1 + w0 * 3) / (1 + w0), 2e-6);
+            EXPECT_NEAR(fast.values[1], (3 + w1 * 1) / (1 + w1), 2e-6);
+            EXPECT_NEAR(ref.values[0], (1 + w0 * 3) / (1 + w0), 1e-6);
+            EXPECT_NEAR(ref.values[1], (3 + w1 * 1) / (1 + w1), 1e-6);
+            EXPECT_NEAR(fast.weights[0], 1 + w0, 2e-6);
+            EXPECT_NEAR(fast.weights[1], 1 + w1, 2e-6);
         }
     }
 }
@@ -128,6 +135,40 @@ TEST(Filter, ZeroGuideVariancesAreBitwiseNoGuideVariances)
         EXPECT_EQ(std::memcmp(a.values.data(), b.values.data(), a.values.size() * 4), 0);
         EXPECT_EQ(std::memcmp(a.weights.data(), b.weights.data(), a.weights.size() * 4), 0);
     }
+}
+
+// side_by_side (joint AOVs): one filter over two images accepts a neighbour only where both
+// tests do. Over an image and itself that is its own test: the same members and values.
+TEST(Filter, SideBySideAcceptsWhereEveryPartAccepts)
+{
+    const EstimatorImage a = random_estimators(41, 27, 3, 31), b = random_estimators(41, 27, 3, 32);
+    EstimatorImage b_counted = b;
+    b_counted.count = a.count;  // parts share their counts
+    DenoiseOptions opt = case_options({41, 27, 3, 6, false, false});
+    // The firefly guard compares each pixel's largest level over all its channels, which is
+    // not the AND of the parts' guards; the t-tests are.
+    opt.firefly_ratio = 0;
+    for (SimdLevel level : supported_simd_levels()) {
+        SCOPED_TRACE(simd_level_name(level));
+        Output alone(41, 27, 3), twice(41, 27, 6), other(41, 27, 3), both(41, 27, 6);
+        filter(a, {}, opt, alone.planes(), alone.diagnostics(), 0, level);
+        filter(side_by_side({&a, &a}), {}, opt, twice.planes(), twice.diagnostics(), 0, level);
+        filter(b_counted, {}, opt, other.planes(), other.diagnostics(), 0, level);
+        filter(side_by_side({&a, &b_counted}), {}, opt, both.planes(), both.diagnostics(), 0,
+               level);
+        EXPECT_EQ(twice.members, alone.members);
+        for (std::size_t i = 0; i < alone.values.size(); ++i)
+            ASSERT_NEAR(twice.values[i], alone.values[i], 1e-6f * (1 + std::abs(alone.values[i])));
+        int fewer = 0;
+        for (std::size_t i = 0; i < alone.members.size(); ++i) {
+            ASSERT_LE(both.members[i], std::min(alone.members[i], other.members[i])) << i;
+            fewer += both.members[i] < alone.members[i];
+        }
+        EXPECT_GT(fewer, 0);
+    }
+    EXPECT_THROW(side_by_side({&a, &b}), std::invalid_argument);  // other counts
+    const EstimatorImage five = random_estimators(41, 27, 5, 33);
+    EXPECT_THROW(filter(five, {}, opt, Output(41, 27, 5).planes()), std::invalid_argument);
 }
 
 TEST(Filter, BitwiseIdenticalForAnyThreadCount)

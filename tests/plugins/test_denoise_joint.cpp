@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>
 
 #include "statmc/denoise/denoise.h"
@@ -34,12 +35,13 @@ OIIO::ImageBuf aov_image()
         {{"diffuse", diffuse.view()}, {"specular", specular.view()}});
 }
 
-DenoiseImageOptions joint_options(bool joint)
+DenoiseImageOptions joint_options(bool joint, JointTest test = JointTest::Lead)
 {
     DenoiseImageOptions opt;
     opt.filter.radius = 5;
     opt.aovs = {"diffuse", "specular"};
     opt.joint = joint;
+    opt.joint_test = test;
     return opt;
 }
 
@@ -65,6 +67,10 @@ TEST(DenoiseJoint, JointAovsSumToTheDenoisedBeauty)
     ASSERT_FALSE(joint.has_error()) << joint.geterror();
     // A few float roundings of each term: the input's own sum is rounded once too.
     EXPECT_LT(worst_sum_mismatch(joint), 1e-6);
+    // So with every AOV's test deciding: the beauty shares their one membership.
+    const OIIO::ImageBuf all = denoise(in, joint_options(true, JointTest::All));
+    ASSERT_FALSE(all.has_error()) << all.geterror();
+    EXPECT_LT(worst_sum_mismatch(all), 1e-6);
     // Denoised apart, each by its own test, they drift apart by far more.
     const OIIO::ImageBuf apart = denoise(in, joint_options(false));
     ASSERT_FALSE(apart.has_error()) << apart.geterror();
@@ -127,6 +133,60 @@ TEST(DenoiseJoint, WhatCannotBeJointIsRefused)
     ASSERT_TRUE(out.has_error());
     EXPECT_NE(out.geterror().find("missing layer emission (channels emission.R"), std::string::npos)
         << out.geterror();
+}
+
+// joint_test=all: a neighbour joins only where the beauty's and each AOV's tests accept it.
+// Every added test can only remove members, so the beauty keeps at most the members of its
+// own test and comes out nearer its noisy input wherever the AOVs' tests disagree.
+TEST(DenoiseJoint, AllTestsEveryAovAndAutoTakesItWhenEachHasItsStatistics)
+{
+    const OIIO::ImageBuf in = aov_image();
+    const OIIO::ImageBuf all = denoise(in, joint_options(true, JointTest::All));
+    const OIIO::ImageBuf lead = denoise(in, joint_options(true, JointTest::Lead));
+    const OIIO::ImageBuf automatic = denoise(in, joint_options(true, JointTest::Auto));
+    ASSERT_FALSE(all.has_error()) << all.geterror();
+    int moved = 0;
+    double towards_input = 0, total = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const float a = channel_value(all, "G", x, y), l = channel_value(lead, "G", x, y);
+            const float noisy = channel_value(in, "G", x, y);
+            moved += a != l;
+            towards_input += std::abs(a - noisy);
+            total += std::abs(l - noisy);
+            ASSERT_TRUE(test::same_bits(a, channel_value(automatic, "G", x, y)));
+        }
+    EXPECT_GT(moved, kW * kH / 10);
+    EXPECT_LT(towards_input, total);
+    EXPECT_EQ(all.spec().get_string_attribute(layers::attr::kDenoiseSkipped).find("joint_test"),
+              std::string::npos);
+}
+
+TEST(DenoiseJoint, AnAovWithoutStatisticsFallsBackOnAutoAndIsRefusedOnAll)
+{
+    // specular keeps only its mean: the Cycles route (light groups from --passes).
+    const OIIO::ImageBuf full = aov_image();
+    std::vector<int> keep;
+    for (int c = 0; c < full.spec().nchannels; ++c)
+        if (full.spec().channelnames[c].rfind("specular.variance", 0) != 0)
+            keep.push_back(c);
+    const OIIO::ImageBuf in = OIIO::ImageBufAlgo::channels(full, int(keep.size()), keep);
+    ASSERT_FALSE(in.has_error()) << in.geterror();
+    const OIIO::ImageBuf automatic = denoise(in, joint_options(true, JointTest::Auto));
+    const OIIO::ImageBuf lead = denoise(in, joint_options(true, JointTest::Lead));
+    ASSERT_FALSE(automatic.has_error()) << automatic.geterror();
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            ASSERT_TRUE(test::same_bits(channel_value(automatic, "specular.R", x, y),
+                                        channel_value(lead, "specular.R", x, y)));
+    EXPECT_NE(automatic.spec()
+                  .get_string_attribute(layers::attr::kDenoiseSkipped)
+                  .find("AOV specular has no variance of its own"),
+              std::string::npos);
+    const OIIO::ImageBuf all = denoise(in, joint_options(true, JointTest::All));
+    ASSERT_TRUE(all.has_error());
+    EXPECT_NE(all.geterror().find("missing layer specular.variance"), std::string::npos)
+        << all.geterror();
 }
 
 }  // namespace

@@ -263,6 +263,86 @@ StatisticsChannels joint_aov_means(const OIIO::ImageBuf& in, const std::string& 
     return ch;
 }
 
+// Whether `ch` has what the test in `domain` reads.
+bool has_test_statistics(const StatisticsChannels& ch, TestDomain domain)
+{
+    return domain == TestDomain::BoxCox ? ch.has_box_cox() : ch.has(Statistic::Variance);
+}
+
+// joint_test resolved for this image: All when asked, or when auto and every listed AOV has
+// the test's statistics; `note` then says why auto fell back to the lead's test.
+bool joint_test_all(const OIIO::ImageSpec& spec, TestDomain domain, const DenoiseImageOptions& opt,
+                    std::string& note)
+{
+    if (!opt.joint || opt.joint_test == JointTest::Lead)
+        return false;
+    for (const std::string& aov : opt.aovs) {
+        const StatisticsChannels ch = layers::find_statistics(spec, aov);
+        if (has_test_statistics(ch, domain))
+            continue;
+        if (opt.joint_test == JointTest::All)
+            throw LayerError(layers::missing_layer_message(
+                spec,
+                layers::statistic_layer(aov, domain == TestDomain::BoxCox ? Statistic::BoxCoxMean
+                                                                          : Statistic::Variance),
+                ch.suffixes, "layer",
+                "joint_test=all tests every listed AOV (or take joint_test=aov)"));
+        note = "joint_test all (AOV " + aov + " has no " +
+               (domain == TestDomain::BoxCox ? "Box-Cox layers" : "variance") +
+               " of its own; the AOVs share " +
+               (opt.aov.empty() ? std::string("the beauty") : opt.aov) + "'s test)";
+        return false;
+    }
+    return true;
+}
+
+// The AOV's statistics that its test reads, checked over `region` like the lead's.
+StatisticsChannels joint_aov_statistics(const OIIO::ImageBuf& in, const std::string& aov,
+                                        const StatisticsChannels& lead, TestDomain domain,
+                                        const DenoiseImageOptions& opt, const OIIO::ROI& region)
+{
+    joint_aov_means(in, aov, lead, opt, region);  // its channel count and means, checked
+    const StatisticsChannels ch =
+        used_channels(layers::find_statistics(in.spec(), aov), domain, false, false, false);
+    check_statistics(in, ch, opt, region);
+    return ch;
+}
+
+// The lead and every joint AOV filtered as one image whose test is all of theirs
+// (side_by_side): one membership and one set of weights for every channel, so sums hold.
+// Returns the lead's output and each AOV's, in order.
+std::vector<Filtered> filter_joint_all(const StatisticsView& lead,
+                                       const std::vector<StatisticsView>& aovs, TestDomain domain,
+                                       const Guides& guides, const DenoiseOptions& options,
+                                       int nthreads)
+{
+    std::vector<EstimatorImage> parts = {estimators_from_statistics(lead, domain)};
+    for (const StatisticsView& aov : aovs)
+        parts.push_back(estimators_from_statistics(aov, domain));
+    std::vector<const EstimatorImage*> pointers;
+    for (const EstimatorImage& p : parts)
+        pointers.push_back(&p);
+    const EstimatorImage all = side_by_side(pointers);
+    if (!filter_takes_channels(all.channels))
+        throw std::invalid_argument(
+            "joint_test=all tests " + std::to_string(all.channels) +
+            " channels together; the filter takes 1 to 4, 6, 9 or 12 (at most three RGB AOVs "
+            "besides the beauty), or take joint_test=aov");
+    std::vector<float> means(all.pixels() * all.channels);
+    std::vector<Plane> out;
+    for (int c = 0; c < all.channels; ++c)
+        out.push_back(dense_plane(means.data() + c * all.pixels(), all.width));
+    filter(all, guides, options, out, {}, layers::thread_count(nthreads));
+    std::vector<Filtered> result(parts.size());
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+        const std::size_t n = parts[k].pixels() * parts[k].channels;
+        result[k].means.assign(means.begin() + at, means.begin() + at + n);
+        at += n;
+    }
+    return result;
+}
+
 // A dense plane over the input region, and the channel of the image it is written to.
 struct ChannelWrite {
     int channel;
@@ -699,19 +779,39 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
         const auto planes = dense_planes(denoised_variances, window);
         std::copy(planes.begin(), planes.end(), window.bc_variance.begin());
     }
-    Filtered filtered = filter_region(window, domain, window_guides, opt.filter, opt.diagnostics,
-                                      stages.radius_ladder ? &stages.ladder : nullptr, nthreads);
+    std::string joint_note;
+    const bool test_all = joint_test_all(spec, domain, opt, joint_note);
+    auto aov_window = [&](const StatisticsChannels& aov_ch) {
+        return layers::view_window(layers::statistics_view(in, aov_ch), x0, y0,
+                                   regions.input.width(), regions.input.height());
+    };
+    Filtered filtered;
     std::vector<std::pair<StatisticsChannels, Filtered>> joint;
-    EstimatorImage lead;
-    if (opt.joint)
-        lead = estimators_from_statistics(window, domain);
-    for (const std::string& aov : opt.joint ? opt.aovs : std::vector<std::string>{}) {
-        StatisticsChannels aov_ch = joint_aov_means(in, aov, ch, opt, regions.input);
-        const StatisticsView aov_window =
-            layers::view_window(layers::statistics_view(in, aov_ch), x0, y0, regions.input.width(),
-                                regions.input.height());
-        Filtered f = filter_joint_aov(lead, aov_window, window_guides, opt.filter, nthreads);
-        joint.emplace_back(std::move(aov_ch), std::move(f));
+    if (test_all) {
+        // One filter over the lead and every AOV side by side: all their tests decide.
+        std::vector<StatisticsView> views;
+        for (const std::string& aov : opt.aovs) {
+            joint.emplace_back(joint_aov_statistics(in, aov, ch, domain, opt, regions.input),
+                               Filtered{});
+            views.push_back(aov_window(joint.back().first));
+        }
+        std::vector<Filtered> all =
+            filter_joint_all(window, views, domain, window_guides, opt.filter, nthreads);
+        filtered = std::move(all[0]);
+        for (std::size_t k = 0; k < joint.size(); ++k)
+            joint[k].second = std::move(all[k + 1]);
+    } else {
+        filtered = filter_region(window, domain, window_guides, opt.filter, opt.diagnostics,
+                                 stages.radius_ladder ? &stages.ladder : nullptr, nthreads);
+        EstimatorImage lead;
+        if (opt.joint)
+            lead = estimators_from_statistics(window, domain);
+        for (const std::string& aov : opt.joint ? opt.aovs : std::vector<std::string>{}) {
+            StatisticsChannels aov_ch = joint_aov_means(in, aov, ch, opt, regions.input);
+            Filtered f =
+                filter_joint_aov(lead, aov_window(aov_ch), window_guides, opt.filter, nthreads);
+            joint.emplace_back(std::move(aov_ch), std::move(f));
+        }
     }
     if (stages.harm_guard)
         keep_within_own_interval(window, window_guides, dense_planes(filtered.means, window),
@@ -741,8 +841,11 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
             regions, nthreads);
     }
     result.specmod().attribute(layers::attr::kDenoised, 1);
-    if (!stages.skipped.empty())
-        result.specmod().attribute(layers::attr::kDenoiseSkipped, stages.skipped);
+    std::string skipped = stages.skipped;
+    if (!joint_note.empty())
+        skipped += (skipped.empty() ? "" : "; ") + joint_note;
+    if (!skipped.empty())
+        result.specmod().attribute(layers::attr::kDenoiseSkipped, skipped);
     else
         result.specmod().erase_attribute(layers::attr::kDenoiseSkipped);
     dst = std::move(result);

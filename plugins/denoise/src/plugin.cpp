@@ -39,6 +39,11 @@ const std::vector<std::pair<std::string, statmc::Device>> kDevices = {
     {"cuda", statmc::Device::Cuda},
     {"auto", statmc::Device::Auto},
 };
+const std::vector<std::pair<std::string, statmc::JointTest>> kJointTests = {
+    {"auto", statmc::JointTest::Auto},
+    {"all", statmc::JointTest::All},
+    {"aov", statmc::JointTest::Lead},
+};
 const std::vector<std::pair<std::string, statmc::NonfinitePolicy>> kNonfinite = {
     {"error", statmc::NonfinitePolicy::Error},
     {"zero", statmc::NonfinitePolicy::Zero},
@@ -105,6 +110,9 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     if (const std::string aovs = p.get_string("aovs", ""); !aovs.empty())
         opt.aovs = OIIO::Strutil::splits(aovs, ",");
     opt.joint = p.get_bool("joint", opt.joint);
+    opt.joint_test =
+        chosen(kJointTests, p.get_string("joint_test", spelling(kJointTests, opt.joint_test)),
+               opt.joint_test);
     opt.diagnostics = p.get_bool("diagnostics", opt.diagnostics);
     opt.variance_radius = p.get_int("variance_radius", opt.variance_radius);
     opt.harm_alpha = p.get_float("do_no_harm", opt.harm_alpha);
@@ -188,6 +196,12 @@ std::vector<statmc::ParameterSpec> parameters()
                        "with aovs: average every listed AOV with aov's members and weights "
                        "(the beauty's test), so that AOVs summing to the beauty still sum to "
                        "the denoised beauty (docs/method.md §14); leaves the ici ladder out"),
+        choice_parameter("joint_test", spellings(kJointTests),
+                         spelling(kJointTests, kDefaults.joint_test),
+                         "with joint: all = a neighbour joins only where the test of aov and of "
+                         "every listed AOV accepts it (each needs its own statistics); aov = "
+                         "aov's test alone (the AOVs need only their means); auto = all when "
+                         "every listed AOV has its statistics, else aov, with a note"),
         int_parameter("variance_radius", kDefaults.variance_radius,
                       "experimental: denoise the Box-Cox variances over this radius first "
                       "(StatER; needs the boxcoxM4 layer); 0 = off")

@@ -11,6 +11,10 @@
 
 namespace statmc {
 
+/// The most channels an estimator image (and the filter) holds: four, or up to four
+/// three-channel layers side by side, which joint AOV denoising tests together.
+inline constexpr int kMaxEstimatorChannels = 12;
+
 /// Which samples the test compares.
 enum class TestDomain {
     BoxCox,         ///< Box-Cox (λ = ½) with Johnson's skewness correction: StatMC proper
@@ -61,5 +65,11 @@ struct EstimatorImage {
 /// Full statistics (mode 1) or mean + variance + count (mode 2, TestDomain::Untransformed).
 /// Throws std::invalid_argument when the view lacks the planes the domain needs.
 EstimatorImage estimators_from_statistics(const StatisticsView& stats, TestDomain domain);
+
+/// The channels of `parts` side by side (parts[0]'s first), as one image: a filter over it
+/// accepts a neighbour only where every part's test does, and averages every channel with
+/// the same weights. The parts must match in size and domain and share their counts, and
+/// hold at most kMaxEstimatorChannels channels together; else std::invalid_argument.
+EstimatorImage side_by_side(const std::vector<const EstimatorImage*>& parts);
 
 }  // namespace statmc

@@ -52,6 +52,10 @@ const char* simd_level_name(SimdLevel level);
 /// ("this CPU cannot run the avx512 kernel") for a level this CPU does not run.
 SimdLevel usable_simd_level(SimdLevel level);
 
+/// Whether filter() takes an image of this many channels: 1 to 4, and 6, 9 or 12 (up to
+/// four three-channel layers tested together: joint AOVs).
+bool filter_takes_channels(int channels);
+
 /// Filters `est` into `out` (one plane per channel), on the CPU or, by options.device, on a
 /// CUDA GPU (docs/gpu.md). Bitwise identical for any thread count. Throws
 /// std::invalid_argument on invalid options, a channel count other than 1..4, too few

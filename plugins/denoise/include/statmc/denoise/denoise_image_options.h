@@ -32,6 +32,13 @@ enum class TestDomainChoice {
     Untransformed,  ///< means and variance, as a renderer's variance AOV gives them
 };
 
+/// Whose test decides the one membership of joint AOVs (docs/method.md §14).
+enum class JointTest {
+    Auto,  ///< All when `aov` and every listed AOV have the test's statistics, else Lead
+    All,   ///< a neighbour joins where the tests of `aov` and of every listed AOV accept it
+    Lead,  ///< `aov`'s test alone (the beauty's by default); the AOVs need only their means
+};
+
 /// What NaN or Inf in the statistics means.
 enum class NonfinitePolicy {
     Error,  ///< the image is refused, naming the layer and first pixel
@@ -55,6 +62,7 @@ struct DenoiseImageOptions {
     /// beauty still sum to the denoised beauty (docs/method.md §14). The radius ladder,
     /// whose radii would differ per AOV, is then left out (noted, as for a missing layer).
     bool joint = false;
+    JointTest joint_test = JointTest::Auto;
     /// Whose channel names the image has (layers/renderer_presets.h, docs/renderers.md):
     /// "auto" detects them, "statmc" is the contract itself, else a renderer's preset.
     std::string from = "auto";
