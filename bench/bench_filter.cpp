@@ -50,7 +50,7 @@ DenoiseOptions radius_zero()
 }
 
 void run(benchmark::State& state, bool with_guides, SimdLevel level, bool reference,
-         const DenoiseOptions& options = {}, bool fireflies = false)
+         const DenoiseOptions& options = {}, bool fireflies = false, bool guide_noise = false)
 {
     EstimatorImage est =
         estimators_from_statistics(bench::frame(fireflies).view(), TestDomain::BoxCox);
@@ -58,7 +58,10 @@ void run(benchmark::State& state, bool with_guides, SimdLevel level, bool refere
         // Its cost per tap does not depend on the size: a corner, compared in taps/s.
         est = bench::tiled(est, kWidth / 4, kHeight / 4);
     static const bench::GuidePlanes guide_planes;
-    const Guides guides = with_guides ? guide_planes.guides : Guides{};
+    static const bench::GuidePlanes noisy_guide_planes(kWidth, kHeight, /*noise=*/true);
+    const Guides guides = !with_guides  ? Guides{}
+                          : guide_noise ? noisy_guide_planes.guides
+                                        : guide_planes.guides;
     std::vector<float> out(est.value.size());
     std::vector<Plane> planes;
     for (int c = 0; c < 3; ++c)
@@ -86,6 +89,11 @@ void run(benchmark::State& state, bool with_guides, SimdLevel level, bool refere
 
 void BM_Filter(benchmark::State& s) { run(s, false, detected_simd_level(), false); }
 void BM_FilterGuides(benchmark::State& s) { run(s, true, detected_simd_level(), false); }
+// The guides with their variances: the kernel's guide-noise loop.
+void BM_FilterGuideNoise(benchmark::State& s)
+{
+    run(s, true, detected_simd_level(), false, {}, false, /*guide_noise=*/true);
+}
 void BM_FilterNoGuard(benchmark::State& s)
 {
     run(s, false, detected_simd_level(), false, no_guard());
@@ -135,6 +143,7 @@ void BM_VarianceFilter(benchmark::State& state)
 // Arg = threads (0 = all cores). Medians over 5 repetitions (3 for the slow paths).
 BENCHMARK(BM_Filter)->Arg(0)->Arg(1)->Apply(median_of_5);
 BENCHMARK(BM_FilterGuides)->Arg(0)->Arg(1)->Apply(median_of_5);
+BENCHMARK(BM_FilterGuideNoise)->Arg(1)->Apply(median_of_5);
 BENCHMARK(BM_FilterNoGuard)->Arg(0)->Arg(1)->Apply(median_of_5);
 // Args: threads, guides (0/1).
 BENCHMARK(BM_FilterFireflies)->Args({0, 0})->Args({0, 1})->Apply(median_of_5);

@@ -45,12 +45,13 @@ inline const StatisticsPlanes& frame(bool fireflies = false)
     return with_fireflies;
 }
 
-/// Albedo and normal planes with the frame's edges, at the frame's size or another.
+/// Albedo and normal planes with the frame's edges, at the frame's size or another; with
+/// `noise`, also their variances (docs/method.md §5, guide noise), larger on the edges.
 struct GuidePlanes {
-    std::vector<float> data;
+    std::vector<float> data, variance;
     Guides guides;
-    explicit GuidePlanes(int width = kWidth, int height = kHeight)
-        : data(std::size_t(6) * width * height)
+    explicit GuidePlanes(int width = kWidth, int height = kHeight, bool noise = false)
+        : data(std::size_t(6) * width * height), variance(std::size_t(width) * height)
     {
         const std::size_t n = std::size_t(width) * height;
         for (int y = 0; y < height; ++y)
@@ -62,6 +63,13 @@ struct GuidePlanes {
             guides.albedo[k] = dense_plane(data.data() + k * n, width);
             guides.normal[k] = dense_plane(data.data() + (k + 3) * n, width);
         }
+        if (!noise)
+            return;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x)
+                variance[std::size_t(y) * width + x] = x % 160 == 0 || y % 120 == 0 ? 0.3f : 0.01f;
+        guides.albedo_variance = dense_plane(variance.data(), width);
+        guides.normal_variance = dense_plane(variance.data(), width);
     }
 };
 

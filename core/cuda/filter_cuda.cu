@@ -99,11 +99,11 @@ struct KernelParams {
     int carry_from_previous;
 };
 
-/// Planes staged per window row: mean, threshold and value per channel, the guides and
-/// their noise u, and the firefly level and 1/n where present.
-int staged_planes(int channels, int guides, bool guard, bool inverse)
+/// Planes staged per window row: mean, threshold and value per channel, the guides, and
+/// the guides' noise u, the firefly level and 1/n where present.
+int staged_planes(int channels, int guides, bool guide_noise, bool guard, bool inverse)
 {
-    return 3 * channels + guides + (guides > 0 ? 1 : 0) + (guard ? 1 : 0) + (inverse ? 1 : 0);
+    return 3 * channels + guides + (guide_noise ? 1 : 0) + (guard ? 1 : 0) + (inverse ? 1 : 0);
 }
 
 template <int NC, int NG>
@@ -111,6 +111,7 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
 {
     extern __shared__ float staged[];
     const bool guard = p.noise != nullptr;
+    const bool guide_noise = NG > 0 && p.guide_noise != nullptr;
     const bool diagnostics = p.inverse_count != nullptr;
     const int span = kBlockX + 2 * p.pad_x;
     float* s_mean = staged;
@@ -118,7 +119,7 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
     float* s_value = s_threshold + NC * span;
     float* s_guide = s_value + NC * span;
     float* s_guide_noise = s_guide + NG * span;
-    float* s_noise = s_guide_noise + (NG > 0 ? span : 0);
+    float* s_noise = s_guide_noise + (guide_noise ? span : 0);
     float* s_inverse = s_noise + (guard ? span : 0);
 
     const int x0 = blockIdx.x * kBlockX, y0 = blockIdx.y * kBlockY;
@@ -139,7 +140,7 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
         }
         for (int g = 0; g < NG; ++g)
             guide_i[g] = p.guide[g][centre];
-        if (NG > 0)
+        if (guide_noise)
             guide_noise_i = p.guide_noise[centre];
         if (guard)
             limit_i = p.noise_limit[centre];
@@ -173,7 +174,7 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
             }
             for (int g = 0; g < NG; ++g)
                 s_guide[g * span + k] = p.guide[g][from];
-            if (NG > 0)
+            if (guide_noise)
                 s_guide_noise[k] = p.guide_noise[from];
             if (guard)
                 s_noise[k] = p.noise[from];
@@ -211,11 +212,13 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
                     else
                         far = g == kHalf ? __fmul_rn(d, d) : fmaf(d, d, far);
                 }
-                // Less the guides' noise, never above the spatial weight (filter_layout.h).
-                const float log2_weight =
-                    __fadd_rn(__fsub_rn(near, far),
-                              __fadd_rn(guide_noise_i, fminf(guide_noise_i, s_guide_noise[k])));
-                w = exp2f(fminf(log2_weight, p.spatial_log2[table_row + dx]));
+                float log2_weight = __fsub_rn(near, far);
+                if (guide_noise)  // less the guides' noise, never above the spatial weight
+                    log2_weight = fminf(
+                        __fadd_rn(log2_weight,
+                                  __fadd_rn(guide_noise_i, fminf(guide_noise_i, s_guide_noise[k]))),
+                        p.spatial_log2[table_row + dx]);
+                w = exp2f(log2_weight);
             }
             for (int c = 0; c < NC; ++c)
                 acc[c] = fmaf(w, s_value[c * span + k] - value_i[c], acc[c]);
@@ -428,7 +431,8 @@ CudaFilter::CudaFilter(const FilterLayout& L, bool carry)
     m.inverse = L.inverse_count != nullptr;
 
     const int span = kBlockX + 2 * L.pad_x;
-    m.shared_bytes = std::size_t(staged_planes(L.channels, L.guide_count, m.guard, m.inverse)) *
+    m.shared_bytes = std::size_t(staged_planes(L.channels, L.guide_count, L.guide_noise != nullptr,
+                                               m.guard, m.inverse)) *
                      span * sizeof(float);
     if (m.shared_bytes > presence().shared_per_block)
         throw std::runtime_error("CUDA: radius " + std::to_string(L.pad_x) + " needs " +

@@ -91,7 +91,7 @@ inline void split_columns(int lo0, int hi0, int lo1, int hi1, ColumnPieces& out)
 /// Adds the taps of absolute window rows [y_first, y_last] to the R chunks of lanes that
 /// start at (x0, y), (x0, y + 1), …: R = 2 centre rows share every neighbour load, which
 /// halves the loads per tap, and with guides lets two rows' weight chains overlap.
-template <class V, int NC, int NG, int R, bool kDiagnostics, bool kGuard>
+template <class V, int NC, int NG, bool kNoise, int R, bool kDiagnostics, bool kGuard>
 void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
               Partial<V, NC>* partial)
 {
@@ -112,7 +112,7 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
             s.noise_limit = V::load(L.noise_limit + centre);
         for (int g = 0; g < NG; ++g)
             s.guide[g] = V::load(L.guide[g] + centre);
-        if constexpr (NG > 0)
+        if constexpr (kNoise)
             s.guide_noise = V::load(L.guide_noise + centre);
         s.gathered = partial[k];
     }
@@ -177,14 +177,19 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
                         far[k] = g == kHalf ? V::mul(d, d) : V::fmadd(d, d, far[k]);
                 }
             }
-            // Guide noise: spatial − max(0, Σ(Δg)² − (u_i + min(u_i, u_j))). With u = 0 (no guide
-            // variances) the sum adds +0 and the min keeps it, so the bits are unchanged.
-            const F noise = V::load(L.guide_noise + off);
-            for (int k = First; k < Last; ++k) {
-                const F log2_weight =
-                    V::add(V::sub(near[k], far[k]),
-                           V::add(ctr[k].guide_noise, V::min(ctr[k].guide_noise, noise)));
-                w[k] = simd::exp2_nonpositive<V>(V::min(log2_weight, spatial[k]));
+            if constexpr (kNoise) {
+                // Guide noise: spatial − max(0, Σ(Δg)² − (u_i + min(u_i, u_j))). With u = 0
+                // the sum adds +0 and the min keeps it: the bits of the loop below.
+                const F noise = V::load(L.guide_noise + off);
+                for (int k = First; k < Last; ++k) {
+                    const F log2_weight =
+                        V::add(V::sub(near[k], far[k]),
+                               V::add(ctr[k].guide_noise, V::min(ctr[k].guide_noise, noise)));
+                    w[k] = simd::exp2_nonpositive<V>(V::min(log2_weight, spatial[k]));
+                }
+            } else {
+                for (int k = First; k < Last; ++k)
+                    w[k] = simd::exp2_nonpositive<V>(V::sub(near[k], far[k]));
             }
         }
         for (int c = 0; c < NC; ++c) {
@@ -331,7 +336,7 @@ void store_carry(const FilterLayout& L, std::ptrdiff_t at, const Partial<V, NC>&
     V::store(L.carry[6] + at, p.inverse_sum);
 }
 
-template <class V, int NC, int NG, bool kDiagnostics, int R>
+template <class V, int NC, int NG, bool kNoise, bool kDiagnostics, int R>
 void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
                       const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
@@ -363,9 +368,11 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
             for (int r = 0; r < kRows; ++r)
                 guard = guard || L.needs_guard(y + r, k);
             if (guard)
-                add_band<V, NC, NG, kRows, kDiagnostics, true>(L, y, k * V::kWidth, wy0, wy1, p);
+                add_band<V, NC, NG, kNoise, kRows, kDiagnostics, true>(L, y, k * V::kWidth, wy0,
+                                                                       wy1, p);
             else
-                add_band<V, NC, NG, kRows, kDiagnostics, false>(L, y, k * V::kWidth, wy0, wy1, p);
+                add_band<V, NC, NG, kNoise, kRows, kDiagnostics, false>(L, y, k * V::kWidth, wy0,
+                                                                        wy1, p);
         };
         // Bands of window rows in a fixed order, and taps in a fixed order within each:
         // every pixel sums its taps in the same order whatever the tiling and pairing of
@@ -391,16 +398,28 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
     }
 }
 
-template <class V, int NC, int NG>
+template <class V, int NC, int NG, bool kNoise>
 void filter_rows_diag(const FilterLayout& L, const std::vector<Plane>& out,
                       const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
     if (diag.any())
-        filter_rows_impl<V, NC, NG, true, centre_rows<V, NC>()>(L, out, diag, y0, y1, chunk0,
-                                                                chunk1);
+        filter_rows_impl<V, NC, NG, kNoise, true, centre_rows<V, NC>()>(L, out, diag, y0, y1,
+                                                                        chunk0, chunk1);
     else
-        filter_rows_impl<V, NC, NG, false, centre_rows<V, NC>()>(L, out, diag, y0, y1, chunk0,
-                                                                 chunk1);
+        filter_rows_impl<V, NC, NG, kNoise, false, centre_rows<V, NC>()>(L, out, diag, y0, y1,
+                                                                         chunk0, chunk1);
+}
+
+/// Guides with their noise (FilterLayout::guide_noise) take their own instantiation, so
+/// that guides without it run the loop they always ran.
+template <class V, int NC, int NG>
+void filter_rows_noise(const FilterLayout& L, const std::vector<Plane>& out,
+                       const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
+{
+    if (L.guide_noise)
+        filter_rows_diag<V, NC, NG, true>(L, out, diag, y0, y1, chunk0, chunk1);
+    else
+        filter_rows_diag<V, NC, NG, false>(L, out, diag, y0, y1, chunk0, chunk1);
 }
 
 template <class V, int NC>
@@ -409,11 +428,11 @@ void filter_rows_guides(const FilterLayout& L, const std::vector<Plane>& out,
 {
     switch (L.guide_count) {
     case 0:
-        return filter_rows_diag<V, NC, 0>(L, out, diag, y0, y1, chunk0, chunk1);
+        return filter_rows_diag<V, NC, 0, false>(L, out, diag, y0, y1, chunk0, chunk1);
     case 3:
-        return filter_rows_diag<V, NC, 3>(L, out, diag, y0, y1, chunk0, chunk1);
+        return filter_rows_noise<V, NC, 3>(L, out, diag, y0, y1, chunk0, chunk1);
     default:
-        return filter_rows_diag<V, NC, 6>(L, out, diag, y0, y1, chunk0, chunk1);
+        return filter_rows_noise<V, NC, 6>(L, out, diag, y0, y1, chunk0, chunk1);
     }
 }
 

@@ -194,7 +194,8 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
     // The guard's planes exist only where some chunk needs them.
     mark_guarded_chunks(L, noise);
     const bool guard = std::find(L.guarded.begin(), L.guarded.end(), 1) != L.guarded.end();
-    const int noise_planes = L.guide_count > 0 ? 1 : 0;
+    // Only guides with their variances get the plane (and the kernel's noise loop).
+    const int noise_planes = guide_variances.empty() ? 0 : 1;
     const int planes = 3 * L.channels + L.guide_count + noise_planes + (guard ? 2 : 0) +
                        (with_inverse_count ? 1 : 0);
     // Not zeroed: every float, padding included, is written once below, by the thread

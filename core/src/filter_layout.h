@@ -45,8 +45,8 @@ struct FilterLayout {
     const float* inverse_count = nullptr;            // 1/n (0 in the padding), for diagnostics only
     int guide_count = 0;                             // 0, 3 (albedo or normal) or 6 (both)
     const float* guide[6] = {};  // scaled by √(log2 e)/(√2·σ): −Σ (Δg)² is the log2-weight
-    // With guides: u = Σ_guides (scale² · s²/n), the part of E[Σ (Δg)²] a pixel's own guide
-    // noise adds (0 without the guides' variances). The log2-weight is then
+    // With the guides' variances (else null): u = Σ_guides (scale² · s²/n), the part of
+    // E[Σ (Δg)²] a pixel's own guide noise adds. The log2-weight is then
     // spatial − max(0, Σ (Δg)² − (u_i + min(u_i, u_j))) (docs/method.md §5, guide noise).
     const float* guide_noise = nullptr;
 
