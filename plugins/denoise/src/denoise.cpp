@@ -246,15 +246,23 @@ Filtered filter_joint_aov(EstimatorImage& lead, const StatisticsView& aov, const
 
 // The means of `aov`, checked over `region` as the lead's statistics are: only its means
 // are read, so they are all it needs besides the shared count.
-StatisticsChannels joint_aov_means(const OIIO::ImageBuf& in, const std::string& aov,
-                                   const StatisticsChannels& lead, const DenoiseImageOptions& opt,
-                                   const OIIO::ROI& region)
+// The statistics of a joint AOV, which must have as many channels as the lead.
+StatisticsChannels joint_aov_channels(const OIIO::ImageSpec& spec, const std::string& aov,
+                                      const StatisticsChannels& lead)
 {
-    StatisticsChannels ch = layers::find_statistics(in.spec(), aov);
+    StatisticsChannels ch = layers::find_statistics(spec, aov);
     if (ch.channels() != lead.channels())
         throw LayerError("aovs: " + aov + " has " + std::to_string(ch.channels()) +
                          " channels and " + (lead.aov.empty() ? "the beauty" : lead.aov) + " " +
                          std::to_string(lead.channels()) + "; joint AOVs must match");
+    return ch;
+}
+
+StatisticsChannels joint_aov_means(const OIIO::ImageBuf& in, const std::string& aov,
+                                   const StatisticsChannels& lead, const DenoiseImageOptions& opt,
+                                   const OIIO::ROI& region)
+{
+    StatisticsChannels ch = joint_aov_channels(in.spec(), aov, lead);
     for (Statistic stat : layers::all_statistics())
         if (stat != Statistic::Mean)
             ch.indices(stat).clear();
@@ -301,9 +309,8 @@ StatisticsChannels joint_aov_statistics(const OIIO::ImageBuf& in, const std::str
                                         const StatisticsChannels& lead, TestDomain domain,
                                         const DenoiseImageOptions& opt, const OIIO::ROI& region)
 {
-    joint_aov_means(in, aov, lead, opt, region);  // its channel count and means, checked
     const StatisticsChannels ch =
-        used_channels(layers::find_statistics(in.spec(), aov), domain, false, false, false);
+        used_channels(joint_aov_channels(in.spec(), aov, lead), domain, false, false, false);
     check_statistics(in, ch, opt, region);
     return ch;
 }
