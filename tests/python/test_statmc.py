@@ -77,6 +77,8 @@ def test_denoise_equals_the_command_line_bitwise(tmp_path):
     ({"sigma_s": "wide"}, "sigma_s=wide"),
     ({"no_such": 1}, "no_such=1"),
     ({"device": "gpu"}, "device=gpu"),
+    ({"joint_test": "any"}, "joint_test=any"),
+    ({"guide_noise": "maybe"}, "guide_noise=maybe"),
 ])
 def test_options_are_checked_with_the_command_lines_messages(tmp_path, options, modifier):
     source = tmp_path / "stats.exr"
