@@ -60,11 +60,6 @@ std::array<ConstPlane, 3> guide_planes(const OIIO::ImageBuf& buf, const std::vec
             channel_plane(buf, indices[2])};
 }
 
-std::string guide_variance_layer(std::string_view guide_layer)
-{
-    return std::string(guide_layer) + "Variance";
-}
-
 ConstPlane guide_variance_plane(const OIIO::ImageBuf& buf, std::string_view guide_layer)
 {
     static const std::vector<std::string> kY = {"Y"};

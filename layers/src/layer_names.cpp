@@ -70,12 +70,20 @@ bool is_statistics_channel(std::string_view channel, std::string_view aov)
     return false;
 }
 
+std::string guide_variance_layer(std::string_view guide_layer)
+{
+    return std::string(guide_layer) + "Variance";
+}
+
 bool is_any_statistics_channel(std::string_view channel)
 {
     const std::size_t dot = channel.rfind('.');
     if (dot == std::string_view::npos)
         return false;
     const std::string_view layer = channel.substr(0, dot);
+    for (const char* guide : {kAlbedoLayer, kNormalLayer})
+        if (channel == channel_name(guide_variance_layer(guide), "Y"))
+            return true;
     const std::size_t aov_end = layer.rfind('.');
     return is_statistics_channel(
         channel, aov_end == std::string_view::npos ? std::string_view() : layer.substr(0, aov_end));

@@ -123,8 +123,9 @@ namespace {
 
 TEST(LayerNames, StatisticsOfAnyAovAreRecognisedAndMeansAreNot)
 {
-    for (const char* statistic : {"variance.R", "boxcoxM3.B", "sampleCount.Y", "subpixel.UV",
-                                  "diffuse.variance.G", "bounce1L.M4.Y", "spec.boxcoxMean.R"})
+    for (const char* statistic :
+         {"variance.R", "boxcoxM3.B", "sampleCount.Y", "subpixel.UV", "diffuse.variance.G",
+          "bounce1L.M4.Y", "spec.boxcoxMean.R", "albedoVariance.Y", "normalVariance.Y"})
         EXPECT_TRUE(is_any_statistics_channel(statistic)) << statistic;
     for (const char* mean : {"R", "A", "diffuse.R", "albedo.G", "normal.X", "depth.Z", "bounce1L.Y",
                              "diagnostics.members", "ViewLayer.Combined.R"})

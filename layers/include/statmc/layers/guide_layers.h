@@ -29,9 +29,6 @@ struct GuidePlanes {
     Guides core() const { return {albedo, normal, albedo_variance, normal_variance}; }
 };
 
-/// The layer holding a guide layer's variance: "albedo" → "albedoVariance" (channel .Y).
-std::string guide_variance_layer(std::string_view guide_layer);
-
 /// The plane of `guide_layer`'s variance in `buf` (local float pixels), null when absent.
 ConstPlane guide_variance_plane(const OIIO::ImageBuf& buf, std::string_view guide_layer);
 

@@ -124,9 +124,13 @@ const char* statistic_name(Statistic stat);
 bool is_statistics_channel(std::string_view channel, std::string_view aov = "");
 
 /// Whether `channel` holds a statistic of any AOV other than its mean ("variance.R",
-/// "diffuse.boxcoxM3.B", "bounce1L.M4.Y"), the sample count or the sub-pixel moments: what
-/// a compositor has no use for once the image is denoised.
+/// "diffuse.boxcoxM3.B", "bounce1L.M4.Y"), the sample count, the sub-pixel moments or the
+/// guides' variances ("albedoVariance.Y"): what a compositor has no use for once the image
+/// is denoised.
 bool is_any_statistics_channel(std::string_view channel);
+
+/// The layer holding a guide layer's variance: "albedo" → "albedoVariance" (channel .Y).
+std::string guide_variance_layer(std::string_view guide_layer);
 
 /// `layer.suffix`, or the bare suffix for the unprefixed layer "".
 std::string channel_name(std::string_view layer, std::string_view suffix);
