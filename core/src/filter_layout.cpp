@@ -179,7 +179,8 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         for (const ConstPlane& p : guides.normal)
             guide_planes.emplace_back(p, guide_scale(options.sigma_normal));
     L.guide_count = int(guide_planes.size());
-    // Each guide's variance of the mean in the scaled units, when the image has it.
+    // Each guide's per-sample variance with its scale², when the image has it and the
+    // option is on: u = Σ scale² · s²/n (guide_noise_of).
     std::vector<std::pair<ConstPlane, float>> guide_variances;
     auto add_variance = [&](const ConstPlane& v, float sigma) {
         const float scale = guide_scale(sigma);
