@@ -127,7 +127,7 @@ void check_arguments(const EstimatorImage& est, const DenoiseOptions& options,
 {
     if (const std::string why = options.validate(); !why.empty())
         throw std::invalid_argument(why);
-    if (!detail::kernel_takes_channels(est.channels))
+    if (!filter_takes_channels(est.channels))
         throw std::invalid_argument("the filter takes 1 to 4, 6, 9 or 12 channels, got " +
                                     std::to_string(est.channels));
     if (est.width <= 0 || est.height <= 0)

@@ -112,18 +112,17 @@ std::vector<float> merged_guide_variance(const std::vector<const OIIO::ImageBuf*
 {
     if (guide.empty())
         return {};
-    std::vector<int> variance;
+    std::vector<ConstPlane> variance;
     for (const OIIO::ImageBuf* part : floats) {
-        if (!layers::guide_variance_plane(*part, guide_layer))
+        variance.push_back(layers::guide_variance_plane(*part, guide_layer));
+        if (!variance.back())
             return {};
-        variance.push_back(part->spec().channelindex(
-            layers::channel_name(layers::guide_variance_layer(guide_layer), "Y")));
     }
     const int w = views[0].width, h = views[0].height, nc = int(guide[0].size());
     const std::size_t pixels = std::size_t(w) * h;
     std::vector<double> squares(pixels, 0.0), count(pixels, 0.0);
     for (std::size_t k = 0; k < floats.size(); ++k) {
-        const ConstPlane v = layers::channel_plane(*floats[k], variance[k]);
+        const ConstPlane& v = variance[k];
         std::vector<ConstPlane> g;
         for (int c = 0; c < nc; ++c)
             g.push_back(layers::channel_plane(*floats[k], guide[k][c]));

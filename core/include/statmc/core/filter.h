@@ -58,9 +58,10 @@ bool filter_takes_channels(int channels);
 
 /// Filters `est` into `out` (one plane per channel), on the CPU or, by options.device, on a
 /// CUDA GPU (docs/gpu.md). Bitwise identical for any thread count. Throws
-/// std::invalid_argument on invalid options, a channel count other than 1..4, too few
-/// output planes, or an unavailable SIMD level; std::runtime_error when device is Cuda and
-/// no GPU can run it, with the reason.
+/// std::invalid_argument on invalid options, a channel count that filter_takes_channels
+/// refuses, too few output planes, or an unavailable SIMD level; std::runtime_error when
+/// device is Cuda and no GPU can run it (or the image has more than four channels), with
+/// the reason.
 /// nthreads: 0 = all, 1 = the calling thread only.
 void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
             const std::vector<Plane>& out, const FilterDiagnostics& diagnostics = {},
