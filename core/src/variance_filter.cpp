@@ -24,6 +24,8 @@ void require_valid(const StatisticsView& view, TestDomain domain, const Variance
         throw std::invalid_argument("variance filter: alpha must be in (0, 1)");
     if (!(o.prior_dof >= 0 && std::isfinite(o.prior_dof)))
         throw std::invalid_argument("variance filter: prior_dof must be finite and >= 0");
+    if (!(o.prior_alpha >= 0 && o.prior_alpha < 1))
+        throw std::invalid_argument("variance filter: prior_alpha must be in [0, 1)");
     if (!(o.sigma_spatial > 0 && o.sigma_albedo > 0 && o.sigma_normal > 0))
         throw std::invalid_argument("variance filter: the sigmas must be > 0");
     if (domain == TestDomain::BoxCox && !(view.count && view.has_box_cox_moment4()))
@@ -33,8 +35,9 @@ void require_valid(const StatisticsView& view, TestDomain domain, const Variance
         throw std::invalid_argument("variance filter: needs the variance and its moments M3, M4");
 }
 
-// The per-sample s² and M4/n planes of one domain.
+// The mean, per-sample s² and M4/n planes of one domain.
 struct DomainPlanes {
+    const std::array<ConstPlane, 4>& mean;
     const std::array<ConstPlane, 4>& variance;
     const std::array<ConstPlane, 4>& moment4;
     bool variance_of_mean;
@@ -48,21 +51,24 @@ struct DomainPlanes {
 DomainPlanes planes_of(const StatisticsView& view, TestDomain domain)
 {
     if (domain == TestDomain::BoxCox)
-        return {view.bc_variance, view.bc_moment4, false};
-    return {view.variance, view.moment4, view.variance_of_mean};
+        return {view.bc_mean, view.bc_variance, view.bc_moment4, false};
+    return {view.mean, view.variance, view.moment4, view.variance_of_mean};
 }
 
-// Each pixel's interval on ln σ² (a NaN centre where it has none), its s² and whether the
-// moderation may use it: what the disk loop reads of a neighbour, made once per pixel
-// rather than once per tap.
+// Each pixel's interval on ln σ² (a NaN centre where it has none), its s², whether the
+// moderation may use it and, for the prior's test, its mean and s²/n: what the disk loop
+// reads of a neighbour, made once per pixel rather than once per tap.
 void fill_pixel_planes(const StatisticsView& view, const DomainPlanes& d, double z, bool moderate,
                        detail::VarianceLayout& L)
 {
     const std::size_t n = L.pixels;
+    const bool test_means = moderate && L.prior_z2 > 0;
     L.log_centre.resize(n * view.channels);
     L.log_se2.resize(n * view.channels);
     L.s2.resize(n * view.channels);
     L.usable.resize(n * view.channels);
+    L.mean.resize(test_means ? n * view.channels : 0);
+    L.mean_se2.resize(test_means ? n * view.channels : 0);
     tbb::parallel_for(0, view.height, [&](int y) {
         for (int c = 0; c < view.channels; ++c)
             for (int x = 0; x < view.width; ++x) {
@@ -77,6 +83,10 @@ void fill_pixel_planes(const StatisticsView& view, const DomainPlanes& d, double
                 L.log_se2[k] = float(se * se);
                 L.s2[k] = s2;
                 L.usable[k] = moderate && count >= 2 && std::isfinite(s2);
+                if (test_means) {
+                    L.mean[k] = d.mean[c](x, y);
+                    L.mean_se2[k] = float(s2 / count);
+                }
             }
     });
 }
@@ -127,6 +137,16 @@ detail::VarianceSums own_terms(const detail::VarianceLayout& L, std::size_t p)
     return s;
 }
 
+// Whether neighbour j's mean is close enough to centre i's for j's s² to enter i's prior
+// (VarianceFilterOptions::prior_alpha; always without that test). NaN fails.
+bool in_prior(const detail::VarianceLayout& L, std::size_t i, std::size_t j)
+{
+    if (L.prior_z2 <= 0)
+        return true;
+    const double d = double(L.mean[i]) - L.mean[j];
+    return d * d <= L.prior_z2 * (double(L.mean_se2[i]) + L.mean_se2[j]);
+}
+
 // The scalar disk loop, and the reference the SIMD kernels match bit for bit: per channel
 // the tested sum (centre first, then the disk in raster order: a fixed summation order,
 // whichever thread runs the row) and, for the moderation, the untested one.
@@ -167,7 +187,7 @@ void add_disk_scalar(const detail::VarianceLayout& L, int x, int y, detail::Vari
                 s.sum[c] += term;
                 s.weight[c] += wij;
             }
-            if (L.usable[j]) {
+            if (L.usable[j] && in_prior(L, i, j)) {
                 s.prior_sum[c] += term;
                 s.prior_weight[c] += wij;
             }
@@ -205,6 +225,10 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
     L.radius = options.radius;
     L.pixels = std::size_t(view.width) * view.height;
     L.z2 = z * z;
+    if (options.prior_alpha > 0) {
+        const double z_prior = normal_critical_value(options.prior_alpha);
+        L.prior_z2 = z_prior * z_prior;
+    }
     L.borrow = options.borrow_without_interval;
     const std::size_t n = L.pixels;
     std::vector<float> out(n * L.channels);

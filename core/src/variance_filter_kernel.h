@@ -120,12 +120,18 @@ void add_variance_disk(const VarianceLayout& L, int x0, int y, VarianceSums* sum
     }
 
     const D z2 = V::splat(L.z2);
-    D centre[4], se2[4], sum[4], weight[4], prior_sum[4], prior_weight[4];
+    const bool test_means = L.prior_z2 > 0;
+    const D prior_z2 = V::splat(L.prior_z2);
+    D centre[4], se2[4], sum[4], weight[4], prior_sum[4], prior_weight[4], mean[4], mean_se2[4];
     Mask borrows[4];  // lanes without an interval that take any neighbour with one
     for (int c = 0; c < channels; ++c) {
         centre[c] = V::load(L.log_centre.data() + c * n + p0);
         se2[c] = V::load(L.log_se2.data() + c * n + p0);
         borrows[c] = L.borrow ? centre[c] != centre[c] : Mask{};
+        if (test_means) {
+            mean[c] = V::load(L.mean.data() + c * n + p0);
+            mean_se2[c] = V::load(L.mean_se2.data() + c * n + p0);
+        }
         for (int k = 0; k < W; ++k) {
             sum[c][k] = sums[k].sum[c];
             weight[c][k] = sums[k].weight[c];
@@ -144,7 +150,13 @@ void add_variance_disk(const VarianceLayout& L, int x0, int y, VarianceSums* sum
             const Mask member =
                 (diff * diff <= z2 * (se2[c] + V::load(L.log_se2.data() + c * n + q0))) |
                 (borrows[c] & (other == other));
-            const Mask usable = V::load_flags(L.usable.data() + c * n + q0);
+            Mask usable = V::load_flags(L.usable.data() + c * n + q0);
+            if (test_means) {  // in_prior() in variance_filter.cpp
+                const D d = mean[c] - V::load(L.mean.data() + c * n + q0);
+                usable =
+                    usable &
+                    (d * d <= prior_z2 * (mean_se2[c] + V::load(L.mean_se2.data() + c * n + q0)));
+            }
             const D term = w * V::load(L.s2.data() + c * n + q0);
             sum[c] = member ? sum[c] + term : sum[c];
             weight[c] = member ? weight[c] + w : weight[c];

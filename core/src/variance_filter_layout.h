@@ -35,12 +35,17 @@ struct VarianceLayout {
     std::vector<float> log_se2;     ///< its squared standard error
     std::vector<double> s2;         ///< the per-sample s² that is averaged
     std::vector<char> usable;       ///< whether the moderation may use s2
+    /// With a test on the means for the prior (prior_z2 > 0): each pixel's mean and the
+    /// squared standard error s²/n of that mean.
+    std::vector<float> mean;
+    std::vector<float> mean_se2;
     std::vector<VarianceTap> taps;  ///< raster order, the centre left out
     /// Dense copies of the guides present, three planes per group (albedo, then normal),
     /// and each group's 1/(2σ²).
     std::vector<std::vector<float>> guide;
     double guide_falloff[2] = {0, 0};
     double z2 = 0;        ///< the squared critical value of the test on ln σ²
+    double prior_z2 = 0;  ///< that of the prior's test on the means; 0 = no test
     bool borrow = false;  ///< VarianceFilterOptions::borrow_without_interval
 
     int guide_groups() const { return int(guide.size()) / 3; }

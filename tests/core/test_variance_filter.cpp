@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -186,9 +187,56 @@ TEST(VarianceFilter, ModerationLiftsVariancesThatFewSamplesUnderestimate)
     EXPECT_LT(log_error_lifted, log_error_plain / 10);
     // Deterministic for any thread count, like the tested filter.
     EXPECT_EQ(lifted, denoise_variances(stats.view(), TestDomain::Untransformed, {}, moderated, 1));
+    // The test on the means keeps the lifting: a neighbour that met the light differs from
+    // a dark pixel by about one standard error of its own (one hit in 4: t = 1), not more.
+    VarianceFilterOptions means_tested = moderated;
+    means_tested.prior_alpha = 0.05;
+    EXPECT_EQ(
+        share_below(denoise_variances(stats.view(), TestDomain::Untransformed, {}, means_tested),
+                    bound),
+        0.0);
+    means_tested.prior_alpha = 1;
+    EXPECT_THROW(denoise_variances(stats.view(), TestDomain::Untransformed, {}, means_tested),
+                 std::invalid_argument);
     moderated.prior_dof = -1;
     EXPECT_THROW(denoise_variances(stats.view(), TestDomain::Untransformed, {}, moderated),
                  std::invalid_argument);
+}
+
+TEST(VarianceFilter, TheMeansTestKeepsAnotherExpectationsVarianceOutOfThePrior)
+{
+    // A dark field (normal samples, mean 0.04, σ = 0.01) beside a bright one of another
+    // expectation (mean 10, σ = 10), 64 samples per pixel. Untested, the prior of a dark
+    // pixel at the edge averages the bright pixels' s² of about 100 and lifts its variance
+    // 10⁴-fold. With the test on the means, a bright pixel would have to come within 2 of
+    // its own standard errors of 0.04 (an 8σ event) to lend its variance.
+    constexpr int w = 24, h = 12, spp = 64;
+    std::mt19937_64 rng(23);
+    std::normal_distribution<float> dark(0.04f, 0.01f), bright(10.f, 10.f);
+    StatisticsImage<1> img(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int s = 0; s < spp; ++s) {
+                const float v = x < w / 2 ? dark(rng) : bright(rng);
+                img.add(x, y, &v);
+            }
+    const StatisticsPlanes stats = img.planes();
+    VarianceFilterOptions o;
+    o.prior_dof = 16;
+    const std::vector<float> untested =
+        denoise_variances(stats.view(), TestDomain::Untransformed, {}, o);
+    o.prior_alpha = 0.05;
+    const std::vector<float> tested =
+        denoise_variances(stats.view(), TestDomain::Untransformed, {}, o);
+    const double truth = 0.01 * 0.01;
+    for (int y = 0; y < h; ++y)
+        for (int x = w / 2 - 3; x < w / 2; ++x) {
+            const std::size_t i = std::size_t(y) * w + x;
+            EXPECT_GT(untested[i], 100 * truth) << x << "," << y;
+            // s² of 64 normal samples is within ±18% (one sd) of σ², and the prior averages
+            // many of them.
+            EXPECT_NEAR(tested[i], truth, 0.5 * truth) << x << "," << y;
+        }
 }
 
 // Bit patterns, so that the NaN a NaN variance leaves compares equal to itself.
@@ -234,10 +282,12 @@ TEST(VarianceFilter, EverySimdLevelGivesTheScalarLoopsBits)
     ASSERT_TRUE(stats.view().has_moments());
     for (const Guides& g : {Guides{}, guides})
         for (const bool borrow : {false, true})
-            for (const double prior_dof : {0.0, 16.0}) {
+            for (const auto& [prior_dof, prior_alpha] :
+                 {std::pair{0.0, 0.0}, std::pair{16.0, 0.0}, std::pair{16.0, 0.05}}) {
                 VarianceFilterOptions o;
                 o.borrow_without_interval = borrow;
                 o.prior_dof = prior_dof;
+                o.prior_alpha = prior_alpha;
                 const std::vector<float> scalar = denoise_variances(
                     stats.view(), TestDomain::Untransformed, g, o, 2, SimdLevel::Scalar);
                 for (SimdLevel level : supported_simd_levels())
@@ -245,7 +295,7 @@ TEST(VarianceFilter, EverySimdLevelGivesTheScalarLoopsBits)
                         same_bits(scalar, denoise_variances(stats.view(), TestDomain::Untransformed,
                                                             g, o, 2, level)))
                         << simd_level_name(level) << " guides " << g.has_albedo() << " borrow "
-                        << borrow << " d0 " << prior_dof;
+                        << borrow << " d0 " << prior_dof << " prior alpha " << prior_alpha;
             }
 }
 

@@ -331,6 +331,7 @@ TEST(DenoiseOperator, TheDefaultIsTheClassicFilterWithTheModeratedLadder)
     RadiusLadderOptions ladder;
     ladder.alpha = 0.005;
     ladder.variance.prior_dof = 16;
+    ladder.variance.prior_alpha = 0.05;
     filter_with_radius_ladder(f.stats.view(), est, {}, small_filter(), rgb_planes(expected),
                               ladder);
     expect_rgb_equals(out, expected);

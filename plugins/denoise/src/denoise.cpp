@@ -133,12 +133,14 @@ void require_variance_filter_input(const OIIO::ImageSpec& spec, const Statistics
             "writes them)"));
 }
 
-// Every variance filter weighs the guides as the mean filter does.
-VarianceFilterOptions with_guide_sigmas(VarianceFilterOptions variance,
-                                        const DenoiseOptions& filter)
+// Every variance filter weighs the guides as the mean filter does and moderates as asked.
+VarianceFilterOptions variance_filter_options(VarianceFilterOptions variance,
+                                              const DenoiseImageOptions& opt)
 {
-    variance.sigma_albedo = filter.sigma_albedo;
-    variance.sigma_normal = filter.sigma_normal;
+    variance.sigma_albedo = opt.filter.sigma_albedo;
+    variance.sigma_normal = opt.filter.sigma_normal;
+    variance.prior_dof = opt.variance_prior_dof;
+    variance.prior_alpha = opt.variance_prior_alpha;
     return variance;
 }
 
@@ -468,8 +470,7 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
     s.harm_guard = opt.harm_alpha > 0;
     if (s.harm_guard) {
         s.guard.alpha = opt.harm_alpha;
-        s.guard.variance = with_guide_sigmas(s.guard.variance, opt.filter);
-        s.guard.variance.prior_dof = opt.variance_prior_dof;
+        s.guard.variance = variance_filter_options(s.guard.variance, opt);
         require_moments(spec, all, "do_no_harm");
     }
     s.radius_ladder = opt.ici_alpha > 0;
@@ -490,8 +491,7 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
     }
     if (s.radius_ladder) {
         s.ladder.alpha = opt.ici_alpha;
-        s.ladder.variance = with_guide_sigmas(s.ladder.variance, opt.filter);
-        s.ladder.variance.prior_dof = opt.variance_prior_dof;
+        s.ladder.variance = variance_filter_options(s.ladder.variance, opt);
         require_moments(spec, all, "ici");
     }
     return s;
@@ -778,9 +778,8 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
     }
     std::vector<float> denoised_variances;
     if (stages.variance_filter) {
-        VarianceFilterOptions vf = with_guide_sigmas({}, opt.filter);
+        VarianceFilterOptions vf = variance_filter_options({}, opt);
         vf.radius = opt.variance_radius;
-        vf.prior_dof = opt.variance_prior_dof;
         denoised_variances = denoise_variances(window, TestDomain::BoxCox, window_guides, vf,
                                                layers::thread_count(nthreads));
         const auto planes = dense_planes(denoised_variances, window);

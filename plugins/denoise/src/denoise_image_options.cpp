@@ -30,6 +30,9 @@ std::string DenoiseImageOptions::validate() const
                std::to_string(explained_alpha);
     if (!(variance_prior_dof >= 0 && variance_prior_dof <= 1000))
         return "variance_dof must be in [0, 1000], got " + std::to_string(variance_prior_dof);
+    if (!(variance_prior_alpha >= 0 && variance_prior_alpha <= 0.5))
+        return "variance_prior_alpha must be in [0, 0.5], got " +
+               std::to_string(variance_prior_alpha);
     if (std::find(aovs.begin(), aovs.end(), aov) != aovs.end())
         return "aovs lists '" + (aov.empty() ? std::string("beauty") : aov) +
                "', which aov denoises already";
@@ -57,6 +60,7 @@ DenoiseImageOptions DenoiseImageOptions::classic()
     DenoiseImageOptions o;
     o.ici_alpha = 0;
     o.variance_prior_dof = 0;
+    o.variance_prior_alpha = 0;
     o.filter.guide_noise = false;
     return o;
 }

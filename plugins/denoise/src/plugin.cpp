@@ -122,6 +122,7 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
         opt.optional_stages = false;
     opt.explained_alpha = p.get_float("explained_variance", opt.explained_alpha);
     opt.variance_prior_dof = p.get_float("variance_dof", opt.variance_prior_dof);
+    opt.variance_prior_alpha = p.get_float("variance_prior_alpha", opt.variance_prior_alpha);
     opt.temporal.frames = p.get_int("temporal", opt.temporal.frames);
     opt.temporal.radius = p.get_int("temporal_radius", opt.temporal.radius);
     return opt;
@@ -228,6 +229,13 @@ std::vector<statmc::ParameterSpec> parameters()
                         "neighbourhood's (docs/method.md §10); 0 = off." +
                             only_in_the_default(kDefaults.variance_prior_dof))
             .between(0, 1000),
+        float_parameter("variance_prior_alpha", std::nullopt,
+                        "with variance_dof: only neighbours whose mean the t-test at this "
+                        "significance cannot tell from the pixel's lend it their variance (a "
+                        "caustic next to a dark corner lends it none; docs/method.md §10); 0 = "
+                        "every neighbour." +
+                            only_in_the_default(kDefaults.variance_prior_alpha))
+            .between(0, 0.5),
         int_parameter("temporal", kDefaults.temporal.frames,
                       "frame sequences: merge the members that the K frames before and after "
                       "offer (a pixel of another frame joins when the t-test cannot tell it "

@@ -29,6 +29,12 @@ struct VarianceFilterOptions {
     /// (no test), so that a pixel whose few samples happened to agree cannot claim a variance
     /// far below its neighbourhood's (docs/method.md §10). 0 = off.
     double prior_dof = 0;
+    /// Significance of a test on the means that a neighbour must pass to enter the
+    /// moderation's prior: |x̄_i − x̄_j| ≤ z·sqrt(s²_i/n_i + s²_j/n_j), z at 1 − α/2. A
+    /// neighbour with another expectation (a caustic beside a dark corner) then lends its
+    /// variance to nobody; one whose mean differs only by the noise its variance explains (a
+    /// rare bright path) still does (docs/method.md §10). 0 = every usable neighbour.
+    double prior_alpha = 0;
 };
 
 /// The denoised per-sample variances of `view` in `domain` (BoxCox: the Box-Cox set and

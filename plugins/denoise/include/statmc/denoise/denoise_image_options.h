@@ -93,6 +93,10 @@ struct DenoiseImageOptions {
     /// do_no_harm, ici) moderates a pixel's variance towards its neighbourhood's
     /// (VarianceFilterOptions::prior_dof, docs/method.md §10); 0 = off.
     double variance_prior_dof = 16;
+    /// Which neighbours lend their variance to that prior: those whose mean the t-test at
+    /// this significance cannot tell from the pixel's (VarianceFilterOptions::prior_alpha,
+    /// docs/method.md §10); 0 = every neighbour.
+    double variance_prior_alpha = 0.05;
     /// true: a stage whose layers the image lacks (the ladder on a format-1 file without
     /// M3/M4) or that the request excludes (the ladder with diagnostics) is skipped, and the
     /// result's statmc:denoiseSkipped attribute says which and why. false: either is an
