@@ -6,6 +6,7 @@ Usage: plot_evaluation.py results.csv timing.csv --ref-spp N [--tungsten check.t
 """
 import argparse
 import csv
+import math
 import os
 import statistics
 from collections import defaultdict
@@ -41,6 +42,9 @@ LABELS = {
 # The charts draw these; the tables list every method.
 CHART_METHODS = ["noisy", "statmc", "statmc-classic", "statmc-paper", "nlm", "cross-bilateral",
                  "oidn-guides"]
+# Not a method: what the reference's own sampling noise adds to every row's error (its
+# variance of the mean, from the reference's statistics; bench/evaluation/evaluate.cpp).
+REFERENCE_NOISE = "reference-noise"
 STATMC = [m for m in METHODS if m.startswith("statmc") or m.startswith("classic+")]
 METRICS = [("relmse", "relMSE"), ("dssim", "DSSIM (Filmic view)"), ("rmse", "RMSE"), ("mae", "MAE")]
 
@@ -125,6 +129,10 @@ def table(rows, scene, metric):
             v = mean_of(g[(scene, m, s)], metric)
             cells.append(f"**{v:.4g}**" if m == b else f"{v:.4g}")
         lines.append(f"| {LABELS[m]} | " + " | ".join(cells) + " |")
+    floor = [g.get((scene, REFERENCE_NOISE, s)) for s in spps]
+    if all(floor) and all(math.isfinite(mean_of(f, metric)) for f in floor):
+        lines.append("| *the reference's own noise, in every row above* | " +
+                     " | ".join(f"*{mean_of(f, metric):.4g}*" for f in floor) + " |")
     return "\n".join(lines)
 
 
@@ -229,8 +237,19 @@ def targets(rows):
                          f"{versus('oidn-guides', 'relmse')} |")
         rel = [mean_of(g[(scene, "statmc", s)], "relmse") for s in spps]
         falls = all(b < a for a, b in zip(rel, rel[1:]))
-        lines.append(f"| {scene} | all | relMSE falls with spp: {'yes' if falls else '**no**'} "
-                     f"({' → '.join(f'{v:.3g}' for v in rel)}) | | | | |")
+        line = (f"| {scene} | all | relMSE falls with spp: {'yes' if falls else '**no**'} "
+                f"({' → '.join(f'{v:.3g}' for v in rel)})")
+        floor = [g.get((scene, REFERENCE_NOISE, s)) for s in spps]
+        if all(floor):
+            # E[(x − ref)²] = MSE against the truth + the reference's variance (the noisy
+            # frames' seeds are not the reference's), so the difference is unbiased.
+            mse = [mean_of(g[(scene, "statmc", s)], "rmse") ** 2 - mean_of(f, "rmse") ** 2
+                   for s, f in zip(spps, floor)]
+            mse_falls = all(b < a for a, b in zip(mse, mse[1:]))
+            line += (f"; the reference's own noise adds about {mean_of(floor[0], 'relmse'):.3g} "
+                     f"to relMSE. MSE less the reference's variance falls: "
+                     f"{'yes' if mse_falls else '**no**'} ({' → '.join(f'{v:.3g}' for v in mse)})")
+        lines.append(line + " | | | | |")
     return "\n".join(lines)
 
 
@@ -257,7 +276,8 @@ def main():
            f"; references are statmc-render at {a.ref_spp} spp (seed 1000).", "",
            "Methods: " + "; ".join(f"**{m}** — {LABELS[m]}" for m in METHODS) + ". statmc's filter runs",
            "at its defaults (r = 20, α = 0.005, σ_s = 10, firefly guard κ = 256; the default adds the",
-           "ICI ladder at α = 0.005 with variances moderated at d₀ = 16, and the guide-noise correction, docs/method.md §5, §10–11); the baselines at the",
+           "ICI ladder at α = 0.005 with variances moderated at d₀ = 16 towards neighbours of the same mean (t-test at α = 0.05),",
+           "and the guide-noise correction, docs/method.md §5, §10–11); the baselines at the",
            "parameters in `bench/evaluation/baselines/baselines.h` (NL-means: search 10, patch 3, k = 0.45;",
            "cross-bilateral: r = 10, σ_s = 4, σ_a = 0.1, σ_n = 0.2). Render time is statmc-render's",
            f"(2 threads); denoise time is the median of {a.runs} run(s) of the whole operator on this 2-core",

@@ -6,10 +6,12 @@
 //   statmc-evaluate --radius-sweep 2,5,10,20 ...   (statmc's time against radius)
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -172,6 +174,32 @@ std::string external_result(const std::string& input, const std::string& name)
     return stem + "." + name + ".exr";
 }
 
+/// What the reference's own sampling noise alone adds to each metric: about
+/// mean(v/(ref² + ε)) to relMSE and mean(v) to the squared error, v the variance of its
+/// mean. Every method's measured error carries it too, so a method below it cannot be
+/// told from the truth (docs/evaluation-notes.md). Absent for a reference without
+/// statistics.
+struct ReferenceNoise {
+    double mse = 0, relmse = 0;
+};
+
+std::optional<ReferenceNoise> reference_noise(const OIIO::ImageBuf& reference, double epsilon)
+{
+    if (reference.spec().channelindex(layers::kSampleCountChannel) < 0 ||
+        !layers::find_statistics(reference.spec()).has(layers::Statistic::Variance))
+        return std::nullopt;
+    const EstimatorImage est =
+        estimators_from_statistics(layers::read_statistics(reference), TestDomain::Untransformed);
+    ReferenceNoise noise;
+    const std::size_t values = 3 * est.pixels();
+    for (std::size_t i = 0; i < values; ++i) {
+        const double v = est.test_variance[i], ref = est.value[i];
+        noise.mse += v / double(values);
+        noise.relmse += v / (ref * ref + epsilon) / double(values);
+    }
+    return noise;
+}
+
 int attribute(const OIIO::ImageBuf& in, const char* name)
 {
     return in.spec().get_int_attribute(name, -1);
@@ -205,6 +233,8 @@ int main(int argc, char** argv)
         const OIIO::ImageBuf reference = layers::read_image_file(reference_path);
         CompareOptions compare_options;
         compare_options.display = DisplayOptions{display_config, "", "Filmic"};
+        const std::optional<ReferenceNoise> noise =
+            reference_noise(reference, compare_options.relmse_epsilon);
         const bool fresh = !std::ifstream(csv_path).good();
         std::ofstream csv(csv_path, std::ios::app);
         if (fresh)
@@ -236,6 +266,11 @@ int main(int argc, char** argv)
                 }
                 continue;
             }
+            if (noise)  // a row of its own, so that each (scene, spp) table can show it
+                csv << scene << ',' << in.spec().width << ',' << in.spec().height << ','
+                    << attribute(in, "statmc:spp") << ',' << attribute(in, "statmc:seed")
+                    << ",reference-noise,0," << render_seconds << ",0," << std::sqrt(noise->mse)
+                    << ",nan," << noise->relmse << ",nan\n";
             for (const Method& method : methods()) {
                 if (!method.run) {
                     row(method.name, method.radius, 0.0, in);
