@@ -83,14 +83,69 @@ struct Lanes {
     }
 };
 
+// One channel of add_variance_disk: `weights` holds each tap's W guide weights, or is null
+// (the spatial weight alone). TestMeans: the prior takes only neighbours that pass the test
+// on the means (in_prior() in variance_filter.cpp).
+template <int W, bool TestMeans>
+void add_variance_channel(const VarianceLayout& L, int c, std::size_t p0, const double* weights,
+                          VarianceSums* sums)
+{
+    using V = Lanes<W>;
+    using D = typename V::D;
+    using Mask = typename V::Mask;
+    const std::size_t plane = std::size_t(c) * L.pixels;
+    const D z2 = V::splat(L.z2), prior_z2 = V::splat(L.prior_z2);
+    const D centre = V::load(L.log_centre.data() + plane + p0);
+    const D se2 = V::load(L.log_se2.data() + plane + p0);
+    D mean{}, mean_se2{};
+    if (TestMeans) {
+        mean = V::load(L.mean.data() + plane + p0);
+        mean_se2 = V::load(L.mean_se2.data() + plane + p0);
+    }
+    // Lanes without an interval that take any neighbour with one.
+    const Mask borrows = L.borrow ? centre != centre : Mask{};
+    D sum, weight, prior_sum, prior_weight;
+    for (int k = 0; k < W; ++k) {
+        sum[k] = sums[k].sum[c];
+        weight[k] = sums[k].weight[c];
+        prior_sum[k] = sums[k].prior_sum[c];
+        prior_weight[k] = sums[k].prior_weight[c];
+    }
+    for (std::size_t t = 0; t < L.taps.size(); ++t) {
+        const VarianceTap& tap = L.taps[t];
+        const std::size_t q0 = plane + p0 + std::ptrdiff_t(tap.dy) * L.width + tap.dx;
+        const D w = weights ? V::load(weights + t * W) : V::splat(tap.spatial);
+        const D other = V::load(L.log_centre.data() + q0);
+        const D diff = centre - other;
+        // A NaN centre (no interval) fails the comparison: such a pixel joins none.
+        const Mask member = (diff * diff <= z2 * (se2 + V::load(L.log_se2.data() + q0))) |
+                            (borrows & (other == other));
+        Mask usable = V::load_flags(L.usable.data() + q0);
+        if (TestMeans) {
+            const D d = mean - V::load(L.mean.data() + q0);
+            usable = usable & (d * d <= prior_z2 * (mean_se2 + V::load(L.mean_se2.data() + q0)));
+        }
+        const D term = w * V::load(L.s2.data() + q0);
+        sum = member ? sum + term : sum;
+        weight = member ? weight + w : weight;
+        prior_sum = usable ? prior_sum + term : prior_sum;
+        prior_weight = usable ? prior_weight + w : prior_weight;
+    }
+    for (int k = 0; k < W; ++k) {
+        sums[k].sum[c] = sum[k];
+        sums[k].weight[c] = weight[k];
+        sums[k].prior_sum[c] = prior_sum[k];
+        sums[k].prior_weight[c] = prior_weight[k];
+    }
+}
+
 template <int W>
 void add_variance_disk(const VarianceLayout& L, int x0, int y, VarianceSums* sums)
 {
     using V = Lanes<W>;
     using D = typename V::D;
-    using Mask = typename V::Mask;
     const int channels = L.channels, groups = L.guide_groups();
-    const std::size_t n = L.pixels, p0 = std::size_t(y) * L.width + x0;
+    const std::size_t p0 = std::size_t(y) * L.width + x0;
     // The guides' weights of every tap first, then the taps: a call to std::exp inside the
     // tap loop would spill every live vector around it (they are all caller-saved).
     thread_local std::vector<double> weights;
@@ -119,58 +174,14 @@ void add_variance_disk(const VarianceLayout& L, int x0, int y, VarianceSums* sum
             }
     }
 
-    const D z2 = V::splat(L.z2);
-    const bool test_means = L.prior_z2 > 0;
-    const D prior_z2 = V::splat(L.prior_z2);
-    D centre[4], se2[4], sum[4], weight[4], prior_sum[4], prior_weight[4], mean[4], mean_se2[4];
-    Mask borrows[4];  // lanes without an interval that take any neighbour with one
-    for (int c = 0; c < channels; ++c) {
-        centre[c] = V::load(L.log_centre.data() + c * n + p0);
-        se2[c] = V::load(L.log_se2.data() + c * n + p0);
-        borrows[c] = L.borrow ? centre[c] != centre[c] : Mask{};
-        if (test_means) {
-            mean[c] = V::load(L.mean.data() + c * n + p0);
-            mean_se2[c] = V::load(L.mean_se2.data() + c * n + p0);
-        }
-        for (int k = 0; k < W; ++k) {
-            sum[c][k] = sums[k].sum[c];
-            weight[c][k] = sums[k].weight[c];
-            prior_sum[c][k] = sums[k].prior_sum[c];
-            prior_weight[c][k] = sums[k].prior_weight[c];
-        }
-    }
-    for (std::size_t t = 0; t < L.taps.size(); ++t) {
-        const VarianceTap& tap = L.taps[t];
-        const std::size_t q0 = p0 + std::ptrdiff_t(tap.dy) * L.width + tap.dx;
-        const D w = groups > 0 ? V::load(weights.data() + t * W) : V::splat(tap.spatial);
-        for (int c = 0; c < channels; ++c) {
-            const D other = V::load(L.log_centre.data() + c * n + q0);
-            const D diff = centre[c] - other;
-            // A NaN centre (no interval) fails the comparison: such a pixel joins none.
-            const Mask member =
-                (diff * diff <= z2 * (se2[c] + V::load(L.log_se2.data() + c * n + q0))) |
-                (borrows[c] & (other == other));
-            Mask usable = V::load_flags(L.usable.data() + c * n + q0);
-            if (test_means) {  // in_prior() in variance_filter.cpp
-                const D d = mean[c] - V::load(L.mean.data() + c * n + q0);
-                usable =
-                    usable &
-                    (d * d <= prior_z2 * (mean_se2[c] + V::load(L.mean_se2.data() + c * n + q0)));
-            }
-            const D term = w * V::load(L.s2.data() + c * n + q0);
-            sum[c] = member ? sum[c] + term : sum[c];
-            weight[c] = member ? weight[c] + w : weight[c];
-            prior_sum[c] = usable ? prior_sum[c] + term : prior_sum[c];
-            prior_weight[c] = usable ? prior_weight[c] + w : prior_weight[c];
-        }
-    }
+    // Channel by channel, each walking every tap: one channel's sums and centre values fit
+    // in registers (three channels' at once do not), and each sum still adds its taps in
+    // raster order.
     for (int c = 0; c < channels; ++c)
-        for (int k = 0; k < W; ++k) {
-            sums[k].sum[c] = sum[c][k];
-            sums[k].weight[c] = weight[c][k];
-            sums[k].prior_sum[c] = prior_sum[c][k];
-            sums[k].prior_weight[c] = prior_weight[c][k];
-        }
+        if (L.prior_z2 > 0)
+            add_variance_channel<W, true>(L, c, p0, groups > 0 ? weights.data() : nullptr, sums);
+        else
+            add_variance_channel<W, false>(L, c, p0, groups > 0 ? weights.data() : nullptr, sums);
 }
 
 }  // namespace
