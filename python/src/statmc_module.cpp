@@ -4,7 +4,8 @@
 // modifier parser, so Python and the command line accept, refuse and default alike.
 //
 // An image crosses as (channel names, H×W×N float32 array, attributes, origin). Arrays
-// from Python are wrapped by the ImageBuf without a copy; results are copied out once.
+// from Python are wrapped by the ImageBuf without a copy, and results hand their pixels to
+// the array they return.
 #include <cstdlib>
 #include <functional>
 #include <sstream>
@@ -66,14 +67,33 @@ void set_attributes(OIIO::ImageSpec& spec, const py::dict& attributes)
     }
 }
 
-py::tuple image_to_python(const OIIO::ImageBuf& image)
+// The pixels as an H×W×N float32 array. A result that owns its float pixels hands them to
+// the array, which keeps the ImageBuf alive (no copy of a frame's hundred megabytes);
+// anything else is copied.
+py::array pixels_to_python(OIIO::ImageBuf&& image)
 {
     const OIIO::ImageSpec& spec = image.spec();
-    FloatArray pixels(
-        {py::ssize_t(spec.height), py::ssize_t(spec.width), py::ssize_t(spec.nchannels)});
-    OIIO::ROI all = image.roi();
-    if (!image.get_pixels(all, OIIO::TypeFloat, pixels.mutable_data()))
+    const std::vector<py::ssize_t> shape = {spec.height, spec.width, spec.nchannels};
+    if (image.storage() == OIIO::ImageBuf::LOCALBUFFER && image.localpixels() &&
+        spec.format == OIIO::TypeFloat && spec.depth == 1) {
+        auto* owner = new OIIO::ImageBuf(std::move(image));
+        py::capsule release(owner, [](void* p) { delete static_cast<OIIO::ImageBuf*>(p); });
+        const std::vector<py::ssize_t> strides = {py::ssize_t(owner->scanline_stride()),
+                                                  py::ssize_t(owner->pixel_stride()),
+                                                  py::ssize_t(sizeof(float))};
+        return py::array_t<float>(shape, strides, static_cast<float*>(owner->localpixels()),
+                                  release);
+    }
+    FloatArray pixels(shape);
+    if (!image.get_pixels(image.roi(), OIIO::TypeFloat, pixels.mutable_data()))
         throw std::runtime_error("cannot read the pixels: " + image.geterror());
+    return std::move(pixels);
+}
+
+py::tuple image_to_python(OIIO::ImageBuf&& image)
+{
+    const OIIO::ImageSpec spec = image.spec();
+    py::array pixels = pixels_to_python(std::move(image));
     return py::make_tuple(spec.channelnames, std::move(pixels), attributes_of(spec),
                           py::make_tuple(spec.x, spec.y));
 }
@@ -102,7 +122,7 @@ py::tuple read_file(const std::string& path)
         py::gil_scoped_release unlocked;
         image = statmc::layers::read_image_file(path);
     }
-    return image_to_python(image);
+    return image_to_python(std::move(image));
 }
 
 void write_file(const std::string& path, const std::vector<std::string>& names,
@@ -199,7 +219,7 @@ py::tuple run_operator(const std::string& name, const std::vector<PythonImage>& 
     }
     if (result.has_error())
         throw py::value_error(command + ": " + result.geterror());
-    return py::make_tuple(image_to_python(result), report.str());
+    return py::make_tuple(image_to_python(std::move(result)), report.str());
 }
 
 }  // namespace

@@ -35,6 +35,9 @@ class Image(dict):
         self.attributes = dict(attributes or {})
         self.origin = tuple(origin)
         self.report = ""
+        # (names, pixels, layers, channels) of the array this image's layers are views of,
+        # as statmc returned it: passed back whole while no layer was replaced.
+        self._source = None
 
     def channel_names(self):
         """The file's channel names, layer by layer."""
@@ -66,6 +69,11 @@ class Image(dict):
         return np.ascontiguousarray(np.concatenate(arrays, axis=2), dtype=np.float32)
 
     def _native(self):
+        source = self._source
+        if (source is not None and self.keys() == source[2].keys()
+                and all(self[layer] is view for layer, view in source[2].items())
+                and self.channels == source[3]):
+            return (source[0], source[1], self.attributes, self.origin)
         return (self.channel_names(), self._pixels(), self.attributes, self.origin)
 
 
@@ -86,6 +94,17 @@ def _default_suffixes(layer, count):
                      f"Image.channels['{layer}']")
 
 
+def _channels_of(pixels, indices):
+    """pixels[:, :, indices]: a view where the indices run in steps of one, either way (a
+    layer's channels sit side by side in the file, R,G,B or B,G,R), else a copy."""
+    first, last = indices[0], indices[-1]
+    step = 1 if last >= first else -1
+    if indices == list(range(first, last + step, step)):
+        stop = last + step if last + step >= 0 else None
+        return pixels[:, :, first:stop:step]
+    return pixels[:, :, indices]
+
+
 def _from_native(native):
     names, pixels, attributes, origin = native
     groups = {}
@@ -99,8 +118,9 @@ def _from_native(native):
     for layer, members in groups.items():
         members.sort(key=lambda m: _SUFFIX_ORDER.index(m[0]) if m[0] in _SUFFIX_ORDER
                      else len(_SUFFIX_ORDER))
-        image[layer] = pixels[:, :, [index for _, index in members]]
+        image[layer] = _channels_of(pixels, [index for _, index in members])
         image.channels[layer] = [suffix for suffix, _ in members]
+    image._source = (names, pixels, dict(image), {k: list(v) for k, v in image.channels.items()})
     return image
 
 

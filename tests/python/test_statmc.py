@@ -70,6 +70,26 @@ def test_denoise_equals_the_command_line_bitwise(tmp_path):
                           expected["beauty"])
 
 
+def test_read_layers_are_views_and_edits_reach_the_operator(tmp_path):
+    # A read image's layers are views into one array, which goes back to the operator
+    # whole; an edit in place is in that array, and a replaced layer makes a new one.
+    source = tmp_path / "stats.exr"
+    statmc.write_statistics(source, statistics_image())
+    image = statmc.read_statistics(source)
+    assert image["beauty"].base is not None
+    brighter = statmc.read_statistics(source)
+    brighter["beauty"] = brighter["beauty"] + np.float32(0.5)  # replaced: a copy goes
+    expected = statmc.denoise(brighter, radius=5)["beauty"]
+    image["beauty"] += np.float32(0.5)  # edited in place: the shared array goes
+    assert np.array_equal(statmc.denoise(image, radius=5)["beauty"], expected)
+    assert not np.array_equal(expected, statmc.denoise(source, radius=5)["beauty"])
+    # A result's layers are views too, and denoising one again reads what it holds.
+    once = statmc.denoise(source, radius=5)
+    assert np.array_equal(statmc.denoise(once, radius=5)["beauty"],
+                          statmc.denoise(statmc.Image(dict(once), once.channels, once.attributes),
+                                         radius=5)["beauty"])
+
+
 @pytest.mark.parametrize("options, modifier", [
     ({"radius": -1}, "radius=-1"),
     ({"method": "fancy"}, "method=fancy"),
