@@ -36,14 +36,14 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
         throw std::invalid_argument("radius ladder: alpha must be in (0, 1)");
     if (est.channels < 1 || est.channels > 4)
         throw std::invalid_argument("radius ladder: takes 1 to 4 channels, as the filter does");
-    if (int(out.size()) < est.channels)
+    if (int(out.size()) < stats.channels)
         throw std::invalid_argument("radius ladder: fewer output planes than channels");
-    if (stats.width != est.width || stats.height != est.height || stats.channels != est.channels)
+    if (stats.width != est.width || stats.height != est.height || stats.channels > est.channels)
         throw std::invalid_argument("radius ladder: statistics and estimators differ in shape");
     const std::vector<float> variance =
         denoise_variances(stats, TestDomain::Untransformed, guides, ladder.variance, nthreads);
     const double z = normal_critical_value(ladder.alpha);
-    const int w = est.width, h = est.height, channels = est.channels;
+    const int w = est.width, h = est.height, channels = stats.channels;
     const std::size_t pixels = est.pixels();
 
     // Rung 0: the pixel's own mean and its interval. `lo`/`hi` hold the running
@@ -71,9 +71,9 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
         });
     });
 
-    std::vector<float> rung_out(pixels * channels), effective(pixels);
+    std::vector<float> rung_out(pixels * est.channels), effective(pixels);
     std::vector<Plane> rung_planes;
-    for (int c = 0; c < channels; ++c)
+    for (int c = 0; c < est.channels; ++c)
         rung_planes.push_back(dense_plane(rung_out.data() + c * pixels, w));
     FilterDiagnostics diagnostics;
     diagnostics.effective_samples = dense_plane(effective.data(), w);

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "statmc/core/context_channel.h"
 #include "statmc/core/explained_variance.h"
 #include "statmc/core/harm_guard.h"
 #include "statmc/core/radius_ladder.h"
@@ -317,7 +318,7 @@ TEST(DenoiseOperator, IciIsCoresRadiusLadderAndRoiSafe)
               0u);
 }
 
-TEST(DenoiseOperator, TheDefaultIsTheClassicFilterWithTheModeratedLadder)
+TEST(DenoiseOperator, TheDefaultIsTheClassicFilterWithTheModeratedLadderAndTheContextTest)
 {
     Frame f;
     DenoiseImageOptions o;  // the default method
@@ -326,8 +327,9 @@ TEST(DenoiseOperator, TheDefaultIsTheClassicFilterWithTheModeratedLadder)
     const OIIO::ImageBuf out = denoise(f.image, o);
     ASSERT_FALSE(out.has_error()) << out.geterror();
     EXPECT_EQ(out.spec().get_string_attribute("statmc:denoiseSkipped"), "");
-    const EstimatorImage est = estimators_from_statistics(f.stats.view(), TestDomain::BoxCox);
-    std::vector<float> expected(est.value.size());
+    const EstimatorImage est = with_context(
+        estimators_from_statistics(f.stats.view(), TestDomain::BoxCox), /*green*/ 1, 1);
+    std::vector<float> expected(est.pixels() * 3);
     RadiusLadderOptions ladder;
     ladder.alpha = 0.005;
     ladder.variance.prior_dof = 16;
@@ -351,8 +353,8 @@ TEST(DenoiseOperator, TheDefaultLeavesOutTheLadderItCannotRunAndSaysSo)
     ASSERT_FALSE(out.has_error()) << out.geterror();
     const std::string skipped = out.spec().get_string_attribute("statmc:denoiseSkipped");
     EXPECT_EQ(skipped.rfind("ici (needs", 0), 0u) << skipped;
-    expect_rgb_equals(out,
-                      test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, classic.filter));
+    expect_rgb_equals(out, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {},
+                                               classic.filter, o.context_radius));
     // Diagnostics describe one radius per pixel, so the ladder steps aside for them too.
     o.diagnostics = true;
     const OIIO::ImageBuf with_diagnostics = denoise(f.image, o);

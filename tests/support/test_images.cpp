@@ -10,6 +10,7 @@
 #include <OpenImageIO/imagecache.h>
 #include <gtest/gtest.h>
 
+#include "statmc/core/context_channel.h"
 #include "statmc/core/plane.h"
 
 namespace statmc::test {
@@ -96,15 +97,18 @@ GuideData make_guides(int width, int height, std::uint32_t seed)
 }
 
 std::vector<float> core_filtered(const StatisticsView& stats, TestDomain domain,
-                                 const Guides& guides, const DenoiseOptions& options)
+                                 const Guides& guides, const DenoiseOptions& options, int context)
 {
-    const EstimatorImage est = estimators_from_statistics(stats, domain);
+    EstimatorImage est = estimators_from_statistics(stats, domain);
+    if (context > 0)
+        est = with_context(est, est.channels >= 3 ? 1 : 0, context, 1);
     const std::size_t n = std::size_t(stats.width) * stats.height;
-    std::vector<float> out(n * stats.channels);
+    std::vector<float> out(n * est.channels);
     std::vector<Plane> planes;
-    for (int c = 0; c < stats.channels; ++c)
+    for (int c = 0; c < est.channels; ++c)
         planes.push_back(dense_plane(out.data() + c * n, stats.width));
     filter(est, guides, options, planes, {}, 1);
+    out.resize(n * stats.channels);  // the context channel's average is not an output
     return out;
 }
 

@@ -38,9 +38,12 @@ struct GuideData {
 };
 GuideData make_guides(int width, int height, std::uint32_t seed);
 
-/// What core's filter makes of `stats` (or a window of it): dense, channel-major.
+/// What core's filter makes of `stats` (or a window of it): dense, channel-major. With
+/// `context` > 0, over the estimators with the green (or only) channel's context of that
+/// radius (context_channel.h), as the denoise operator's default tests them.
 std::vector<float> core_filtered(const StatisticsView& stats, TestDomain domain,
-                                 const Guides& guides, const DenoiseOptions& options);
+                                 const Guides& guides, const DenoiseOptions& options,
+                                 int context = 0);
 
 /// Channel `name` of `buf` at image coordinates (x, y); fails the test when absent.
 float channel_value(const OIIO::ImageBuf& buf, const std::string& name, int x, int y);

@@ -7,6 +7,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imagebufalgo_util.h>
 
+#include "statmc/core/context_channel.h"
 #include "statmc/core/estimator_image.h"
 #include "statmc/core/explained_variance.h"
 #include "statmc/core/filter.h"
@@ -200,18 +201,29 @@ struct Filtered {
     std::vector<float> means, members, effective_samples;
 };
 
-// With `ladder`, each pixel at its ICI radius (no diagnostics then).
+// The channel whose surroundings the context test compares: green, which carries most of
+// the luminance, or the only one.
+int context_source(int channels) { return channels >= 3 ? 1 : 0; }
+
+// With `ladder`, each pixel at its ICI radius (no diagnostics then); with `context` > 0,
+// the context test over boxes of that radius as well (context_channel.h).
 Filtered filter_region(const StatisticsView& stats, TestDomain domain, const Guides& guides,
                        const DenoiseOptions& options, bool diagnostics,
-                       const RadiusLadderOptions* ladder, int nthreads)
+                       const RadiusLadderOptions* ladder, int context, int nthreads)
 {
-    const EstimatorImage est = estimators_from_statistics(stats, domain);
+    EstimatorImage est = estimators_from_statistics(stats, domain);
+    if (context > 0)
+        est = with_context(est, context_source(est.channels), context,
+                           layers::thread_count(nthreads));
     const std::size_t pixels = std::size_t(stats.width) * stats.height;
     Filtered f;
     f.means.resize(pixels * stats.channels);
+    std::vector<float> context_means(context > 0 ? pixels : 0);  // averaged, not kept
     std::vector<Plane> out;
     for (int c = 0; c < stats.channels; ++c)
         out.push_back(dense_plane(f.means.data() + c * pixels, stats.width));
+    if (context > 0)
+        out.push_back(dense_plane(context_means.data(), stats.width));
     FilterDiagnostics planes;
     if (diagnostics) {
         f.members.resize(pixels);
@@ -441,7 +453,7 @@ OIIO::ImageBuf with_diagnostics_channels(const OIIO::ImageBuf& result, const std
 // radius ladder): which run, with what options, and the halo they read.
 struct Stages {
     bool explained_variance = false, variance_filter = false, harm_guard = false,
-         radius_ladder = false;
+         radius_ladder = false, context = false;
     ExplainedVarianceOptions explained;
     HarmGuardOptions guard;
     RadiusLadderOptions ladder;
@@ -451,7 +463,8 @@ struct Stages {
     int halo(const DenoiseImageOptions& opt) const
     {
         return std::max({opt.variance_radius, harm_guard ? guard.variance.radius : 0,
-                         radius_ladder ? ladder.variance.radius : 0});
+                         radius_ladder ? ladder.variance.radius : 0,
+                         context ? opt.context_radius : 0});
     }
 };
 
@@ -487,6 +500,21 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
                                       "describe it)"
                                     : "ici (needs the variance and M4 layers of format version "
                                       "2, as statmc-render or --passes write them)";
+        }
+    }
+    s.context = opt.context_radius > 0;
+    if (s.context) {
+        // The lead's membership alone would change: joint AOVs would no longer add up.
+        const char* why = opt.joint ? "joint AOVs share one membership, which the AOVs' own "
+                                      "tests could not follow"
+                          : all.channels() >= 4 ? "the filter takes at most four channels, "
+                                                  "and the layer has four without it"
+                                                : nullptr;
+        if (why && !opt.optional_stages)
+            throw std::invalid_argument(std::string("context cannot be used here: ") + why);
+        if (why) {
+            s.context = false;
+            s.skipped += (s.skipped.empty() ? "" : "; ") + std::string("context (") + why + ")";
         }
     }
     if (s.radius_ladder) {
@@ -808,7 +836,8 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
             joint[k].second = std::move(all[k + 1]);
     } else {
         filtered = filter_region(window, domain, window_guides, opt.filter, opt.diagnostics,
-                                 stages.radius_ladder ? &stages.ladder : nullptr, nthreads);
+                                 stages.radius_ladder ? &stages.ladder : nullptr,
+                                 stages.context ? opt.context_radius : 0, nthreads);
         EstimatorImage lead;
         if (opt.joint)
             lead = estimators_from_statistics(window, domain);

@@ -30,6 +30,8 @@ std::string DenoiseImageOptions::validate() const
                std::to_string(explained_alpha);
     if (!(variance_prior_dof >= 0 && variance_prior_dof <= 1000))
         return "variance_dof must be in [0, 1000], got " + std::to_string(variance_prior_dof);
+    if (context_radius < 0 || context_radius > 5)
+        return "context must be in [0, 5], got " + std::to_string(context_radius);
     if (!(variance_prior_alpha >= 0 && variance_prior_alpha <= 0.5))
         return "variance_prior_alpha must be in [0, 0.5], got " +
                std::to_string(variance_prior_alpha);
@@ -61,6 +63,7 @@ DenoiseImageOptions DenoiseImageOptions::classic()
     o.ici_alpha = 0;
     o.variance_prior_dof = 0;
     o.variance_prior_alpha = 0;
+    o.context_radius = 0;
     o.filter.guide_noise = false;
     return o;
 }

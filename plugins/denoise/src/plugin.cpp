@@ -123,6 +123,9 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.explained_alpha = p.get_float("explained_variance", opt.explained_alpha);
     opt.variance_prior_dof = p.get_float("variance_dof", opt.variance_prior_dof);
     opt.variance_prior_alpha = p.get_float("variance_prior_alpha", opt.variance_prior_alpha);
+    opt.context_radius = p.get_int("context", opt.context_radius);
+    if (p.has("context") && opt.context_radius > 0)
+        opt.optional_stages = false;
     opt.temporal.frames = p.get_int("temporal", opt.temporal.frames);
     opt.temporal.radius = p.get_int("temporal_radius", opt.temporal.radius);
     return opt;
@@ -229,6 +232,13 @@ std::vector<statmc::ParameterSpec> parameters()
                         "neighbourhood's (docs/method.md §10); 0 = off." +
                             only_in_the_default(kDefaults.variance_prior_dof))
             .between(0, 1000),
+        int_parameter("context", std::nullopt,
+                      "a neighbour joins only where the means over the (2k+1)x(2k+1) boxes "
+                      "around both pixels pass the t-test too, as NL-means compares patches: a "
+                      "pixel on a light's edge is not averaged with the surface beside it "
+                      "(docs/method.md §5); 0 = off." +
+                          only_in_the_default(kDefaults.context_radius))
+            .between(0, 5),
         float_parameter("variance_prior_alpha", std::nullopt,
                         "with variance_dof: only neighbours whose mean the t-test at this "
                         "significance cannot tell from the pixel's lend it their variance (a "

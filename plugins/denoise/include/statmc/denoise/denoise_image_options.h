@@ -97,6 +97,11 @@ struct DenoiseImageOptions {
     /// this significance cannot tell from the pixel's (VarianceFilterOptions::prior_alpha,
     /// docs/method.md §10); 0 = every neighbour.
     double variance_prior_alpha = 0.05;
+    /// 0: off. Else a neighbour joins only where the means over the boxes of this radius
+    /// around the two pixels pass the t-test too (core/context_channel.h, docs/method.md §5):
+    /// a pixel on a light's edge is then not averaged with the surface beside it. Skipped,
+    /// with a note, for joint AOVs and layers of four channels.
+    int context_radius = 1;
     /// true: a stage whose layers the image lacks (the ladder on a format-1 file without
     /// M3/M4) or that the request excludes (the ladder with diagnostics) is skipped, and the
     /// result's statmc:denoiseSkipped attribute says which and why. false: either is an
