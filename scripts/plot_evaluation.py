@@ -20,6 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 METHODS = ["noisy", "statmc", "statmc-noguides", "statmc-classic", "statmc-paper", "classic+ici",
            "classic+variance", "classic+guard", "classic+explained", "classic+guide-noise",
+           "classic+context",
            "moon-ci", "nlm",
            "cross-bilateral", "oidn", "oidn-guides"]
 LABELS = {
@@ -33,6 +34,7 @@ LABELS = {
     "classic+guard": "classic + do-no-harm clamp alone (do_no_harm=0.005)",
     "classic+explained": "classic + explained-variance correction alone (explained_variance=0.05)",
     "classic+guide-noise": "classic + guide-noise correction alone (guide_noise=1)",
+    "classic+context": "classic + context test alone (context=1)",
     "moon-ci": "Moon-CI style (plain test, α = 0.002)",
     "nlm": "NL-means, per-pixel variance (Rousselle 2012)",
     "cross-bilateral": "cross-bilateral on albedo + normal",
@@ -277,7 +279,7 @@ def main():
            "Methods: " + "; ".join(f"**{m}** — {LABELS[m]}" for m in METHODS) + ". statmc's filter runs",
            "at its defaults (r = 20, α = 0.005, σ_s = 10, firefly guard κ = 256; the default adds the",
            "ICI ladder at α = 0.005 with variances moderated at d₀ = 16 towards neighbours of the same mean (t-test at α = 0.05),",
-           "and the guide-noise correction, docs/method.md §5, §10–11); the baselines at the",
+           "the guide-noise correction and the context test over 3×3 boxes, docs/method.md §5, §10–11); the baselines at the",
            "parameters in `bench/evaluation/baselines/baselines.h` (NL-means: search 10, patch 3, k = 0.45;",
            "cross-bilateral: r = 10, σ_s = 4, σ_a = 0.1, σ_n = 0.2). Render time is statmc-render's",
            f"(2 threads); denoise time is the median of {a.runs} run(s) of the whole operator on this 2-core",

@@ -145,6 +145,8 @@ std::vector<Method> methods()
                       classic_with([](DenoiseImageOptions& o) { o.explained_alpha = 0.05; })),
         statmc_method("classic+guide-noise",
                       classic_with([](DenoiseImageOptions& o) { o.filter.guide_noise = true; })),
+        statmc_method("classic+context",
+                      classic_with([](DenoiseImageOptions& o) { o.context_radius = 1; })),
         statmc_method("moon-ci", moon),
         {"nlm", nlm.search_radius,
          [nlm](const OIIO::ImageBuf& in) {

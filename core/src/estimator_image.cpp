@@ -121,6 +121,8 @@ EstimatorImage side_by_side(const std::vector<const EstimatorImage*>& parts)
             throw std::invalid_argument("side_by_side: the images differ in size or test domain");
         if (p->count != first.count)
             throw std::invalid_argument("side_by_side: the images differ in their sample counts");
+        if (p->context_channels > 0)
+            throw std::invalid_argument("side_by_side: context channels must come last");
         channels += p->channels;
     }
     EstimatorImage out(first.width, first.height, channels);

@@ -81,7 +81,7 @@ float channel_level(const EstimatorImage& est, int c, int x, int y)
 
 bool all_zero(const EstimatorImage& est, int x, int y)
 {
-    for (int c = 0; c < est.channels; ++c)
+    for (int c = 0; c < est.channels - est.context_channels; ++c)
         if (est.value[est.index(c, x, y)] != 0)
             return false;
     return true;
@@ -105,7 +105,7 @@ NoiseLevels noise_levels(const EstimatorImage& est, float ratio)
             all = all && testable[i];
             float level = 0;
             if (testable[i])
-                for (int c = 0; c < est.channels; ++c)
+                for (int c = 0; c < est.channels - est.context_channels; ++c)
                     level = std::max(level, channel_level(est, c, x, y));
             out.level[i] = level;
         }

@@ -2,6 +2,7 @@
 // computation, and what it is for: a pixel row on a light's edge, whose samples mostly miss
 // the light, keeps its own expectation instead of the dark surface's beside it.
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -10,6 +11,7 @@
 
 #include "statmc/core/context_channel.h"
 #include "statmc/core/filter.h"
+#include "statmc/core/firefly_guard.h"
 #include "statmc/core/statistics_image.h"
 
 namespace statmc {
@@ -31,12 +33,12 @@ EstimatorImage ramp(int w, int h, int channels)
     return e;
 }
 
-TEST(ContextChannel, IsTheBoxMeanOfTheChosenChannelOverItsTestablePixels)
+TEST(ContextChannel, IsTheMeanOfTheChosenChannelAroundThePixelOverTestablePixels)
 {
     constexpr int w = 7, h = 5;
     EstimatorImage est = ramp(w, h, 3);
     est.count[std::size_t(2) * w + 3] = 1;  // (3, 2) untestable: in no box
-    const EstimatorImage ctx = with_context(est, 1, 1);
+    const EstimatorImage ctx = with_context(est, 1, 1, 0);
     ASSERT_EQ(ctx.channels, 4);
     EXPECT_EQ(ctx.domain, TestDomain::BoxCox);
     for (int y = 0; y < h; ++y)
@@ -49,7 +51,8 @@ TEST(ContextChannel, IsTheBoxMeanOfTheChosenChannelOverItsTestablePixels)
             int k = 0;
             for (int yy = y - 1; yy <= y + 1; ++yy)
                 for (int xx = x - 1; xx <= x + 1; ++xx)
-                    if (xx >= 0 && yy >= 0 && xx < w && yy < h && !(xx == 3 && yy == 2)) {
+                    if (xx >= 0 && yy >= 0 && xx < w && yy < h && !(xx == 3 && yy == 2) &&
+                        !(xx == x && yy == y)) {
                         mean += est.test_mean[est.index(1, xx, yy)];
                         variance += est.test_variance[est.index(1, xx, yy)];
                         value += est.value[est.index(1, xx, yy)];
@@ -60,12 +63,34 @@ TEST(ContextChannel, IsTheBoxMeanOfTheChosenChannelOverItsTestablePixels)
             EXPECT_FLOAT_EQ(ctx.test_variance[ctx.index(3, x, y)], float(variance / (k * k)));
             EXPECT_FLOAT_EQ(ctx.value[ctx.index(3, x, y)], float(value / k));
         }
-    // A corner's box holds four pixels: a mean of four has a quarter of the variance.
-    EXPECT_FLOAT_EQ(ctx.test_variance[ctx.index(3, 0, 0)], float((2 + 2 + 2 + 3) / 16.0));
-    EXPECT_EQ(ctx.test_variance, with_context(est, 1, 1, 1).test_variance);  // any thread count
-    EXPECT_THROW(with_context(est, 3, 1), std::invalid_argument);
-    EXPECT_THROW(with_context(est, 1, 0), std::invalid_argument);
-    EXPECT_THROW(with_context(ramp(w, h, kMaxEstimatorChannels), 0, 1), std::invalid_argument);
+    // A corner's box holds three pixels besides itself: a mean of three has a ninth of
+    // their summed variance.
+    EXPECT_FLOAT_EQ(ctx.test_variance[ctx.index(3, 0, 0)], float((2 + 2 + 3) / 9.0));
+    EXPECT_EQ(ctx.test_variance, with_context(est, 1, 1, 0, 1).test_variance);  // any thread count
+    EXPECT_THROW(with_context(est, 3, 1, 0), std::invalid_argument);
+    EXPECT_THROW(with_context(est, 1, 0, 0), std::invalid_argument);
+    EXPECT_THROW(with_context(ramp(w, h, kMaxEstimatorChannels), 0, 1, 0), std::invalid_argument);
+}
+
+TEST(ContextChannel, LeavesTheFireflyGuardAsItWas)
+{
+    // The guard reads the pixels' own channels only: a context that holds a firefly must
+    // not raise its neighbours' levels (they would then accept the firefly), and a black
+    // pixel in a lit context must stay black to the guard (it takes any level).
+    constexpr int w = 9, h = 7;
+    EstimatorImage est = ramp(w, h, 3);
+    for (int c = 0; c < 3; ++c) {
+        est.test_variance[est.index(c, 4, 3)] = 1e6f;  // a firefly
+        est.value[est.index(c, 1, 1)] = 0;             // a black pixel
+        for (int y = 0; y < 3; ++y)
+            for (int x = 0; x < 3; ++x)
+                est.test_variance[est.index(c, x, y)] = 0;  // in a noise-free corner
+    }
+    const NoiseLevels plain = noise_levels(est, 256);
+    const NoiseLevels with = noise_levels(with_context(est, 1, 1, 256), 256);
+    EXPECT_EQ(with.level, plain.level);
+    EXPECT_EQ(with.limit, plain.limit);
+    EXPECT_EQ(plain.limit[std::size_t(1) * w + 1], std::numeric_limits<float>::infinity());
 }
 
 // Two rows of a light (17, constant), one row that sees a sliver of it (a sample hits it
@@ -110,7 +135,7 @@ TEST(ContextChannel, KeepsALightsEdgeRowFromTheSurfaceBesideIt)
     const EstimatorImage est = estimators_from_statistics(stats.view(), TestDomain::BoxCox);
     const double truth = 0.98 * 0.15 + 0.02 * 17;
     const double plain = edge_row_mean(est);
-    const double with = edge_row_mean(with_context(est, 1, 1));
+    const double with = edge_row_mean(with_context(est, 1, 1, DenoiseOptions{}.firefly_ratio));
     // The row holds 80 × 64 × 0.02 ≈ 102 hits: its own mean is within about 10% (one sd)
     // of the truth, and an average over its members no further off than that allows.
     EXPECT_NEAR(with, truth, 0.3 * truth) << "plain " << plain;

@@ -327,8 +327,9 @@ TEST(DenoiseOperator, TheDefaultIsTheClassicFilterWithTheModeratedLadderAndTheCo
     const OIIO::ImageBuf out = denoise(f.image, o);
     ASSERT_FALSE(out.has_error()) << out.geterror();
     EXPECT_EQ(out.spec().get_string_attribute("statmc:denoiseSkipped"), "");
-    const EstimatorImage est = with_context(
-        estimators_from_statistics(f.stats.view(), TestDomain::BoxCox), /*green*/ 1, 1);
+    const EstimatorImage est =
+        with_context(estimators_from_statistics(f.stats.view(), TestDomain::BoxCox), /*green*/ 1, 1,
+                     small_filter().firefly_ratio);
     std::vector<float> expected(est.pixels() * 3);
     RadiusLadderOptions ladder;
     ladder.alpha = 0.005;

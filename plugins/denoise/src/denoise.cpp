@@ -213,7 +213,7 @@ Filtered filter_region(const StatisticsView& stats, TestDomain domain, const Gui
 {
     EstimatorImage est = estimators_from_statistics(stats, domain);
     if (context > 0)
-        est = with_context(est, context_source(est.channels), context,
+        est = with_context(est, context_source(est.channels), context, options.firefly_ratio,
                            layers::thread_count(nthreads));
     const std::size_t pixels = std::size_t(stats.width) * stats.height;
     Filtered f;

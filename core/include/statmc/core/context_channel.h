@@ -12,12 +12,15 @@ namespace statmc {
 
 /// `est` with one channel more, the context of channel `channel`: per pixel, the mean of
 /// that channel's test means and values over the (2r + 1)² box around it (clamped at the
-/// image's edges), over the box's testable pixels, with the test variance of a mean of
+/// image's edges), the pixel itself left out, over the box's testable pixels that the
+/// firefly guard at `firefly_ratio` lets the pixel accept (firefly_guard.h; 0 = all): a
+/// firefly is then part of no context, its own included, with the test variance of a mean of
 /// independent estimates, Σ T / k². The count stays the pixel's own, which only makes the
 /// test's degrees of freedom fewer than the box's. A pixel whose box holds no testable
 /// pixel keeps its own channel as context. The same result for any `nthreads` (0 = all
 /// cores). Throws std::invalid_argument when `est` has kMaxEstimatorChannels channels
 /// already, `channel` is not one of them, or radius < 1.
-EstimatorImage with_context(const EstimatorImage& est, int channel, int radius, int nthreads = 0);
+EstimatorImage with_context(const EstimatorImage& est, int channel, int radius, float firefly_ratio,
+                            int nthreads = 0);
 
 }  // namespace statmc

@@ -39,6 +39,11 @@ struct EstimatorImage {
     /// The domain of test_mean and test_variance. Only Box-Cox variances are steady enough
     /// across brightness for the firefly guard (firefly_guard.h) to compare them.
     TestDomain domain = TestDomain::Untransformed;
+    /// How many of the last channels are context channels (context_channel.h): they take
+    /// part in the test only. The firefly guard's noise levels leave them out, since a box
+    /// that holds a firefly would otherwise raise its neighbours' levels, and with them
+    /// what they accept.
+    int context_channels = 0;
 
     EstimatorImage() = default;
     EstimatorImage(int width, int height, int channels);
@@ -69,7 +74,8 @@ EstimatorImage estimators_from_statistics(const StatisticsView& stats, TestDomai
 /// The channels of `parts` side by side (parts[0]'s first), as one image: a filter over it
 /// accepts a neighbour only where every part's test does, and averages every channel with
 /// the same weights. The parts must match in size and domain and share their counts, and
-/// hold at most kMaxEstimatorChannels channels together; else std::invalid_argument.
+/// hold at most kMaxEstimatorChannels channels together and have no context channels;
+/// else std::invalid_argument.
 EstimatorImage side_by_side(const std::vector<const EstimatorImage*>& parts);
 
 }  // namespace statmc

@@ -20,7 +20,8 @@ namespace statmc {
 /// level that a centre accepts.
 struct NoiseLevels {
     /// The per-sample variance on a scale nearly independent of brightness for shot-like
-    /// noise, the largest over channels; 0 where the pixel is untestable. For full
+    /// noise, the largest over channels (context channels left out); 0 where the pixel is
+    /// untestable. For full
     /// statistics it is the Box-Cox variance (test_variance × count). For the untransformed
     /// test it is the first-order stand-in for it, s²/μ: raw variances grow with
     /// brightness, and a bright pixel would look like a firefly next to a dark one.
