@@ -505,8 +505,8 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
     s.context = opt.context_radius > 0;
     if (s.context) {
         // The lead's membership alone would change: joint AOVs would no longer add up.
-        const char* why = opt.joint ? "joint AOVs share one membership, which the AOVs' own "
-                                      "tests could not follow"
+        const char* why = opt.joint ? "joint AOVs share one membership, which does not take "
+                                      "it yet"
                           : all.channels() >= 4 ? "the filter takes at most four channels, "
                                                   "and the layer has four without it"
                                                 : nullptr;
