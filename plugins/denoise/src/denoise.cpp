@@ -201,9 +201,17 @@ struct Filtered {
     std::vector<float> means, members, effective_samples;
 };
 
-// The channel whose surroundings the context test compares: green, which carries most of
-// the luminance, or the only one.
-int context_source(int channels) { return channels >= 3 ? 1 : 0; }
+// The lead's estimators, with the context channel when `context` > 0 (context_channel.h):
+// that of green, which carries most of the luminance, or of the only channel.
+EstimatorImage lead_estimators(const StatisticsView& stats, TestDomain domain,
+                               const DenoiseOptions& options, int context, int nthreads)
+{
+    EstimatorImage est = estimators_from_statistics(stats, domain);
+    if (context == 0)
+        return est;
+    return with_context(est, est.channels >= 3 ? 1 : 0, context, options.firefly_ratio,
+                        layers::thread_count(nthreads));
+}
 
 // With `ladder`, each pixel at its ICI radius (no diagnostics then); with `context` > 0,
 // the context test over boxes of that radius as well (context_channel.h).
@@ -211,10 +219,7 @@ Filtered filter_region(const StatisticsView& stats, TestDomain domain, const Gui
                        const DenoiseOptions& options, bool diagnostics,
                        const RadiusLadderOptions* ladder, int context, int nthreads)
 {
-    EstimatorImage est = estimators_from_statistics(stats, domain);
-    if (context > 0)
-        est = with_context(est, context_source(est.channels), context, options.firefly_ratio,
-                           layers::thread_count(nthreads));
+    const EstimatorImage est = lead_estimators(stats, domain, options, context, nthreads);
     const std::size_t pixels = std::size_t(stats.width) * stats.height;
     Filtered f;
     f.means.resize(pixels * stats.channels);
@@ -245,7 +250,8 @@ Filtered filter_region(const StatisticsView& stats, TestDomain domain, const Gui
 Filtered filter_joint_aov(EstimatorImage& lead, const StatisticsView& aov, const Guides& guides,
                           const DenoiseOptions& options, int nthreads)
 {
-    for (int c = 0; c < lead.channels; ++c)
+    const int own = lead.channels - lead.context_channels;  // the context's are averaged, unused
+    for (int c = 0; c < own; ++c)
         for (int y = 0; y < lead.height; ++y)
             for (int x = 0; x < lead.width; ++x)
                 lead.value[lead.index(c, x, y)] = aov.mean[c](x, y);
@@ -255,6 +261,7 @@ Filtered filter_joint_aov(EstimatorImage& lead, const StatisticsView& aov, const
     for (int c = 0; c < lead.channels; ++c)
         out.push_back(dense_plane(f.means.data() + c * lead.pixels(), lead.width));
     filter(lead, guides, options, out, {}, layers::thread_count(nthreads));
+    f.means.resize(lead.pixels() * own);
     return f;
 }
 
@@ -505,8 +512,10 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
     s.context = opt.context_radius > 0;
     if (s.context) {
         // The lead's membership alone would change: joint AOVs would no longer add up.
-        const char* why = opt.joint ? "joint AOVs share one membership, which does not take "
-                                      "it yet"
+        std::string unused_note;
+        const char* why = joint_test_all(spec, domain, opt, unused_note)
+                              ? "the AOVs are tested side by side, and the filter has no "
+                                "room for a context channel beside them"
                           : all.channels() >= 4 ? "the filter takes at most four channels, "
                                                   "and the layer has four without it"
                                                 : nullptr;
@@ -840,7 +849,8 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
                                  stages.context ? opt.context_radius : 0, nthreads);
         EstimatorImage lead;
         if (opt.joint)
-            lead = estimators_from_statistics(window, domain);
+            lead = lead_estimators(window, domain, opt.filter,
+                                   stages.context ? opt.context_radius : 0, nthreads);
         for (const std::string& aov : opt.joint ? opt.aovs : std::vector<std::string>{}) {
             StatisticsChannels aov_ch = joint_aov_means(in, aov, ch, opt, regions.input);
             Filtered f =

@@ -100,7 +100,7 @@ struct DenoiseImageOptions {
     /// 0: off. Else a neighbour joins only where the means over the boxes of this radius
     /// around the two pixels pass the t-test too (core/context_channel.h, docs/method.md §5):
     /// a pixel on a light's edge is then not averaged with the surface beside it. Skipped,
-    /// with a note, for joint AOVs and layers of four channels.
+    /// with a note, for joint_test=all and layers of four channels.
     int context_radius = 1;
     /// true: a stage whose layers the image lacks (the ladder on a format-1 file without
     /// M3/M4) or that the request excludes (the ladder with diagnostics) is skipped, and the
