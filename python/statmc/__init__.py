@@ -95,14 +95,15 @@ def _default_suffixes(layer, count):
 
 
 def _channels_of(pixels, indices):
-    """pixels[:, :, indices]: a view where the indices run in steps of one, either way (a
-    layer's channels sit side by side in the file, R,G,B or B,G,R), else a copy."""
+    """(pixels[:, :, indices], whether it is a view): a view where the indices run in steps
+    of one, either way (a layer's channels side by side in the file, R,G,B or B,G,R), else
+    a copy."""
     first, last = indices[0], indices[-1]
     step = 1 if last >= first else -1
     if indices == list(range(first, last + step, step)):
         stop = last + step if last + step >= 0 else None
-        return pixels[:, :, first:stop:step]
-    return pixels[:, :, indices]
+        return pixels[:, :, first:stop:step], True
+    return pixels[:, :, indices], False
 
 
 def _from_native(native):
@@ -115,12 +116,16 @@ def _from_native(native):
             suffix = name if layer == BEAUTY else ""
         groups.setdefault(layer, []).append((suffix, index))
     image = Image(attributes=attributes, origin=origin)
+    all_views = True
     for layer, members in groups.items():
         members.sort(key=lambda m: _SUFFIX_ORDER.index(m[0]) if m[0] in _SUFFIX_ORDER
                      else len(_SUFFIX_ORDER))
-        image[layer] = _channels_of(pixels, [index for _, index in members])
+        image[layer], is_view = _channels_of(pixels, [index for _, index in members])
+        all_views = all_views and is_view
         image.channels[layer] = [suffix for suffix, _ in members]
-    image._source = (names, pixels, dict(image), {k: list(v) for k, v in image.channels.items()})
+    if all_views:  # a copied layer's edits would not be in `pixels`
+        image._source = (names, pixels, dict(image),
+                         {k: list(v) for k, v in image.channels.items()})
     return image
 
 

@@ -90,6 +90,22 @@ def test_read_layers_are_views_and_edits_reach_the_operator(tmp_path):
                                          radius=5)["beauty"])
 
 
+def test_an_edit_of_a_layer_read_as_a_copy_is_passed_on():
+    # Channels in an order (another tool's) where a layer's channels are not side by side:
+    # that layer is a copy, not a view, so the image must be joined anew, edit included.
+    names = ["aov.X", "R", "G", "B", "aov.R", "aov.G", "aov.B"]
+    pixels = np.arange(2 * 3 * 7, dtype=np.float32).reshape(2, 3, 7)
+    image = statmc._from_native((names, pixels, {}, (0, 0)))
+    assert image.channels["aov"] == ["R", "G", "B", "X"]
+    image["aov"] += np.float32(100)
+    native_names, native_pixels = image._native()[:2]
+    x = native_names.index("aov.X")
+    assert np.array_equal(native_pixels[:, :, x], pixels[:, :, 0] + 100)
+    # While a read of side-by-side channels passes its own array on untouched.
+    image = statmc._from_native((names[1:4], pixels[:, :, 1:4].copy(), {}, (0, 0)))
+    assert image._native()[1] is image._source[1]
+
+
 @pytest.mark.parametrize("options, modifier", [
     ({"radius": -1}, "radius=-1"),
     ({"method": "fancy"}, "method=fancy"),
