@@ -399,7 +399,7 @@ std::string cuda_device_description() { return presence().description; }
 namespace detail {
 
 struct CudaFilter::Impl {
-    int width = 0, height = 0, channels = 0, guides = 0;
+    int width = 0, height = 0, channels = 0, averaged = 0, guides = 0;
     std::size_t pixels = 0;
     bool guard = false, inverse = false;
     DeviceBuffer<float> planes, spatial, spatial_log2, out, diagnostics, carry;
@@ -425,6 +425,7 @@ CudaFilter::CudaFilter(const FilterLayout& L, bool carry)
     m.width = L.width;
     m.height = L.height;
     m.channels = L.channels;
+    m.averaged = L.averaged;
     m.guides = L.guide_count;
     m.pixels = std::size_t(L.width) * L.height;
     m.guard = L.noise != nullptr;
@@ -529,7 +530,7 @@ void CudaFilter::run(const FilterLayout& L, const std::vector<Plane>& out,
             for (int x = 0; x < m.width; ++x)
                 plane(x, y) = dense[std::size_t(y) * m.width + x];
     };
-    for (int c = 0; c < m.channels; ++c)
+    for (int c = 0; c < m.averaged; ++c)  // context channels are tested, not written
         scatter(m.host.data() + c * m.pixels, out[c]);
     const float* diag_host = m.host.data() + m.pixels * m.channels;
     if (diagnostics.members)

@@ -23,9 +23,10 @@ namespace statmc::detail {
 namespace {
 
 /// What a chunk of lanes has gathered so far; carried from one band of rows to the next.
-template <class V, int NC>
+/// NA: the channels averaged (the leading ones; the rest are only tested, FilterLayout).
+template <class V, int NA>
 struct Partial {
-    typename V::F acc[NC];  // Σ W_ij (F_j − F_i)
+    typename V::F acc[NA];  // Σ W_ij (F_j − F_i)
     typename V::F weight_sum;
     typename V::F member_count;
     typename V::F inverse_sum;  // Σ W_ij² / n_j, for the effective sample count
@@ -33,14 +34,14 @@ struct Partial {
 
 /// One centre chunk's registers during a band: what it tests and averages against, and
 /// what it has gathered.
-template <class V, int NC, int NG>
+template <class V, int NC, int NA, int NG>
 struct CentreState {
     using F = typename V::F;
     F mean[NC], threshold[NC], noise_limit;
-    F value[NC];
+    F value[NA];
     F guide[NG > 0 ? NG : 1];
     F guide_noise;
-    Partial<V, NC> gathered;
+    Partial<V, NA> gathered;
 };
 
 template <int K>
@@ -90,24 +91,26 @@ inline void split_columns(int lo0, int hi0, int lo1, int hi1, ColumnPieces& out)
 
 /// Adds the taps of absolute window rows [y_first, y_last] to the R chunks of lanes that
 /// start at (x0, y), (x0, y + 1), …: R = 2 centre rows share every neighbour load, which
-/// halves the loads per tap, and with guides lets two rows' weight chains overlap.
-template <class V, int NC, int NG, bool kNoise, int R, bool kDiagnostics, bool kGuard>
+/// halves the loads per tap, and with guides lets two rows' weight chains overlap. NC
+/// channels are tested, the first NA of them averaged.
+template <class V, int NC, int NA, int NG, bool kNoise, int R, bool kDiagnostics, bool kGuard>
 void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
-              Partial<V, NC>* partial)
+              Partial<V, NA>* partial)
 {
     using F = typename V::F;
-    CentreState<V, NC, NG> ctr[R];
+    CentreState<V, NC, NA, NG> ctr[R];
     for (int k = 0; k < R; ++k) {
         // Σ W_ij (F_j − F_i) rather than Σ W_ij F_j: out_i = F_i + that / Σ W_ij is the
         // same average, but members equal to the centre add exactly nothing, so flat
         // regions come back bit for bit and large offsets (HDR) lose no digits.
         const std::ptrdiff_t centre = std::ptrdiff_t(y + k) * L.stride + x0;
-        CentreState<V, NC, NG>& s = ctr[k];
+        CentreState<V, NC, NA, NG>& s = ctr[k];
         for (int c = 0; c < NC; ++c) {
             s.mean[c] = V::load(L.mean[c] + centre);
             s.threshold[c] = V::load(L.threshold[c] + centre);
-            s.value[c] = V::load(L.value[c] + centre);
         }
+        for (int c = 0; c < NA; ++c)
+            s.value[c] = V::load(L.value[c] + centre);
         if constexpr (kGuard)
             s.noise_limit = V::load(L.noise_limit + centre);
         for (int g = 0; g < NG; ++g)
@@ -192,7 +195,7 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
                     w[k] = simd::exp2_nonpositive<V>(V::sub(near[k], far[k]));
             }
         }
-        for (int c = 0; c < NC; ++c) {
+        for (int c = 0; c < NA; ++c) {
             F value = V::load(L.value[c] + off);
             if constexpr (Last - First > 1)
                 V::in_register(value);
@@ -201,7 +204,7 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
                                                          ctr[k].gathered.acc[c]);
         }
         for (int k = First; k < Last; ++k) {
-            Partial<V, NC>& g = ctr[k].gathered;
+            Partial<V, NA>& g = ctr[k].gathered;
             g.weight_sum = V::masked_add(m[k], g.weight_sum, w[k]);
             if constexpr (kDiagnostics) {
                 g.member_count = V::masked_add(m[k], g.member_count, V::set1(1.f));
@@ -303,15 +306,15 @@ void write_chunk(const FilterLayout& L, const std::vector<Plane>& out,
 /// (~70 KB at r = 20) streams it from L2 and runs at half the speed.
 constexpr int kBandRows = 4;
 
-/// Centre rows per pass: two on AVX-512 (32 registers) for up to three channels, one
-/// elsewhere. With guides or diagnostics the two rows spill a few centre values to the
-/// stack, and still win: with guides their two exp chains overlap (guided 350 → 293 ms),
-/// and the radius ladder's rungs (diagnostics, annuli) went from 488 to 454 ms
-/// (docs/filter-design.md).
-template <class V, int NC>
+/// Centre rows per pass: two on AVX-512 (32 registers) for up to three averaged channels
+/// (and a tested context channel), one elsewhere. With guides or diagnostics the two rows
+/// spill a few centre values to the stack, and still win: with guides their two exp chains
+/// overlap (guided 350 → 293 ms), the radius ladder's rungs (diagnostics, annuli) went from
+/// 488 to 454 ms, and with the context channel 4–6% more (docs/filter-design.md).
+template <class V, int NC, int NA>
 constexpr int centre_rows()
 {
-    return V::kWidth == 16 && NC <= 3 ? 2 : 1;
+    return V::kWidth == 16 && NC <= 4 && NA <= 3 ? 2 : 1;
 }
 
 /// The radius ladder's running sums of one chunk (FilterLayout::carry), in and out.
@@ -336,26 +339,26 @@ void store_carry(const FilterLayout& L, std::ptrdiff_t at, const Partial<V, NC>&
     V::store(L.carry[6] + at, p.inverse_sum);
 }
 
-template <class V, int NC, int NG, bool kNoise, bool kDiagnostics, int R>
+template <class V, int NC, int NA, int NG, bool kNoise, bool kDiagnostics, int R>
 void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
                       const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
-    std::vector<std::array<Partial<V, NC>, R>> partials(chunk1 - chunk0);
+    std::vector<std::array<Partial<V, NA>, R>> partials(chunk1 - chunk0);
     // Only the radius ladder carries, and it takes at most four channels.
-    constexpr bool kMayCarry = NC <= 4;
+    constexpr bool kMayCarry = NA <= 4;
     const bool carrying = kMayCarry && L.carry[4] != nullptr;
     for (int y = y0; y < y1; y += R) {
         const int rows = std::min(R, y1 - y);
         for (int k = chunk0; k < chunk1; ++k)
             for (int r = 0; r < rows; ++r) {
-                Partial<V, NC>& p = partials[k - chunk0][r];
+                Partial<V, NA>& p = partials[k - chunk0][r];
                 const std::ptrdiff_t at = std::ptrdiff_t(y + r) * L.stride + k * V::kWidth;
                 if constexpr (kMayCarry)
                     if (L.carry_from_previous) {
                         load_carry(L, at, p);
                         continue;
                     }
-                for (int c = 0; c < NC; ++c)
+                for (int c = 0; c < NA; ++c)
                     p.acc[c] = V::zero();
                 p.weight_sum = V::set1(1.f);  // the centre
                 p.member_count = V::set1(1.f);
@@ -363,16 +366,16 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
             }
         auto add = [&](auto centre_rows, int k, int wy0, int wy1) {
             constexpr int kRows = decltype(centre_rows)::value;
-            Partial<V, NC>* p = partials[k - chunk0].data();
+            Partial<V, NA>* p = partials[k - chunk0].data();
             bool guard = false;
             for (int r = 0; r < kRows; ++r)
                 guard = guard || L.needs_guard(y + r, k);
             if (guard)
-                add_band<V, NC, NG, kNoise, kRows, kDiagnostics, true>(L, y, k * V::kWidth, wy0,
-                                                                       wy1, p);
+                add_band<V, NC, NA, NG, kNoise, kRows, kDiagnostics, true>(L, y, k * V::kWidth,
+                                                                           wy0, wy1, p);
             else
-                add_band<V, NC, NG, kNoise, kRows, kDiagnostics, false>(L, y, k * V::kWidth, wy0,
-                                                                        wy1, p);
+                add_band<V, NC, NA, NG, kNoise, kRows, kDiagnostics, false>(L, y, k * V::kWidth,
+                                                                            wy0, wy1, p);
         };
         // Bands of window rows in a fixed order, and taps in a fixed order within each:
         // every pixel sums its taps in the same order whatever the tiling and pairing of
@@ -389,58 +392,65 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
         }
         for (int k = chunk0; k < chunk1; ++k)
             for (int r = 0; r < rows; ++r) {
-                const Partial<V, NC>& p = partials[k - chunk0][r];
+                const Partial<V, NA>& p = partials[k - chunk0][r];
                 if constexpr (kMayCarry)
                     if (carrying)
                         store_carry(L, std::ptrdiff_t(y + r) * L.stride + k * V::kWidth, p);
-                write_chunk<V, NC, kDiagnostics>(L, out, diag, y + r, k * V::kWidth, p);
+                write_chunk<V, NA, kDiagnostics>(L, out, diag, y + r, k * V::kWidth, p);
             }
     }
 }
 
-template <class V, int NC, int NG, bool kNoise>
+template <class V, int NC, int NA, int NG, bool kNoise>
 void filter_rows_diag(const FilterLayout& L, const std::vector<Plane>& out,
                       const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
+    constexpr int R = centre_rows<V, NC, NA>();
     if (diag.any())
-        filter_rows_impl<V, NC, NG, kNoise, true, centre_rows<V, NC>()>(L, out, diag, y0, y1,
-                                                                        chunk0, chunk1);
+        filter_rows_impl<V, NC, NA, NG, kNoise, true, R>(L, out, diag, y0, y1, chunk0, chunk1);
     else
-        filter_rows_impl<V, NC, NG, kNoise, false, centre_rows<V, NC>()>(L, out, diag, y0, y1,
-                                                                         chunk0, chunk1);
+        filter_rows_impl<V, NC, NA, NG, kNoise, false, R>(L, out, diag, y0, y1, chunk0, chunk1);
 }
 
 /// Guides with their noise (FilterLayout::guide_noise) take their own instantiation, so
 /// that guides without it run the loop they always ran.
-template <class V, int NC, int NG>
+template <class V, int NC, int NA, int NG>
 void filter_rows_noise(const FilterLayout& L, const std::vector<Plane>& out,
                        const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
     if (L.guide_noise)
-        filter_rows_diag<V, NC, NG, true>(L, out, diag, y0, y1, chunk0, chunk1);
+        filter_rows_diag<V, NC, NA, NG, true>(L, out, diag, y0, y1, chunk0, chunk1);
     else
-        filter_rows_diag<V, NC, NG, false>(L, out, diag, y0, y1, chunk0, chunk1);
+        filter_rows_diag<V, NC, NA, NG, false>(L, out, diag, y0, y1, chunk0, chunk1);
 }
 
-template <class V, int NC>
+template <class V, int NC, int NA = NC>
 void filter_rows_guides(const FilterLayout& L, const std::vector<Plane>& out,
                         const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
     switch (L.guide_count) {
     case 0:
-        return filter_rows_diag<V, NC, 0, false>(L, out, diag, y0, y1, chunk0, chunk1);
+        return filter_rows_diag<V, NC, NA, 0, false>(L, out, diag, y0, y1, chunk0, chunk1);
     case 3:
-        return filter_rows_noise<V, NC, 3>(L, out, diag, y0, y1, chunk0, chunk1);
+        return filter_rows_noise<V, NC, NA, 3>(L, out, diag, y0, y1, chunk0, chunk1);
     default:
-        return filter_rows_noise<V, NC, 6>(L, out, diag, y0, y1, chunk0, chunk1);
+        return filter_rows_noise<V, NC, NA, 6>(L, out, diag, y0, y1, chunk0, chunk1);
     }
 }
 
 /// Entry point: dispatches on the channel count and guide count at run time, once per call.
+/// A layer with its context channel (one tested, not averaged) takes its own instantiation;
+/// any other split averages every channel, which leaves the leading ones as they are.
 template <class V>
 void filter_rows(const FilterLayout& L, const std::vector<Plane>& out,
                  const FilterDiagnostics& diag, int y0, int y1, int chunk0, int chunk1)
 {
+    if (L.averaged == L.channels - 1) {
+        if (L.channels == 2)
+            return filter_rows_guides<V, 2, 1>(L, out, diag, y0, y1, chunk0, chunk1);
+        if (L.channels == 4)
+            return filter_rows_guides<V, 4, 3>(L, out, diag, y0, y1, chunk0, chunk1);
+    }
     switch (L.channels) {
     case 1:
         return filter_rows_guides<V, 1>(L, out, diag, y0, y1, chunk0, chunk1);

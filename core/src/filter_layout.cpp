@@ -157,6 +157,7 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
     L.width = est.width;
     L.height = est.height;
     L.channels = est.channels;
+    L.averaged = est.channels - est.context_channels;
     L.lanes = lanes;
     // No neighbour lies further than the image extends; clamping keeps padding small
     // for a radius larger than the image.

@@ -17,6 +17,10 @@ namespace statmc::detail {
 /// threshold −∞ (never members), test mean 0 and value 0.
 struct FilterLayout {
     int width = 0, height = 0, channels = 0;
+    // The leading channels whose values are averaged and written out; the rest (context
+    // channels, context_channel.h) only take part in the test. The CPU kernels write only
+    // these; the GPU's writes every channel.
+    int averaged = 0;
     int pad_x = 0, pad_y = 0;        // the window never reaches further than the image
     std::ptrdiff_t stride = 0;       // floats per padded row
     std::size_t plane_size = 0;      // floats per padded plane

@@ -71,9 +71,9 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
         });
     });
 
-    std::vector<float> rung_out(pixels * est.channels), effective(pixels);
+    std::vector<float> rung_out(pixels * channels), effective(pixels);
     std::vector<Plane> rung_planes;
-    for (int c = 0; c < est.channels; ++c)
+    for (int c = 0; c < channels; ++c)
         rung_planes.push_back(dense_plane(rung_out.data() + c * pixels, w));
     FilterDiagnostics diagnostics;
     diagnostics.effective_samples = dense_plane(effective.data(), w);

@@ -1,6 +1,7 @@
 // The context channel (context_channel.h): its box means and variances against a direct
 // computation, and what it is for: a pixel row on a light's edge, whose samples mostly miss
 // the light, keeps its own expectation instead of the dark surface's beside it.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -13,6 +14,7 @@
 #include "statmc/core/filter.h"
 #include "statmc/core/firefly_guard.h"
 #include "statmc/core/statistics_image.h"
+#include "filter_fixtures.h"
 
 namespace statmc {
 namespace {
@@ -142,6 +144,47 @@ TEST(ContextChannel, KeepsALightsEdgeRowFromTheSurfaceBesideIt)
     // Without the context the ceiling's members pull the row far down (seeds 1-3 and 7: 0.197
     // to 0.204 without, 0.458 to 0.503 with).
     EXPECT_LT(plain, 0.6 * truth) << "with " << with;
+}
+
+// The kernels test a context channel but do not average it (filter_layout.h, averaged):
+// the other channels come out with the bits they have when the context channel is
+// averaged too, at every SIMD level, with and without guides, and its plane is left alone.
+TEST(ContextChannel, IsTestedButNotAveragedWithTheSameBitsElsewhere)
+{
+    constexpr int w = 53, h = 31;
+    DenoiseOptions options;
+    options.radius = 4;
+    options.firefly_ratio = 0;  // the guard's levels leave context channels out; not here
+    for (int channels : {1, 3}) {
+        const EstimatorImage tested =
+            with_context(random_estimators(w, h, channels, 40 + channels), channels - 1, 1, 0);
+        ASSERT_EQ(tested.context_channels, 1);
+        EstimatorImage averaged = tested;
+        averaged.context_channels = 0;
+        for (bool guided : {false, true}) {
+            const GuideImages g(w, h, guided, guided, 9);
+            for (SimdLevel level : supported_simd_levels()) {
+                SCOPED_TRACE(std::string(simd_level_name(level)) + ", channels " +
+                             std::to_string(channels) + (guided ? ", guides" : ""));
+                Output a(w, h, channels + 1), b(w, h, channels + 1);
+                const float kUntouched = -7.f;
+                std::fill(a.values.begin() + std::size_t(channels) * w * h, a.values.end(),
+                          kUntouched);
+                filter(tested, g.guides, options, a.planes(), a.diagnostics(), 2, level);
+                filter(averaged, g.guides, options, b.planes(), b.diagnostics(), 2, level);
+                const std::size_t own = std::size_t(channels) * w * h;
+                EXPECT_TRUE(std::equal(a.values.begin(), a.values.begin() + own,
+                                       b.values.begin()));
+                EXPECT_EQ(a.members, b.members);
+                EXPECT_EQ(a.effective, b.effective);
+                EXPECT_TRUE(std::all_of(a.values.begin() + own, a.values.end(),
+                                        [&](float v) { return v == kUntouched; }));
+                // The averaged context plane is a real average, unlike the left-alone one.
+                EXPECT_FALSE(std::equal(a.values.begin() + own, a.values.end(),
+                                        b.values.begin() + own));
+            }
+        }
+    }
 }
 
 }  // namespace

@@ -223,12 +223,9 @@ Filtered filter_region(const StatisticsView& stats, TestDomain domain, const Gui
     const std::size_t pixels = std::size_t(stats.width) * stats.height;
     Filtered f;
     f.means.resize(pixels * stats.channels);
-    std::vector<float> context_means(context > 0 ? pixels : 0);  // averaged, not kept
-    std::vector<Plane> out;
+    std::vector<Plane> out;  // none for the context channel, which is only tested
     for (int c = 0; c < stats.channels; ++c)
         out.push_back(dense_plane(f.means.data() + c * pixels, stats.width));
-    if (context > 0)
-        out.push_back(dense_plane(context_means.data(), stats.width));
     FilterDiagnostics planes;
     if (diagnostics) {
         f.members.resize(pixels);
@@ -250,18 +247,17 @@ Filtered filter_region(const StatisticsView& stats, TestDomain domain, const Gui
 Filtered filter_joint_aov(EstimatorImage& lead, const StatisticsView& aov, const Guides& guides,
                           const DenoiseOptions& options, int nthreads)
 {
-    const int own = lead.channels - lead.context_channels;  // the context's are averaged, unused
+    const int own = lead.channels - lead.context_channels;  // the context's are only tested
     for (int c = 0; c < own; ++c)
         for (int y = 0; y < lead.height; ++y)
             for (int x = 0; x < lead.width; ++x)
                 lead.value[lead.index(c, x, y)] = aov.mean[c](x, y);
     Filtered f;
-    f.means.resize(lead.pixels() * lead.channels);
+    f.means.resize(lead.pixels() * own);
     std::vector<Plane> out;
-    for (int c = 0; c < lead.channels; ++c)
+    for (int c = 0; c < own; ++c)
         out.push_back(dense_plane(f.means.data() + c * lead.pixels(), lead.width));
     filter(lead, guides, options, out, {}, layers::thread_count(nthreads));
-    f.means.resize(lead.pixels() * own);
     return f;
 }
 

@@ -56,7 +56,8 @@ SimdLevel usable_simd_level(SimdLevel level);
 /// four three-channel layers tested together: joint AOVs).
 bool filter_takes_channels(int channels);
 
-/// Filters `est` into `out` (one plane per channel), on the CPU or, by options.device, on a
+/// Filters `est` into `out` (one plane per channel; context channels, which are only tested,
+/// take none and any planes given for them are left alone), on the CPU or, by options.device, on a
 /// CUDA GPU (docs/gpu.md). Bitwise identical for any thread count. Throws
 /// std::invalid_argument on invalid options, a channel count that filter_takes_channels
 /// refuses, too few output planes, or an unavailable SIMD level; std::runtime_error when
