@@ -77,32 +77,55 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
         rung_planes.push_back(dense_plane(rung_out.data() + c * pixels, w));
     FilterDiagnostics diagnostics;
     diagnostics.effective_samples = dense_plane(effective.data(), w);
+    // Per rung: whether the pixel's own intervals let it go on (1), or not (0, and for
+    // pixels already stopped).
+    std::vector<char> overlaps(pixels);
+    auto all_neighbours_overlap = [&](int x, int y) {
+        for (int yy = std::max(0, y - 1); yy <= std::min(h - 1, y + 1); ++yy)
+            for (int xx = std::max(0, x - 1); xx <= std::min(w - 1, x + 1); ++xx)
+                if ((xx != x || yy != y) && !overlaps[std::size_t(yy) * w + xx])
+                    return false;
+        return w * h > 1;
+    };
+    // Takes the rung's value; `restart`: its interval becomes the intersection.
+    auto go_on = [&](int x, int y, bool restart) {
+        const std::size_t i = std::size_t(y) * w + x;
+        for (int c = 0; c < channels; ++c) {
+            const std::size_t k = c * pixels + i;
+            const double v = rung_out[k], hw = half_width(k, effective[i]);
+            lo[k] = restart ? v - hw : std::max(lo[k], v - hw);
+            hi[k] = restart ? v + hw : std::min(hi[k], v + hw);
+            out[c](x, y) = rung_out[k];
+        }
+    };
     // One walk of the largest disk: each rung adds its annulus to the one before.
     auto take_rung = [&](int) {
         tbb::parallel_for(0, h, [&](int y) {
             for (int x = 0; x < w; ++x) {
                 const std::size_t i = std::size_t(y) * w + x;
-                if (!open[i])
-                    continue;
-                bool overlaps = true;
-                double hw[4];  // each channel's half width, for the test and the update
-                for (int c = 0; c < channels && overlaps; ++c) {
+                bool own = open[i] != 0;
+                for (int c = 0; c < channels && own; ++c) {
                     const std::size_t k = c * pixels + i;
-                    const double v = rung_out[k];
-                    hw[c] = half_width(k, effective[i]);
-                    overlaps = std::max(lo[k], v - hw[c]) <= std::min(hi[k], v + hw[c]);
+                    const double v = rung_out[k], hw = half_width(k, effective[i]);
+                    own = std::max(lo[k], v - hw) <= std::min(hi[k], v + hw);
                 }
-                if (!overlaps) {
-                    open[i] = 0;  // the previous rung stands
+                overlaps[i] = own;
+                if (own)
+                    go_on(x, y, false);
+            }
+        });
+        // The pixels that their own intervals stop (a few per cent): a lone stop among
+        // neighbours that all go on is overruled, its intersection (now empty) restarting
+        // from this rung's interval; any other stop stands, with the previous rung's value.
+        tbb::parallel_for(0, h, [&](int y) {
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = std::size_t(y) * w + x;
+                if (!open[i] || overlaps[i])
                     continue;
-                }
-                for (int c = 0; c < channels; ++c) {
-                    const std::size_t k = c * pixels + i;
-                    const double v = rung_out[k];
-                    lo[k] = std::max(lo[k], v - hw[c]);
-                    hi[k] = std::min(hi[k], v + hw[c]);
-                    out[c](x, y) = rung_out[k];
-                }
+                if (ladder.overrule_lone_stops && all_neighbours_overlap(x, y))
+                    go_on(x, y, true);
+                else
+                    open[i] = 0;
             }
         });
     };

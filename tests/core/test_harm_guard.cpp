@@ -158,6 +158,62 @@ TEST(RadiusLadder, TheDefaultLeavesNoHaloAndStillDenoises)
     EXPECT_LT(filtered, noisy / 10) << "noisy " << noisy << " filtered " << filtered;
 }
 
+// A flat field in which pixel (kFx, kFy) holds samples of `value` ± 1e-4: a variance
+// thousands of times below its neighbours', which the variance filter (§10's test) does
+// not pool with theirs, so its own intervals are nearly points.
+StatisticsPlanes flat_field_with_steady_pixel(std::uint64_t seed, float value)
+{
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<float> noise(kTruth, kSigma);
+    StatisticsImage<1> img(kSize, kSize);
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            for (int s = 0; s < kSpp; ++s) {
+                const float v =
+                    x == kFx && y == kFy ? value + (s % 2 ? 1e-4f : -1e-4f) : noise(rng);
+                img.add(x, y, &v);
+            }
+    return img.planes();
+}
+
+RadiusLadderOptions unmoderated(bool overrule)
+{
+    RadiusLadderOptions ladder = at_z3();
+    ladder.variance.prior_dof = 0;  // the pixel's own zero variance stands
+    ladder.overrule_lone_stops = overrule;
+    return ladder;
+}
+
+TEST(RadiusLadder, ALoneStopWhereEveryNeighbourGoesOnIsOverruled)
+{
+    // The pixel is 0.3σ off the truth with a tiny variance estimate (its samples happened
+    // to agree): by its own intervals it stops at rung 0. Its
+    // neighbours in the flat field all go on, and so, overruled, does it: it takes their
+    // large radius and ends far nearer the truth.
+    const float off = kTruth + 0.3f * kSigma;
+    const StatisticsPlanes stats = flat_field_with_steady_pixel(5, off);
+    const std::size_t p = std::size_t(kFy) * kSize + kFx;
+    const std::vector<float> own = laddered(stats, DenoiseOptions::paper(), unmoderated(false));
+    const std::vector<float> overruled =
+        laddered(stats, DenoiseOptions::paper(), unmoderated(true));
+    EXPECT_EQ(own[p], stats.mean[p]);
+    EXPECT_LT(std::abs(overruled[p] - kTruth), 0.2 * std::abs(off - kTruth))
+        << "overruled " << overruled[p] << ", its own " << stats.mean[p];
+    // Everywhere else the field still denoises as before.
+    EXPECT_LT(squared_error(overruled), squared_error(stats.mean) / 10);
+}
+
+TEST(RadiusLadder, ALonePixelOfItsOwnIsNotAveragedAway)
+{
+    // A one-pixel feature (a glint of 5× the field) stops by its intervals too, and its
+    // neighbours go on; overruled, it climbs the ladder, but the membership test refuses
+    // it every neighbour, so every rung is its own value.
+    const StatisticsPlanes stats = flat_field_with_steady_pixel(5, 5 * kTruth);
+    const std::size_t p = std::size_t(kFy) * kSize + kFx;
+    EXPECT_EQ(laddered(stats, DenoiseOptions::paper(), unmoderated(true))[p], stats.mean[p]);
+    EXPECT_EQ(laddered(stats, DenoiseOptions{}, the_defaults_ladder())[p], stats.mean[p]);
+}
+
 TEST(HarmGuard, AFilterThatIsRightIsRarelyTouched)
 {
     // Outputs equal to the truth lie outside x̄ ± z·se at about the rate α: count them over

@@ -117,6 +117,7 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.variance_radius = p.get_int("variance_radius", opt.variance_radius);
     opt.harm_alpha = p.get_float("do_no_harm", opt.harm_alpha);
     opt.ici_alpha = p.get_float("ici", opt.ici_alpha);
+    opt.ici_neighbours = p.get_bool("ici_neighbours", opt.ici_neighbours);
     // The ladder asked for by name must run: its missing layers are then an error.
     if (p.has("ici"))
         opt.optional_stages = false;
@@ -221,6 +222,11 @@ std::vector<statmc::ParameterSpec> parameters()
                         "M3/M4 layers); 0 = off." +
                             only_in_the_default(kDefaults.ici_alpha))
             .between(0, 0.5),
+        bool_parameter("ici_neighbours", kDefaults.ici_neighbours,
+                       "with ici: a pixel goes on up the ladder where all of its 8-neighbours "
+                       "do, even when its own intervals would stop it (a lone stop is more "
+                       "often the intervals' false alarm; docs/method.md §11); 0 = each pixel "
+                       "by its own intervals"),
         float_parameter("explained_variance", kDefaults.explained_alpha,
                         "experimental: first remove the part of each pixel's variance that a "
                         "gradient across the pixel explains, where significant at this level "

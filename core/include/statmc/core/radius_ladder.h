@@ -21,6 +21,12 @@ struct RadiusLadderOptions {
     /// filter's radius is always the last rung.
     std::vector<int> radii = {1, 2, 3, 5, 8, 12, 20};
     double alpha = 0.005;  ///< of each rung's interval, in (0, 1)
+    /// A pixel whose intervals stop it at a rung where every one of its 8-neighbours (those
+    /// inside the image) goes on goes on too, its intersection restarting from that rung's
+    /// interval: at α per rung and channel, a lone stop in a region that goes on is more
+    /// often the test's false alarm than a one-pixel feature, which the membership test
+    /// keeps anyway (docs/method.md §11). false: each pixel by its own intervals alone.
+    bool overrule_lone_stops = true;
     /// How ṽ is estimated from the untransformed variance and its moments.
     VarianceFilterOptions variance{3, 0.05, 2.f, 0.02f, 0.1f, true};
 };

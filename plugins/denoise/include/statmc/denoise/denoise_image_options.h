@@ -84,6 +84,9 @@ struct DenoiseImageOptions {
     /// significance (core/radius_ladder.h, docs/method.md §11); needs the untransformed
     /// variance with M3 and M4. Cannot be combined with diagnostics yet.
     double ici_alpha = 0.005;
+    /// With the ladder: a pixel goes on up the ladder where all of its 8-neighbours do,
+    /// even when its own intervals would stop it (RadiusLadderOptions::overrule_lone_stops).
+    bool ici_neighbours = true;
     /// 0: off. Else, before every other stage, the part of each pixel's variance that a
     /// linear gradient across the pixel explains is removed where the regression is
     /// significant at this level (core/explained_variance.h, docs/method.md §12); needs
