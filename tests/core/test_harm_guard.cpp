@@ -3,6 +3,8 @@
 // estimated standard errors of every pixel's own mean.
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -21,9 +23,11 @@ namespace {
 constexpr int kSize = 48, kFx = 24, kFy = 24, kSpp = 16;
 constexpr float kTruth = 0.5f, kSigma = 0.1f;  // normal samples; a firefly of 2000× the truth
 
-// A flat field of `spp` normal samples per pixel; with `firefly`, pixel (kFx, kFy)'s first
-// sample is 2000× the truth.
-StatisticsPlanes flat_field(std::uint64_t seed, int spp, bool firefly)
+// What pixel (kFx, kFy) holds as its sample s instead of a normal draw (none: the draw).
+using CentreSample = std::function<std::optional<float>(int s)>;
+
+// A flat field of `spp` normal samples per pixel, pixel (kFx, kFy)'s as `centre` says.
+StatisticsPlanes flat_field(std::uint64_t seed, int spp, const CentreSample& centre = {})
 {
     std::mt19937_64 rng(seed);
     std::normal_distribution<float> noise(kTruth, kSigma);
@@ -31,16 +35,20 @@ StatisticsPlanes flat_field(std::uint64_t seed, int spp, bool firefly)
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x)
             for (int s = 0; s < spp; ++s) {
-                const bool extreme = firefly && x == kFx && y == kFy && s == 0;
-                const float v = extreme ? 2000 * kTruth : noise(rng);
+                const std::optional<float> own =
+                    centre && x == kFx && y == kFy ? centre(s) : std::nullopt;
+                const float v = own ? *own : noise(rng);
                 img.add(x, y, &v);
             }
     return img.planes();
 }
 
+// Pixel (kFx, kFy)'s first sample is 2000× the truth.
 StatisticsPlanes flat_field_with_firefly(std::uint64_t seed)
 {
-    return flat_field(seed, kSpp, true);
+    return flat_field(seed, kSpp, [](int s) {
+        return s == 0 ? std::optional<float>(2000 * kTruth) : std::nullopt;
+    });
 }
 
 std::vector<float> papers_filter(const StatisticsPlanes& stats)
@@ -138,7 +146,7 @@ TEST(RadiusLadder, StillDenoisesAFlatField)
 {
     // Without the firefly every rung agrees, so pixels climb to large radii: the error
     // against the truth must fall far below the noisy input's.
-    const StatisticsPlanes stats = flat_field(3, kSpp, false);
+    const StatisticsPlanes stats = flat_field(3, kSpp);
     const double noisy = squared_error(stats.mean), filtered = squared_error(laddered(stats));
     // Radius 20 averages hundreds of pixels; a 10× lower squared error is a loose floor.
     EXPECT_LT(filtered, noisy / 10) << "noisy " << noisy << " filtered " << filtered;
@@ -152,7 +160,7 @@ TEST(RadiusLadder, TheDefaultLeavesNoHaloAndStillDenoises)
     const StatisticsPlanes stats = flat_field_with_firefly(1);
     EXPECT_LE(departures_beyond(laddered(stats, DenoiseOptions{}, the_defaults_ladder()), stats, 3),
               17);
-    const StatisticsPlanes flat = flat_field(3, kSpp, false);
+    const StatisticsPlanes flat = flat_field(3, kSpp);
     const double noisy = squared_error(flat.mean),
                  filtered = squared_error(laddered(flat, DenoiseOptions{}, the_defaults_ladder()));
     EXPECT_LT(filtered, noisy / 10) << "noisy " << noisy << " filtered " << filtered;
@@ -163,17 +171,9 @@ TEST(RadiusLadder, TheDefaultLeavesNoHaloAndStillDenoises)
 // not pool with theirs, so its own intervals are nearly points.
 StatisticsPlanes flat_field_with_steady_pixel(std::uint64_t seed, float value)
 {
-    std::mt19937_64 rng(seed);
-    std::normal_distribution<float> noise(kTruth, kSigma);
-    StatisticsImage<1> img(kSize, kSize);
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x)
-            for (int s = 0; s < kSpp; ++s) {
-                const float v =
-                    x == kFx && y == kFy ? value + (s % 2 ? 1e-4f : -1e-4f) : noise(rng);
-                img.add(x, y, &v);
-            }
-    return img.planes();
+    return flat_field(seed, kSpp, [value](int s) {
+        return std::optional<float>(value + (s % 2 ? 1e-4f : -1e-4f));
+    });
 }
 
 RadiusLadderOptions unmoderated(bool overrule)
@@ -218,7 +218,7 @@ TEST(HarmGuard, AFilterThatIsRightIsRarelyTouched)
 {
     // Outputs equal to the truth lie outside x̄ ± z·se at about the rate α: count them over
     // 48² pixels at α = 0.05 (expected ≈ 115) against a generous binomial band.
-    const StatisticsPlanes stats = flat_field(7, 64, false);
+    const StatisticsPlanes stats = flat_field(7, 64);
     std::vector<float> truth(std::size_t(kSize) * kSize, kTruth);
     HarmGuardOptions guard;
     guard.alpha = 0.05;
