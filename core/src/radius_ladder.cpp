@@ -87,14 +87,15 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
                     return false;
         return w * h > 1;
     };
-    // Takes the rung's value; `restart`: its interval becomes the intersection.
-    auto go_on = [&](int x, int y, bool restart) {
+    // Takes the rung's value, `hw` each channel's half width at this rung; `restart`: its
+    // interval becomes the intersection.
+    auto go_on = [&](int x, int y, const double* hw, bool restart) {
         const std::size_t i = std::size_t(y) * w + x;
         for (int c = 0; c < channels; ++c) {
             const std::size_t k = c * pixels + i;
-            const double v = rung_out[k], hw = half_width(k, effective[i]);
-            lo[k] = restart ? v - hw : std::max(lo[k], v - hw);
-            hi[k] = restart ? v + hw : std::min(hi[k], v + hw);
+            const double v = rung_out[k];
+            lo[k] = restart ? v - hw[c] : std::max(lo[k], v - hw[c]);
+            hi[k] = restart ? v + hw[c] : std::min(hi[k], v + hw[c]);
             out[c](x, y) = rung_out[k];
         }
     };
@@ -104,14 +105,16 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
             for (int x = 0; x < w; ++x) {
                 const std::size_t i = std::size_t(y) * w + x;
                 bool own = open[i] != 0;
+                double hw[4];
                 for (int c = 0; c < channels && own; ++c) {
                     const std::size_t k = c * pixels + i;
-                    const double v = rung_out[k], hw = half_width(k, effective[i]);
-                    own = std::max(lo[k], v - hw) <= std::min(hi[k], v + hw);
+                    const double v = rung_out[k];
+                    hw[c] = half_width(k, effective[i]);
+                    own = std::max(lo[k], v - hw[c]) <= std::min(hi[k], v + hw[c]);
                 }
                 overlaps[i] = own;
                 if (own)
-                    go_on(x, y, false);
+                    go_on(x, y, hw, false);
             }
         });
         // The pixels that their own intervals stop (a few per cent): a lone stop among
@@ -122,10 +125,14 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
                 const std::size_t i = std::size_t(y) * w + x;
                 if (!open[i] || overlaps[i])
                     continue;
-                if (ladder.overrule_lone_stops && all_neighbours_overlap(x, y))
-                    go_on(x, y, true);
-                else
+                if (ladder.overrule_lone_stops && all_neighbours_overlap(x, y)) {
+                    double hw[4];
+                    for (int c = 0; c < channels; ++c)
+                        hw[c] = half_width(c * pixels + i, effective[i]);
+                    go_on(x, y, hw, true);
+                } else {
                     open[i] = 0;
+                }
             }
         });
     };
