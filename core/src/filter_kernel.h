@@ -286,8 +286,11 @@ void write_chunk(const FilterLayout& L, const std::vector<Plane>& out,
         V::store(inverse, partial.inverse_sum);
     }
     const int n = std::min(V::kWidth, L.width - x0);
+    // Where no instantiation splits the channels (filter_rows), a context channel is
+    // averaged too, but never written: its caller gives it no plane.
+    const int written = std::min(NC, L.averaged);
     for (int k = 0; k < n; ++k) {
-        for (int c = 0; c < NC; ++c)
+        for (int c = 0; c < written; ++c)
             out[c](x0 + k, y) = lanes[c][k];
         if constexpr (kDiagnostics) {
             if (diag.members)

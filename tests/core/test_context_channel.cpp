@@ -155,7 +155,7 @@ TEST(ContextChannel, IsTestedButNotAveragedWithTheSameBitsElsewhere)
     DenoiseOptions options;
     options.radius = 4;
     options.firefly_ratio = 0;  // the guard's levels leave context channels out; not here
-    for (int channels : {1, 3}) {
+    for (int channels : {1, 2, 3}) {  // 2: no kernel of its own, the general one
         const EstimatorImage tested =
             with_context(random_estimators(w, h, channels, 40 + channels), channels - 1, 1, 0);
         ASSERT_EQ(tested.context_channels, 1);
