@@ -18,8 +18,8 @@ namespace statmc::detail {
 struct FilterLayout {
     int width = 0, height = 0, channels = 0;
     // The leading channels whose values are averaged and written out; the rest (context
-    // channels, context_channel.h) only take part in the test. The CPU kernels write only
-    // these; the GPU's writes every channel.
+    // channels, context_channel.h) only take part in the test. Only these are written
+    // out, on the CPU and the GPU.
     int averaged = 0;
     int pad_x = 0, pad_y = 0;        // the window never reaches further than the image
     std::ptrdiff_t stride = 0;       // floats per padded row

@@ -101,7 +101,8 @@ std::vector<float> core_filtered(const StatisticsView& stats, TestDomain domain,
 {
     EstimatorImage est = estimators_from_statistics(stats, domain);
     if (context > 0)
-        est = with_context(est, est.channels >= 3 ? 1 : 0, context, options.firefly_ratio, 1);
+        est = with_context(est, context_source_channel(est.channels), context,
+                           options.firefly_ratio, 1);
     const std::size_t n = std::size_t(stats.width) * stats.height;
     std::vector<float> out(n * est.channels);
     std::vector<Plane> planes;

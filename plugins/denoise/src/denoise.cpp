@@ -201,25 +201,23 @@ struct Filtered {
     std::vector<float> means, members, effective_samples;
 };
 
-// The lead's estimators, with the context channel when `context` > 0 (context_channel.h):
-// that of green, which carries most of the luminance, or of the only channel.
+// The lead's estimators, with the context channel when `context` > 0 (context_channel.h).
 EstimatorImage lead_estimators(const StatisticsView& stats, TestDomain domain,
                                const DenoiseOptions& options, int context, int nthreads)
 {
     EstimatorImage est = estimators_from_statistics(stats, domain);
     if (context == 0)
         return est;
-    return with_context(est, est.channels >= 3 ? 1 : 0, context, options.firefly_ratio,
-                        layers::thread_count(nthreads));
+    return with_context(est, context_source_channel(est.channels), context,
+                        options.firefly_ratio, layers::thread_count(nthreads));
 }
 
-// With `ladder`, each pixel at its ICI radius (no diagnostics then); with `context` > 0,
-// the context test over boxes of that radius as well (context_channel.h).
-Filtered filter_region(const StatisticsView& stats, TestDomain domain, const Guides& guides,
-                       const DenoiseOptions& options, bool diagnostics,
-                       const RadiusLadderOptions* ladder, int context, int nthreads)
+// `est` (built from `stats` by lead_estimators) filtered; with `ladder`, each pixel at its
+// ICI radius (no diagnostics then).
+Filtered filter_region(const StatisticsView& stats, const EstimatorImage& est,
+                       const Guides& guides, const DenoiseOptions& options, bool diagnostics,
+                       const RadiusLadderOptions* ladder, int nthreads)
 {
-    const EstimatorImage est = lead_estimators(stats, domain, options, context, nthreads);
     const std::size_t pixels = std::size_t(stats.width) * stats.height;
     Filtered f;
     f.means.resize(pixels * stats.channels);
@@ -841,13 +839,11 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
         for (std::size_t k = 0; k < joint.size(); ++k)
             joint[k].second = std::move(all[k + 1]);
     } else {
-        filtered = filter_region(window, domain, window_guides, opt.filter, opt.diagnostics,
-                                 stages.radius_ladder ? &stages.ladder : nullptr,
-                                 stages.context ? opt.context_radius : 0, nthreads);
-        EstimatorImage lead;
-        if (opt.joint)
-            lead = lead_estimators(window, domain, opt.filter,
-                                   stages.context ? opt.context_radius : 0, nthreads);
+        // Built once: the joint AOVs below reuse the lead's estimators, their values swapped.
+        EstimatorImage lead = lead_estimators(window, domain, opt.filter,
+                                              stages.context ? opt.context_radius : 0, nthreads);
+        filtered = filter_region(window, lead, window_guides, opt.filter, opt.diagnostics,
+                                 stages.radius_ladder ? &stages.ladder : nullptr, nthreads);
         for (const std::string& aov : opt.joint ? opt.aovs : std::vector<std::string>{}) {
             StatisticsChannels aov_ch = joint_aov_means(in, aov, ch, opt, regions.input);
             Filtered f =

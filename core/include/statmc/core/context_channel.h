@@ -23,4 +23,8 @@ namespace statmc {
 EstimatorImage with_context(const EstimatorImage& est, int channel, int radius, float firefly_ratio,
                             int nthreads = 0);
 
+/// The channel whose surroundings the context test compares in an image of `channels`:
+/// green (1), which carries most of the luminance, or the first.
+inline int context_source_channel(int channels) { return channels >= 3 ? 1 : 0; }
+
 }  // namespace statmc
