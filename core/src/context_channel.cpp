@@ -1,6 +1,7 @@
 #include "statmc/core/context_channel.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -33,27 +34,37 @@ EstimatorImage with_context(const EstimatorImage& est, int channel, int radius, 
         // accept, so that a firefly changes no other pixel's context; and the centre itself,
         // so that a firefly's own context is its surroundings'.
         const NoiseLevels noise = noise_levels(est, firefly_ratio);
+        // Whether each pixel is testable, once: every box would otherwise test it again.
+        std::vector<std::uint8_t> testable(est.pixels());
         tbb::parallel_for(0, h, [&](int y) {
+            for (int x = 0; x < w; ++x)
+                testable[std::size_t(y) * w + x] = est.testable(x, y);
+        });
+        const float* test_mean = est.test_mean.data() + est.index(channel, 0, 0);
+        const float* test_variance = est.test_variance.data() + est.index(channel, 0, 0);
+        const float* value_plane = est.value.data() + est.index(channel, 0, 0);
+        tbb::parallel_for(0, h, [&](int y) {
+            const int y0 = std::max(y - radius, 0), y1 = std::min(y + radius, h - 1);
             for (int x = 0; x < w; ++x) {
+                const std::size_t centre = std::size_t(y) * w + x;
+                const float limit = noise.limit[centre];
+                const int x0 = std::max(x - radius, 0), x1 = std::min(x + radius, w - 1);
                 double mean = 0, variance = 0, value = 0;
                 int k = 0;
-                for (int yy = std::max(y - radius, 0); yy <= std::min(y + radius, h - 1); ++yy)
-                    for (int xx = std::max(x - radius, 0); xx <= std::min(x + radius, w - 1);
-                         ++xx) {
-                        const std::size_t q = std::size_t(yy) * w + xx;
-                        if ((xx == x && yy == y) || !est.testable(xx, yy) ||
-                            !(noise.level[q] <= noise.limit[std::size_t(y) * w + x]))
+                for (int yy = y0; yy <= y1; ++yy)
+                    for (std::size_t q = std::size_t(yy) * w + x0, end = q + (x1 - x0); q <= end;
+                         ++q) {
+                        if (q == centre || !testable[q] || !(noise.level[q] <= limit))
                             continue;
-                        mean += est.test_mean[est.index(channel, xx, yy)];
-                        variance += est.test_variance[est.index(channel, xx, yy)];
-                        value += est.value[est.index(channel, xx, yy)];
+                        mean += test_mean[q];
+                        variance += test_variance[q];
+                        value += value_plane[q];
                         ++k;
                     }
-                const std::size_t to = out.index(context, x, y), from = est.index(channel, x, y);
-                out.test_mean[to] = k ? float(mean / k) : est.test_mean[from];
-                out.test_variance[to] =
-                    k ? float(variance / (double(k) * k)) : est.test_variance[from];
-                out.value[to] = k ? float(value / k) : est.value[from];
+                const std::size_t to = out.index(context, x, y);
+                out.test_mean[to] = k ? float(mean / k) : test_mean[centre];
+                out.test_variance[to] = k ? float(variance / (double(k) * k)) : test_variance[centre];
+                out.value[to] = k ? float(value / k) : value_plane[centre];
             }
         });
     });
