@@ -64,7 +64,7 @@ void fill_pixel_planes(const StatisticsView& view, const DomainPlanes& d, double
     const std::size_t n = L.pixels;
     const bool test_means = moderate && L.prior_z2 > 0;
     L.log_centre.resize(n * view.channels);
-    L.log_se2.resize(n * view.channels);
+    L.log_se2.resize(L.tested ? n * view.channels : 0);
     L.s2.resize(n * view.channels);
     L.usable.resize(n * view.channels);
     L.mean.resize(test_means ? n * view.channels : 0);
@@ -74,13 +74,17 @@ void fill_pixel_planes(const StatisticsView& view, const DomainPlanes& d, double
             for (int x = 0; x < view.width; ++x) {
                 const double count = view.count(x, y);
                 const double s2 = d.s2(c, x, y, count);
+                const std::size_t k = c * n + std::size_t(y) * view.width + x;
                 const double m2 = s2 * (count - 1);
                 const double m4 = double(d.moment4[c](x, y)) * count;
-                const auto interval = bonett_interval(count, m2, m4, z);
-                const std::size_t k = c * n + std::size_t(y) * view.width + x;
-                L.log_centre[k] = interval ? float(interval->centre) : NAN;
-                const double se = interval ? interval->half_width / z : 0;
-                L.log_se2[k] = float(se * se);
+                if (L.tested) {
+                    const auto interval = bonett_interval(count, m2, m4, z);
+                    L.log_centre[k] = interval ? float(interval->centre) : NAN;
+                    const double se = interval ? interval->half_width / z : 0;
+                    L.log_se2[k] = float(se * se);
+                } else {  // whether it has an interval is all a borrower asks
+                    L.log_centre[k] = has_bonett_interval(count, m2, m4, z) ? 0.f : NAN;
+                }
                 L.s2[k] = s2;
                 L.usable[k] = moderate && count >= 2 && std::isfinite(s2);
                 if (test_means) {
@@ -147,6 +151,19 @@ bool in_prior(const detail::VarianceLayout& L, std::size_t i, std::size_t j)
     return d * d <= L.prior_z2 * (double(L.mean_se2[i]) + L.mean_se2[j]);
 }
 
+// Whether neighbour j's s² joins centre i's average: their intervals on ln σ² agree (with
+// the test; without it a pixel with an interval keeps its own). NaN (no interval) fails
+// the comparison: such a pixel joins none. A borrowing pixel (no interval) takes any that
+// has one.
+bool member(const detail::VarianceLayout& L, std::size_t i, std::size_t j)
+{
+    const bool borrows = L.borrow && std::isnan(L.log_centre[i]) && !std::isnan(L.log_centre[j]);
+    if (!L.tested)
+        return borrows;
+    const double diff = double(L.log_centre[i]) - L.log_centre[j];
+    return diff * diff <= L.z2 * (double(L.log_se2[i]) + L.log_se2[j]) || borrows;
+}
+
 // The scalar disk loop, and the reference the SIMD kernels match bit for bit: per channel
 // the tested sum (centre first, then the disk in raster order: a fixed summation order,
 // whichever thread runs the row) and, for the moderation, the untested one.
@@ -176,14 +193,8 @@ void add_disk_scalar(const detail::VarianceLayout& L, int x, int y, detail::Vari
         }
         for (int c = 0; c < L.channels; ++c) {
             const std::size_t i = c * n + p, j = c * n + q;
-            // NaN (no interval) fails the comparison: such a pixel joins none. A borrowing
-            // pixel (no interval) takes any that has one.
-            const double diff = double(L.log_centre[i]) - L.log_centre[j];
-            const bool member =
-                diff * diff <= L.z2 * (double(L.log_se2[i]) + L.log_se2[j]) ||
-                (L.borrow && std::isnan(L.log_centre[i]) && !std::isnan(L.log_centre[j]));
             const double term = wij * L.s2[j];
-            if (member) {
+            if (member(L, i, j)) {
                 s.sum[c] += term;
                 s.weight[c] += wij;
             }
@@ -230,6 +241,7 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
         L.prior_z2 = z_prior * z_prior;
     }
     L.borrow = options.borrow_without_interval;
+    L.tested = options.interval_test;
     const std::size_t n = L.pixels;
     std::vector<float> out(n * L.channels);
     run_with_threads(nthreads, [&] {

@@ -84,9 +84,10 @@ struct Lanes {
 };
 
 // One channel of add_variance_disk: `weights` holds each tap's W guide weights, or is null
-// (the spatial weight alone). TestMeans: the prior takes only neighbours that pass the test
-// on the means (in_prior() in variance_filter.cpp).
-template <int W, bool TestMeans>
+// (the spatial weight alone). Tested: the members' sums too (VarianceLayout::tested), else
+// only the prior's. TestMeans: the prior takes only neighbours that pass the test on the
+// means (in_prior() in variance_filter.cpp).
+template <int W, bool Tested, bool TestMeans>
 void add_variance_channel(const VarianceLayout& L, int c, std::size_t p0, const double* weights,
                           VarianceSums* sums)
 {
@@ -96,7 +97,7 @@ void add_variance_channel(const VarianceLayout& L, int c, std::size_t p0, const 
     const std::size_t plane = std::size_t(c) * L.pixels;
     const D z2 = V::splat(L.z2), prior_z2 = V::splat(L.prior_z2);
     const D centre = V::load(L.log_centre.data() + plane + p0);
-    const D se2 = V::load(L.log_se2.data() + plane + p0);
+    const D se2 = Tested ? V::load(L.log_se2.data() + plane + p0) : D{};
     D mean{}, mean_se2{};
     if (TestMeans) {
         mean = V::load(L.mean.data() + plane + p0);
@@ -104,6 +105,8 @@ void add_variance_channel(const VarianceLayout& L, int c, std::size_t p0, const 
     }
     // Lanes without an interval that take any neighbour with one.
     const Mask borrows = L.borrow ? centre != centre : Mask{};
+    // Without the test only borrowers gather members' sums: most chunks have none.
+    const bool gathers = Tested || V::any(borrows);
     D sum, weight, prior_sum, prior_weight;
     for (int k = 0; k < W; ++k) {
         sum[k] = sums[k].sum[c];
@@ -115,19 +118,23 @@ void add_variance_channel(const VarianceLayout& L, int c, std::size_t p0, const 
         const VarianceTap& tap = L.taps[t];
         const std::size_t q0 = plane + p0 + std::ptrdiff_t(tap.dy) * L.width + tap.dx;
         const D w = weights ? V::load(weights + t * W) : V::splat(tap.spatial);
-        const D other = V::load(L.log_centre.data() + q0);
-        const D diff = centre - other;
-        // A NaN centre (no interval) fails the comparison: such a pixel joins none.
-        const Mask member = (diff * diff <= z2 * (se2 + V::load(L.log_se2.data() + q0))) |
-                            (borrows & (other == other));
+        const D term = w * V::load(L.s2.data() + q0);
+        if (gathers) {
+            const D other = V::load(L.log_centre.data() + q0);
+            Mask member = borrows & (other == other);
+            if (Tested) {
+                // A NaN centre (no interval) fails the comparison: such a pixel joins none.
+                const D diff = centre - other;
+                member = (diff * diff <= z2 * (se2 + V::load(L.log_se2.data() + q0))) | member;
+            }
+            sum = member ? sum + term : sum;
+            weight = member ? weight + w : weight;
+        }
         Mask usable = V::load_flags(L.usable.data() + q0);
         if (TestMeans) {
             const D d = mean - V::load(L.mean.data() + q0);
             usable = usable & (d * d <= prior_z2 * (mean_se2 + V::load(L.mean_se2.data() + q0)));
         }
-        const D term = w * V::load(L.s2.data() + q0);
-        sum = member ? sum + term : sum;
-        weight = member ? weight + w : weight;
         prior_sum = usable ? prior_sum + term : prior_sum;
         prior_weight = usable ? prior_weight + w : prior_weight;
     }
@@ -177,11 +184,17 @@ void add_variance_disk(const VarianceLayout& L, int x0, int y, VarianceSums* sum
     // Channel by channel, each walking every tap: one channel's sums and centre values fit
     // in registers (three channels' at once do not), and each sum still adds its taps in
     // raster order.
-    for (int c = 0; c < channels; ++c)
-        if (L.prior_z2 > 0)
-            add_variance_channel<W, true>(L, c, p0, groups > 0 ? weights.data() : nullptr, sums);
+    const double* w = groups > 0 ? weights.data() : nullptr;
+    for (int c = 0; c < channels; ++c) {
+        if (L.tested && L.prior_z2 > 0)
+            add_variance_channel<W, true, true>(L, c, p0, w, sums);
+        else if (L.tested)
+            add_variance_channel<W, true, false>(L, c, p0, w, sums);
+        else if (L.prior_z2 > 0)
+            add_variance_channel<W, false, true>(L, c, p0, w, sums);
         else
-            add_variance_channel<W, false>(L, c, p0, groups > 0 ? weights.data() : nullptr, sums);
+            add_variance_channel<W, false, false>(L, c, p0, w, sums);
+    }
 }
 
 }  // namespace

@@ -31,7 +31,7 @@ struct VarianceTap {
 struct VarianceLayout {
     int width = 0, height = 0, channels = 0, radius = 0;
     std::size_t pixels = 0;         ///< per channel; every plane below is channel-major
-    std::vector<float> log_centre;  ///< centre of the interval on ln σ²; NaN: no interval
+    std::vector<float> log_centre;  ///< centre of the interval on ln σ²; NaN: no interval (`tested`)
     std::vector<float> log_se2;     ///< its squared standard error
     std::vector<double> s2;         ///< the per-sample s² that is averaged
     std::vector<char> usable;       ///< whether the moderation may use s2
@@ -47,6 +47,10 @@ struct VarianceLayout {
     double z2 = 0;        ///< the squared critical value of the test on ln σ²
     double prior_z2 = 0;  ///< that of the prior's test on the means; 0 = no test
     bool borrow = false;  ///< VarianceFilterOptions::borrow_without_interval
+    /// VarianceFilterOptions::interval_test; false: log_centre only marks which pixels have
+    /// an interval (0, else NaN), log_se2 stays empty, and the members' sums gather only
+    /// what borrowers take.
+    bool tested = true;
 
     int guide_groups() const { return int(guide.size()) / 3; }
     bool interior(int x, int y) const

@@ -16,9 +16,14 @@ bool LogVarianceInterval::contains_variance(double variance) const
     return variance > 0 && std::abs(std::log(variance) - centre) <= half_width;
 }
 
+bool has_bonett_interval(double n, double m2, double m4, double z)
+{
+    return n >= 4 && n > z && m2 > 0 && m4 >= 0;
+}
+
 std::optional<LogVarianceInterval> bonett_interval(double n, double m2, double m4, double z)
 {
-    if (!(n >= 4) || !(n > z) || !(m2 > 0) || !(m4 >= 0))
+    if (!has_bonett_interval(n, m2, m4, z))
         return std::nullopt;
     const double c = n / (n - z);
     const double kurtosis = n * m4 / (m2 * m2);

@@ -133,6 +133,41 @@ TEST(VarianceFilter, PixelsWithoutAnIntervalKeepTheirVarianceAndJoinNone)
     EXPECT_EQ(again[10 * kW + 11], out[10 * kW + 11]);
 }
 
+TEST(VarianceFilter, WithoutTheIntervalTestAPixelKeepsItsOwnAndOnlyBorrowersAverage)
+{
+    StatisticsPlanes stats = synthetic(3);
+    const std::size_t borrower = 10 * kW + 10;
+    stats.count[borrower] = 3;  // no Bonett interval below 4 samples
+    VarianceFilterOptions o;
+    o.interval_test = false;
+    o.borrow_without_interval = true;
+    const std::vector<float> out = denoise_variances(stats.view(), TestDomain::BoxCox, {}, o);
+    // Every pixel with an interval keeps its own s², bit for bit (no moderation here).
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        if (i != borrower) {
+            ASSERT_EQ(out[i], stats.bc_variance[i]) << i;
+        }
+    }
+    // The borrower takes the spatially weighted mean of its disk's s² (radius 3, σ = 2; its
+    // neighbours all have intervals), computed here independently.
+    double sum = 0, weight = 0;
+    for (int dy = -3; dy <= 3; ++dy)
+        for (int dx = -3; dx <= 3; ++dx)
+            if (dx * dx + dy * dy <= 9 && (dx || dy)) {
+                const double w = std::exp(-(dx * dx + dy * dy) / 8.0);
+                sum += w * stats.bc_variance[(10 + dy) * kW + 10 + dx];
+                weight += w;
+            }
+    EXPECT_NEAR(out[borrower], sum / weight, 1e-6 * sum / weight);
+    // With the test, pixels average their neighbours: most variances change.
+    o.interval_test = true;
+    const std::vector<float> tested = denoise_variances(stats.view(), TestDomain::BoxCox, {}, o);
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < out.size(); ++i)
+        changed += tested[i] != stats.bc_variance[i];
+    EXPECT_GT(changed, out.size() / 2);
+}
+
 // Four samples of a pixel that reaches a light one time in four (else a dark 0.001·U):
 // about 0.75⁴ = 32% of the pixels saw no light and claim a variance ~10⁵ below the truth
 // p(1 − p) = 0.1875. Their Bonett intervals are confidently wrong, so the test rejects every
@@ -283,8 +318,10 @@ TEST(VarianceFilter, EverySimdLevelGivesTheScalarLoopsBits)
     for (const Guides& g : {Guides{}, guides})
         for (const bool borrow : {false, true})
             for (const auto& [prior_dof, prior_alpha] :
-                 {std::pair{0.0, 0.0}, std::pair{16.0, 0.0}, std::pair{16.0, 0.05}}) {
+                 {std::pair{0.0, 0.0}, std::pair{16.0, 0.0}, std::pair{16.0, 0.05}})
+            for (const bool interval_test : {true, false}) {
                 VarianceFilterOptions o;
+                o.interval_test = interval_test;
                 o.borrow_without_interval = borrow;
                 o.prior_dof = prior_dof;
                 o.prior_alpha = prior_alpha;
@@ -295,7 +332,8 @@ TEST(VarianceFilter, EverySimdLevelGivesTheScalarLoopsBits)
                         same_bits(scalar, denoise_variances(stats.view(), TestDomain::Untransformed,
                                                             g, o, 2, level)))
                         << simd_level_name(level) << " guides " << g.has_albedo() << " borrow "
-                        << borrow << " d0 " << prior_dof << " prior alpha " << prior_alpha;
+                        << borrow << " d0 " << prior_dof << " prior alpha " << prior_alpha
+                        << " interval test " << interval_test;
             }
 }
 

@@ -142,6 +142,7 @@ VarianceFilterOptions variance_filter_options(VarianceFilterOptions variance,
     variance.sigma_normal = opt.filter.sigma_normal;
     variance.prior_dof = opt.variance_prior_dof;
     variance.prior_alpha = opt.variance_prior_alpha;
+    variance.interval_test = opt.variance_test;
     return variance;
 }
 

@@ -63,6 +63,7 @@ DenoiseImageOptions DenoiseImageOptions::classic()
     o.ici_alpha = 0;
     o.variance_prior_dof = 0;
     o.variance_prior_alpha = 0;
+    o.variance_test = true;
     o.context_radius = 0;
     o.filter.guide_noise = false;
     return o;

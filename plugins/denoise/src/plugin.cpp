@@ -124,6 +124,7 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.explained_alpha = p.get_float("explained_variance", opt.explained_alpha);
     opt.variance_prior_dof = p.get_float("variance_dof", opt.variance_prior_dof);
     opt.variance_prior_alpha = p.get_float("variance_prior_alpha", opt.variance_prior_alpha);
+    opt.variance_test = p.get_bool("variance_test", opt.variance_test);
     opt.context_radius = p.get_int("context", opt.context_radius);
     if (p.has("context") && opt.context_radius > 0)
         opt.optional_stages = false;
@@ -238,6 +239,12 @@ std::vector<statmc::ParameterSpec> parameters()
                         "neighbourhood's (docs/method.md §10); 0 = off." +
                             only_in_the_default(kDefaults.variance_prior_dof))
             .between(0, 1000),
+        bool_parameter("variance_test", std::nullopt,
+                       "the variance filters (variance_radius, do_no_harm, ici) first average "
+                       "the variances of the neighbours whose intervals on ln s2 agree "
+                       "(StatER's variance denoising; docs/method.md §10); 0 = each pixel "
+                       "keeps its own, which variance_dof alone moderates. Default 0, classic "
+                       "and paper 1"),
         int_parameter("context", std::nullopt,
                       "a neighbour joins only where the means over the (2k+1)x(2k+1) boxes "
                       "around both pixels pass the t-test too, as NL-means compares patches: a "

@@ -35,6 +35,12 @@ struct VarianceFilterOptions {
     /// variance to nobody; one whose mean differs only by the noise its variance explains (a
     /// rare bright path) still does (docs/method.md §10). 0 = every usable neighbour.
     double prior_alpha = 0;
+    /// true: the average above, over the neighbours whose intervals on ln σ² agree
+    /// (StatER's variance denoising). false: each pixel keeps its own s², and only the
+    /// moderation (prior_dof) pulls it towards its neighbourhood; the intervals are not
+    /// computed. The default method measured the same either way and takes false, the
+    /// cheaper (docs/method.md §10).
+    bool interval_test = true;
 };
 
 /// The denoised per-sample variances of `view` in `domain` (BoxCox: the Box-Cox set and
@@ -44,7 +50,7 @@ struct VarianceFilterOptions {
 ///
 ///     |ln(c_i s²_i) − ln(c_j s²_j)| ≤ z · sqrt(se_i² + se_j²),   z at 1 − α/2
 ///
-/// and the result is Σ w_ij s²_j / Σ w_ij over the members, w_ij the spatial Gaussian times
+/// (options.interval_test) and the result is Σ w_ij s²_j / Σ w_ij over the members, w_ij the spatial Gaussian times
 /// the guides' Gaussians when `guides` has them, as in the mean filter (docs/method.md §5;
 /// the centre has weight 1). A pixel without an interval joins no other. Deterministic: the
 /// same result for any `nthreads` (0 = all cores) and any `level` (the SIMD kernels add the

@@ -32,6 +32,9 @@ struct LogVarianceInterval {
 /// No interval (nullopt) below 4 values, for n ≤ z, or without spread (m2 ≤ 0).
 std::optional<LogVarianceInterval> bonett_interval(double n, double m2, double m4, double z);
 
+/// Whether bonett_interval(n, m2, m4, z) gives an interval, without computing it.
+bool has_bonett_interval(double n, double m2, double m4, double z);
+
 /// z for a two-sided confidence of 1 − α (α in (0, 1)).
 double normal_critical_value(double alpha);
 

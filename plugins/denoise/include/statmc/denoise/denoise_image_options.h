@@ -100,6 +100,11 @@ struct DenoiseImageOptions {
     /// this significance cannot tell from the pixel's (VarianceFilterOptions::prior_alpha,
     /// docs/method.md §10); 0 = every neighbour.
     double variance_prior_alpha = 0.05;
+    /// Whether every variance filter above first averages the s² of the neighbours whose
+    /// intervals on ln σ² agree (VarianceFilterOptions::interval_test, StatER's variance
+    /// denoising) or leaves each pixel's own s² to the moderation alone: the default method
+    /// measured the same either way and takes the cheaper (docs/method.md §10).
+    bool variance_test = false;
     /// 0: off. Else a neighbour joins only where the means over the boxes of this radius
     /// around the two pixels pass the t-test too (core/context_channel.h, docs/method.md §5):
     /// a pixel on a light's edge is then not averaged with the surface beside it. Skipped,
