@@ -28,11 +28,18 @@ void require_valid(const StatisticsView& view, TestDomain domain, const Variance
         throw std::invalid_argument("variance filter: prior_alpha must be in [0, 1)");
     if (!(o.sigma_spatial > 0 && o.sigma_albedo > 0 && o.sigma_normal > 0))
         throw std::invalid_argument("variance filter: the sigmas must be > 0");
-    if (domain == TestDomain::BoxCox && !(view.count && view.has_box_cox_moment4()))
+    // The fourth moment only sets the intervals' widths: without the test it is not read.
+    if (domain == TestDomain::BoxCox && o.interval_test &&
+        !(view.count && view.has_box_cox_moment4()))
         throw std::invalid_argument(
             "variance filter: needs the Box-Cox statistics and their fourth moment (boxcoxM4)");
-    if (domain == TestDomain::Untransformed && !(view.count && view.has_moments()))
+    if (domain == TestDomain::BoxCox && !(view.count && view.has_box_cox()))
+        throw std::invalid_argument("variance filter: needs the Box-Cox statistics");
+    if (domain == TestDomain::Untransformed && o.interval_test &&
+        !(view.count && view.has_moments()))
         throw std::invalid_argument("variance filter: needs the variance and its moments M3, M4");
+    if (domain == TestDomain::Untransformed && !(view.count && view.has_variance()))
+        throw std::invalid_argument("variance filter: needs the variance");
 }
 
 // The mean, per-sample s² and M4/n planes of one domain.
@@ -76,14 +83,17 @@ void fill_pixel_planes(const StatisticsView& view, const DomainPlanes& d, double
                 const double s2 = d.s2(c, x, y, count);
                 const std::size_t k = c * n + std::size_t(y) * view.width + x;
                 const double m2 = s2 * (count - 1);
-                const double m4 = double(d.moment4[c](x, y)) * count;
                 if (L.tested) {
+                    const double m4 = double(d.moment4[c](x, y)) * count;
                     const auto interval = bonett_interval(count, m2, m4, z);
                     L.log_centre[k] = interval ? float(interval->centre) : NAN;
                     const double se = interval ? interval->half_width / z : 0;
                     L.log_se2[k] = float(se * se);
-                } else {  // whether it has an interval is all a borrower asks
-                    L.log_centre[k] = has_bonett_interval(count, m2, m4, z) ? 0.f : NAN;
+                } else {
+                    // Whether it would have an interval is all a borrower asks. That does
+                    // not depend on M4, which is never negative in valid statistics and
+                    // may be absent without the test.
+                    L.log_centre[k] = has_bonett_interval(count, m2, 0.0, z) ? 0.f : NAN;
                 }
                 L.s2[k] = s2;
                 L.usable[k] = moderate && count >= 2 && std::isfinite(s2);

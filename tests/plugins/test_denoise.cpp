@@ -252,10 +252,16 @@ TEST(DenoiseOperator, VarianceDenoisingNeedsTheFourthMoment)
         test::without_channels(f.image, {"boxcoxM4.R", "boxcoxM4.G", "boxcoxM4.B"});
     const OIIO::ImageBuf out = denoise(v1, o);
     EXPECT_EQ(out.geterror().rfind("missing layer boxcoxM4 (channels boxcoxM4.R, boxcoxM4.G, "
-                                   "boxcoxM4.B); variance_radius needs it",
+                                   "boxcoxM4.B); variance_radius with variance_test=1 needs it",
                                    0),
               0u)
         << out.geterror();
+    // Without the interval test (the moderation alone) the fourth moment is not read.
+    o.variance_test = false;
+    o.variance_prior_dof = 16;
+    const OIIO::ImageBuf moderated = denoise(v1, o);
+    EXPECT_FALSE(moderated.has_error()) << moderated.geterror();
+    o.variance_test = true;
     o.test = TestDomainChoice::Untransformed;
     EXPECT_NE(denoise(f.image, o).geterror().find("variance_radius needs the Box-Cox test"),
               std::string::npos);
@@ -283,9 +289,11 @@ TEST(DenoiseOperator, DoNoHarmIsCoresGuardAfterTheFilterAndRoiSafe)
     const OIIO::ImageBuf v1 =
         test::without_channels(f.image, {"M3.R", "M3.G", "M3.B", "M4.R", "M4.G", "M4.B"});
     EXPECT_EQ(denoise(v1, o).geterror().rfind("missing layer M4 (channels M4.R, M4.G, M4.B); "
-                                              "do_no_harm needs it",
+                                              "do_no_harm with variance_test=1 needs it",
                                               0),
               0u);
+    o.variance_test = false;
+    EXPECT_FALSE(denoise(v1, o).has_error());
 }
 
 TEST(DenoiseOperator, IciIsCoresRadiusLadderAndRoiSafe)
@@ -314,7 +322,8 @@ TEST(DenoiseOperator, IciIsCoresRadiusLadderAndRoiSafe)
     const OIIO::ImageBuf v1 =
         test::without_channels(f.image, {"M3.R", "M3.G", "M3.B", "M4.R", "M4.G", "M4.B"});
     EXPECT_EQ(denoise(v1, o).geterror().rfind(
-                  "missing layer M4 (channels M4.R, M4.G, M4.B); ici needs it", 0),
+                  "missing layer M4 (channels M4.R, M4.G, M4.B); ici with variance_test=1 needs it",
+                  0),
               0u);
 }
 
@@ -335,27 +344,43 @@ TEST(DenoiseOperator, TheDefaultIsTheClassicFilterWithTheModeratedLadderAndTheCo
     ladder.alpha = 0.005;
     ladder.variance.prior_dof = 16;
     ladder.variance.prior_alpha = 0.05;
+    ladder.variance.interval_test = false;
     filter_with_radius_ladder(f.stats.view(), est, {}, small_filter(), rgb_planes(expected),
                               ladder);
     expect_rgb_equals(out, expected);
 }
 
-TEST(DenoiseOperator, TheDefaultLeavesOutTheLadderItCannotRunAndSaysSo)
+TEST(DenoiseOperator, TheDefaultsLadderNeedsNoFourthMomentAndSaysWhatItLeavesOut)
 {
     Frame f;
     DenoiseImageOptions o;
     o.filter = small_filter();
     o.guides.albedo = o.guides.normal = GuideUse::Off;
     DenoiseImageOptions classic = options();
-    // A format-1 file: no M3/M4, so no interval for the ladder.
+    // A format-1 file: no M3/M4. The default's ladder moderates each pixel's own variance,
+    // which needs neither, so it runs, and gives the bits it gives with them.
     const OIIO::ImageBuf v1 =
         test::without_channels(f.image, {"M3.R", "M3.G", "M3.B", "M4.R", "M4.G", "M4.B"});
     const OIIO::ImageBuf out = denoise(v1, o);
     ASSERT_FALSE(out.has_error()) << out.geterror();
-    const std::string skipped = out.spec().get_string_attribute("statmc:denoiseSkipped");
-    EXPECT_EQ(skipped.rfind("ici (needs", 0), 0u) << skipped;
-    expect_rgb_equals(out, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {},
-                                               classic.filter, o.context_radius));
+    EXPECT_EQ(out.spec().get_string_attribute("statmc:denoiseSkipped"), "");
+    const OIIO::ImageBuf with_moments = denoise(f.image, o);
+    ASSERT_FALSE(with_moments.has_error()) << with_moments.geterror();
+    const int x0 = out.spec().x, y0 = out.spec().y;
+    for (const char* channel : {"R", "G", "B"})
+        for (int y = y0; y < y0 + kH; ++y)
+            for (int x = x0; x < x0 + kW; ++x)
+                ASSERT_TRUE(same_bits(channel_value(out, channel, x, y),
+                                      channel_value(with_moments, channel, x, y)))
+                    << channel << " at (" << x << ", " << y << ")";
+    // With the interval test the ladder needs M4: it is left out, and the note says why.
+    o.variance_test = true;
+    const OIIO::ImageBuf tested = denoise(v1, o);
+    ASSERT_FALSE(tested.has_error()) << tested.geterror();
+    const std::string skipped = tested.spec().get_string_attribute("statmc:denoiseSkipped");
+    EXPECT_EQ(skipped.rfind("ici (with variance_test=1 it needs the M4", 0), 0u) << skipped;
+    expect_rgb_equals(tested, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {},
+                                                  classic.filter, o.context_radius));
     // Diagnostics describe one radius per pixel, so the ladder steps aside for them too.
     o.diagnostics = true;
     const OIIO::ImageBuf with_diagnostics = denoise(f.image, o);

@@ -92,9 +92,10 @@ TestDomain choose_domain(const OIIO::ImageSpec& spec, const StatisticsChannels& 
 }
 
 // Only the statistics the chosen test reads are checked and viewed: of the higher moments,
-// boxcoxM4 for variance denoising, the untransformed ones (and variance) for the guard.
+// boxcoxM4 for variance denoising with the interval test, the untransformed variance for the
+// guard and the ladder (`harm_guard`), with their moments for the interval test (`moments`).
 StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool variance_filter,
-                                 bool harm_guard, bool explained)
+                                 bool harm_guard, bool moments, bool explained)
 {
     if (!explained) {
         ch.subpixel.clear();
@@ -103,7 +104,7 @@ StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool 
     }
     if (domain != TestDomain::BoxCox)
         ch.bc_cov_u.clear(), ch.bc_cov_v.clear();
-    if (!harm_guard) {
+    if (!harm_guard || !moments) {
         ch.moment3.clear();
         ch.moment4.clear();
     }
@@ -121,17 +122,17 @@ StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool 
 }
 
 void require_variance_filter_input(const OIIO::ImageSpec& spec, const StatisticsChannels& ch,
-                                   TestDomain domain)
+                                   TestDomain domain, const DenoiseImageOptions& opt)
 {
     if (domain != TestDomain::BoxCox)
         throw std::invalid_argument(
             "variance_radius needs the Box-Cox test (the image's Box-Cox layers, test=auto or "
             "boxcox)");
-    if (!ch.has(Statistic::BoxCoxMoment4))
+    if (opt.variance_test && !ch.has(Statistic::BoxCoxMoment4))
         throw LayerError(layers::missing_layer_message(
             spec, layers::statistic_layer(ch.aov, Statistic::BoxCoxMoment4), ch.suffixes, "layer",
-            "variance_radius needs it (statistics of format version 2, as statmc-render "
-            "writes them)"));
+            "variance_radius with variance_test=1 needs it (statistics of format version 2, "
+            "as statmc-render writes them)"));
 }
 
 // Every variance filter weighs the guides as the mean filter does and moderates as asked.
@@ -163,15 +164,27 @@ void require_position_moments(const OIIO::ImageSpec& spec, const StatisticsChann
 }
 
 // The untransformed variance and its moments, which do_no_harm and ici read.
-void require_moments(const OIIO::ImageSpec& spec, const StatisticsChannels& ch, const char* option)
+// The untransformed layers a variance filter of the guard or the ladder reads: the variance,
+// and M4 for its interval test (variance_test).
+std::vector<Statistic> variance_filter_statistics(const DenoiseImageOptions& opt)
 {
-    for (Statistic stat : {Statistic::Variance, Statistic::Moment4})
+    if (opt.variance_test)
+        return {Statistic::Variance, Statistic::Moment4};
+    return {Statistic::Variance};
+}
+
+void require_moments(const OIIO::ImageSpec& spec, const StatisticsChannels& ch, const char* option,
+                     const DenoiseImageOptions& opt)
+{
+    for (Statistic stat : variance_filter_statistics(opt))
         if (!ch.has(stat))
             throw LayerError(layers::missing_layer_message(
                 spec, layers::statistic_layer(ch.aov, stat), ch.suffixes, "layer",
                 std::string(option) +
-                    " needs it (statistics of format version 2, as statmc-render or --passes "
-                    "write them)"));
+                    (stat == Statistic::Variance
+                         ? " needs it"
+                         : " with variance_test=1 needs it (statistics of format version 2, as "
+                           "statmc-render or --passes write them)")));
 }
 
 void check_statistics(const OIIO::ImageBuf& in, const StatisticsChannels& ch,
@@ -326,7 +339,7 @@ StatisticsChannels joint_aov_statistics(const OIIO::ImageBuf& in, const std::str
                                         const DenoiseImageOptions& opt, const OIIO::ROI& region)
 {
     const StatisticsChannels ch =
-        used_channels(joint_aov_channels(in.spec(), aov, lead), domain, false, false, false);
+        used_channels(joint_aov_channels(in.spec(), aov, lead), domain, false, false, false, false);
     check_statistics(in, ch, opt, region);
     return ch;
 }
@@ -481,12 +494,12 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
     }
     s.variance_filter = opt.variance_radius > 0;
     if (s.variance_filter)
-        require_variance_filter_input(spec, all, domain);
+        require_variance_filter_input(spec, all, domain, opt);
     s.harm_guard = opt.harm_alpha > 0;
     if (s.harm_guard) {
         s.guard.alpha = opt.harm_alpha;
         s.guard.variance = variance_filter_options(s.guard.variance, opt);
-        require_moments(spec, all, "do_no_harm");
+        require_moments(spec, all, "do_no_harm", opt);
     }
     s.radius_ladder = opt.ici_alpha > 0;
     if (s.radius_ladder && opt.optional_stages && opt.joint) {
@@ -495,13 +508,17 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
                     "per AOV)";
     }
     if (s.radius_ladder && opt.optional_stages) {
-        const bool has_moments = all.has(Statistic::Variance) && all.has(Statistic::Moment4);
-        if (!has_moments || opt.diagnostics) {
+        const std::vector<Statistic> needed = variance_filter_statistics(opt);
+        const bool has_inputs = std::all_of(needed.begin(), needed.end(),
+                                            [&](Statistic stat) { return all.has(stat); });
+        if (!has_inputs || opt.diagnostics) {
             s.radius_ladder = false;
-            s.skipped = has_moments ? "ici (the radius differs per pixel, so diagnostics cannot "
-                                      "describe it)"
-                                    : "ici (needs the variance and M4 layers of format version "
-                                      "2, as statmc-render or --passes write them)";
+            s.skipped = !has_inputs && !all.has(Statistic::Variance)
+                            ? "ici (needs the variance layer)"
+                        : !has_inputs ? "ici (with variance_test=1 it needs the M4 layers of "
+                                        "format version 2, as statmc-render or --passes write them)"
+                                      : "ici (the radius differs per pixel, so diagnostics cannot "
+                                        "describe it)";
         }
     }
     s.context = opt.context_radius > 0;
@@ -525,7 +542,7 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
         s.ladder.alpha = opt.ici_alpha;
         s.ladder.overrule_lone_stops = opt.ici_neighbours;
         s.ladder.variance = variance_filter_options(s.ladder.variance, opt);
-        require_moments(spec, all, "ici");
+        require_moments(spec, all, "ici", opt);
     }
     return s;
 }
@@ -774,9 +791,9 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
     const StatisticsChannels all = layers::find_statistics(spec, opt.aov);
     const TestDomain domain = choose_domain(spec, all, opt.test);
     const Stages stages = stages_for(spec, all, domain, opt);
-    const StatisticsChannels ch =
-        used_channels(all, domain, stages.variance_filter,
-                      stages.harm_guard || stages.radius_ladder, stages.explained_variance);
+    const StatisticsChannels ch = used_channels(
+        all, domain, stages.variance_filter && opt.variance_test,
+        stages.harm_guard || stages.radius_ladder, opt.variance_test, stages.explained_variance);
     const int halo = stages.halo(opt);
     const Regions regions = regions_for(in, roi, opt.filter.radius + halo);
     check_statistics(in, ch, opt, regions.input);

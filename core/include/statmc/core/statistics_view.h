@@ -39,6 +39,8 @@ struct StatisticsView {
     {
         return all_of(bc_mean) && all_of(bc_variance) && all_of(bc_moment3);
     }
+    /// The untransformed per-pixel variance.
+    bool has_variance() const { return all_of(variance); }
     /// M3 and M4 of the untransformed samples, with the variance they extend.
     bool has_moments() const { return all_of(variance) && all_of(moment3) && all_of(moment4); }
     /// M4 of the Box-Cox samples, with the Box-Cox set it extends.

@@ -43,9 +43,9 @@ struct VarianceFilterOptions {
     bool interval_test = true;
 };
 
-/// The denoised per-sample variances of `view` in `domain` (BoxCox: the Box-Cox set and
-/// boxcoxM4, view.has_box_cox_moment4(); Untransformed: variance, M3 and M4,
-/// view.has_moments()): dense, channel-major, width × height per channel. Neighbour j
+/// The denoised per-sample variances of `view` in `domain` (BoxCox: the Box-Cox set, and
+/// boxcoxM4 with the interval test; Untransformed: the variance, and M3 and M4 with the
+/// interval test): dense, channel-major, width × height per channel. Neighbour j
 /// joins pixel i in channel c when their Bonett intervals (variance_interval.h) agree:
 ///
 ///     |ln(c_i s²_i) − ln(c_j s²_j)| ≤ z · sqrt(se_i² + se_j²),   z at 1 − α/2
