@@ -63,7 +63,8 @@ EstimatorImage with_context(const EstimatorImage& est, int channel, int radius, 
                     }
                 const std::size_t to = out.index(context, x, y);
                 out.test_mean[to] = k ? float(mean / k) : test_mean[centre];
-                out.test_variance[to] = k ? float(variance / (double(k) * k)) : test_variance[centre];
+                out.test_variance[to] =
+                    k ? float(variance / (double(k) * k)) : test_variance[centre];
                 out.value[to] = k ? float(value / k) : value_plane[centre];
             }
         });

@@ -31,7 +31,7 @@ struct VarianceTap {
 struct VarianceLayout {
     int width = 0, height = 0, channels = 0, radius = 0;
     std::size_t pixels = 0;         ///< per channel; every plane below is channel-major
-    std::vector<float> log_centre;  ///< centre of the interval on ln σ²; NaN: no interval (`tested`)
+    std::vector<float> log_centre;  ///< centre of the interval on ln σ²; NaN: none (`tested`)
     std::vector<float> log_se2;     ///< its squared standard error
     std::vector<double> s2;         ///< the per-sample s² that is averaged
     std::vector<char> usable;       ///< whether the moderation may use s2

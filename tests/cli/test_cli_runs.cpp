@@ -84,8 +84,8 @@ TEST(CliRun, DefaultsAndExplicitInputCommand)
     expect_same_channels(out, expected);
     EXPECT_EQ(out.spec().get_string_attribute("statmc:denoiseSkipped"), "");
     // With the interval test it cannot run, and the user is told once.
-    const CliResult tested = run_cli({"-i", dir.file("aov.exr"), "--denoise:variance_test=1", "-o",
-                                      dir.file("tested.exr")});
+    const CliResult tested = run_cli(
+        {"-i", dir.file("aov.exr"), "--denoise:variance_test=1", "-o", dir.file("tested.exr")});
     ASSERT_EQ(tested.exit_code, 0) << tested.err;
     EXPECT_EQ(tested.err, "--denoise: note: " + dir.file("aov.exr") +
                               ": left out ici (with variance_test=1 it needs the M4 layers of "

@@ -319,22 +319,22 @@ TEST(VarianceFilter, EverySimdLevelGivesTheScalarLoopsBits)
         for (const bool borrow : {false, true})
             for (const auto& [prior_dof, prior_alpha] :
                  {std::pair{0.0, 0.0}, std::pair{16.0, 0.0}, std::pair{16.0, 0.05}})
-            for (const bool interval_test : {true, false}) {
-                VarianceFilterOptions o;
-                o.interval_test = interval_test;
-                o.borrow_without_interval = borrow;
-                o.prior_dof = prior_dof;
-                o.prior_alpha = prior_alpha;
-                const std::vector<float> scalar = denoise_variances(
-                    stats.view(), TestDomain::Untransformed, g, o, 2, SimdLevel::Scalar);
-                for (SimdLevel level : supported_simd_levels())
-                    EXPECT_TRUE(
-                        same_bits(scalar, denoise_variances(stats.view(), TestDomain::Untransformed,
-                                                            g, o, 2, level)))
-                        << simd_level_name(level) << " guides " << g.has_albedo() << " borrow "
-                        << borrow << " d0 " << prior_dof << " prior alpha " << prior_alpha
-                        << " interval test " << interval_test;
-            }
+                for (const bool interval_test : {true, false}) {
+                    VarianceFilterOptions o;
+                    o.interval_test = interval_test;
+                    o.borrow_without_interval = borrow;
+                    o.prior_dof = prior_dof;
+                    o.prior_alpha = prior_alpha;
+                    const std::vector<float> scalar = denoise_variances(
+                        stats.view(), TestDomain::Untransformed, g, o, 2, SimdLevel::Scalar);
+                    for (SimdLevel level : supported_simd_levels())
+                        EXPECT_TRUE(same_bits(scalar, denoise_variances(stats.view(),
+                                                                        TestDomain::Untransformed,
+                                                                        g, o, 2, level)))
+                            << simd_level_name(level) << " guides " << g.has_albedo() << " borrow "
+                            << borrow << " d0 " << prior_dof << " prior alpha " << prior_alpha
+                            << " interval test " << interval_test;
+                }
 }
 
 TEST(VarianceFilter, TheGuideWeightsShortcutsAreStdExpsOwnAnswers)

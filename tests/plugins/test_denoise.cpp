@@ -321,10 +321,10 @@ TEST(DenoiseOperator, IciIsCoresRadiusLadderAndRoiSafe)
     o.diagnostics = false;
     const OIIO::ImageBuf v1 =
         test::without_channels(f.image, {"M3.R", "M3.G", "M3.B", "M4.R", "M4.G", "M4.B"});
-    EXPECT_EQ(denoise(v1, o).geterror().rfind(
-                  "missing layer M4 (channels M4.R, M4.G, M4.B); ici with variance_test=1 needs it",
-                  0),
-              0u);
+    EXPECT_EQ(
+        denoise(v1, o).geterror().rfind(
+            "missing layer M4 (channels M4.R, M4.G, M4.B); ici with variance_test=1 needs it", 0),
+        0u);
 }
 
 TEST(DenoiseOperator, TheDefaultIsTheClassicFilterWithTheModeratedLadderAndTheContextTest)

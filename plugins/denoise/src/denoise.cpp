@@ -222,14 +222,14 @@ EstimatorImage lead_estimators(const StatisticsView& stats, TestDomain domain,
     EstimatorImage est = estimators_from_statistics(stats, domain);
     if (context == 0)
         return est;
-    return with_context(est, context_source_channel(est.channels), context,
-                        options.firefly_ratio, layers::thread_count(nthreads));
+    return with_context(est, context_source_channel(est.channels), context, options.firefly_ratio,
+                        layers::thread_count(nthreads));
 }
 
 // `est` (built from `stats` by lead_estimators) filtered; with `ladder`, each pixel at its
 // ICI radius (no diagnostics then).
-Filtered filter_region(const StatisticsView& stats, const EstimatorImage& est,
-                       const Guides& guides, const DenoiseOptions& options, bool diagnostics,
+Filtered filter_region(const StatisticsView& stats, const EstimatorImage& est, const Guides& guides,
+                       const DenoiseOptions& options, bool diagnostics,
                        const RadiusLadderOptions* ladder, int nthreads)
 {
     const std::size_t pixels = std::size_t(stats.width) * stats.height;

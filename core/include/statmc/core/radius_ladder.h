@@ -35,9 +35,8 @@ struct RadiusLadderOptions {
 /// needs the untransformed variance, and M3 and M4 when `ladder.variance` tests intervals
 /// (stats.has_moments()). `est` may hold channels beyond stats' (the context channel,
 /// context_channel.h): they take part in the test, while the intervals and `out` are
-/// stats' channels alone. Pixels with n < 2 keep
-/// their value. Bitwise identical for any thread count. Throws std::invalid_argument for
-/// bad options or missing planes.
+/// stats' channels alone. Pixels with n < 2 keep their value. Bitwise identical for any
+/// thread count. Throws std::invalid_argument for bad options or missing planes.
 void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage& est,
                                const Guides& guides, const DenoiseOptions& options,
                                const std::vector<Plane>& out,

@@ -45,18 +45,19 @@ struct VarianceFilterOptions {
 
 /// The denoised per-sample variances of `view` in `domain` (BoxCox: the Box-Cox set, and
 /// boxcoxM4 with the interval test; Untransformed: the variance, and M3 and M4 with the
-/// interval test): dense, channel-major, width × height per channel. Neighbour j
-/// joins pixel i in channel c when their Bonett intervals (variance_interval.h) agree:
+/// interval test): dense, channel-major, width × height per channel. With the interval test,
+/// neighbour j joins pixel i in channel c when their Bonett intervals (variance_interval.h)
+/// agree:
 ///
 ///     |ln(c_i s²_i) − ln(c_j s²_j)| ≤ z · sqrt(se_i² + se_j²),   z at 1 − α/2
 ///
-/// (options.interval_test) and the result is Σ w_ij s²_j / Σ w_ij over the members, w_ij the spatial Gaussian times
-/// the guides' Gaussians when `guides` has them, as in the mean filter (docs/method.md §5;
-/// the centre has weight 1). A pixel without an interval joins no other. Deterministic: the
-/// same result for any `nthreads` (0 = all cores) and any `level` (the SIMD kernels add the
-/// same double products in the same order as the scalar loop). Throws
-/// std::invalid_argument for bad options, a view without those planes, or a level this
-/// CPU cannot run.
+/// (without it, none joins a pixel that has an interval), and the result is Σ w_ij s²_j /
+/// Σ w_ij over the members, w_ij the spatial Gaussian times the guides' Gaussians when
+/// `guides` has them, as in the mean filter (docs/method.md §5; the centre has weight 1). A pixel
+/// without an interval joins no other. Deterministic: the same result for any `nthreads` (0 = all
+/// cores) and any `level` (the SIMD kernels add the same double products in the same order as the
+/// scalar loop). Throws std::invalid_argument for bad options, a view without those planes, or a
+/// level this CPU cannot run.
 std::vector<float> denoise_variances(const StatisticsView& view, TestDomain domain,
                                      const Guides& guides = {},
                                      const VarianceFilterOptions& options = {}, int nthreads = 0,
