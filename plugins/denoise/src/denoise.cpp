@@ -91,11 +91,11 @@ TestDomain choose_domain(const OIIO::ImageSpec& spec, const StatisticsChannels& 
     throw std::invalid_argument("unknown test domain");
 }
 
-// Only the statistics the chosen test reads are checked and viewed: of the higher moments,
-// boxcoxM4 for variance denoising with the interval test, the untransformed variance for the
-// guard and the ladder (`harm_guard`), with their moments for the interval test (`moments`).
-StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool variance_filter,
-                                 bool harm_guard, bool moments, bool explained)
+// Only the statistics the stages read are checked and viewed: boxcoxM4 for variance
+// denoising with the interval test (`box_cox_moment4`), the untransformed variance for the
+// guard and the ladder (`variance`), and its M3 and M4 for their interval test (`moments`).
+StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool box_cox_moment4,
+                                 bool variance, bool moments, bool explained)
 {
     if (!explained) {
         ch.subpixel.clear();
@@ -104,14 +104,14 @@ StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool 
     }
     if (domain != TestDomain::BoxCox)
         ch.bc_cov_u.clear(), ch.bc_cov_v.clear();
-    if (!harm_guard || !moments) {
+    if (!moments) {
         ch.moment3.clear();
         ch.moment4.clear();
     }
-    if (!variance_filter)
+    if (!box_cox_moment4)
         ch.bc_moment4.clear();
     if (domain == TestDomain::BoxCox) {
-        if (!harm_guard)
+        if (!variance)
             ch.variance.clear();
     } else {
         ch.bc_mean.clear();
@@ -163,7 +163,6 @@ void require_position_moments(const OIIO::ImageSpec& spec, const StatisticsChann
             spec, layers::statistic_layer(ch.aov, needed), ch.suffixes, "layer", why));
 }
 
-// The untransformed variance and its moments, which do_no_harm and ici read.
 // The untransformed layers a variance filter of the guard or the ladder reads: the variance,
 // and M4 for its interval test (variance_test).
 std::vector<Statistic> variance_filter_statistics(const DenoiseImageOptions& opt)
@@ -173,6 +172,7 @@ std::vector<Statistic> variance_filter_statistics(const DenoiseImageOptions& opt
     return {Statistic::Variance};
 }
 
+// Those layers, for `option` (do_no_harm or ici) asked for by name: a missing one is an error.
 void require_moments(const OIIO::ImageSpec& spec, const StatisticsChannels& ch, const char* option,
                      const DenoiseImageOptions& opt)
 {
@@ -513,12 +513,13 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
                                             [&](Statistic stat) { return all.has(stat); });
         if (!has_inputs || opt.diagnostics) {
             s.radius_ladder = false;
-            s.skipped = !has_inputs && !all.has(Statistic::Variance)
-                            ? "ici (needs the variance layer)"
-                        : !has_inputs ? "ici (with variance_test=1 it needs the M4 layers of "
-                                        "format version 2, as statmc-render or --passes write them)"
-                                      : "ici (the radius differs per pixel, so diagnostics cannot "
-                                        "describe it)";
+            if (!all.has(Statistic::Variance))
+                s.skipped = "ici (needs the variance layer)";
+            else if (!has_inputs)
+                s.skipped = "ici (with variance_test=1 it needs the M4 layers of format version "
+                            "2, as statmc-render or --passes write them)";
+            else
+                s.skipped = "ici (the radius differs per pixel, so diagnostics cannot describe it)";
         }
     }
     s.context = opt.context_radius > 0;
@@ -791,9 +792,10 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
     const StatisticsChannels all = layers::find_statistics(spec, opt.aov);
     const TestDomain domain = choose_domain(spec, all, opt.test);
     const Stages stages = stages_for(spec, all, domain, opt);
-    const StatisticsChannels ch = used_channels(
-        all, domain, stages.variance_filter && opt.variance_test,
-        stages.harm_guard || stages.radius_ladder, opt.variance_test, stages.explained_variance);
+    const bool reads_variance = stages.harm_guard || stages.radius_ladder;
+    const StatisticsChannels ch =
+        used_channels(all, domain, stages.variance_filter && opt.variance_test, reads_variance,
+                      reads_variance && opt.variance_test, stages.explained_variance);
     const int halo = stages.halo(opt);
     const Regions regions = regions_for(in, roi, opt.filter.radius + halo);
     check_statistics(in, ch, opt, regions.input);
