@@ -119,8 +119,9 @@ void BM_FilterScalarKernel(benchmark::State& s) { run(s, false, SimdLevel::Scala
 void BM_FilterReference(benchmark::State& s) { run(s, false, SimdLevel::Scalar, true); }
 void BM_FilterReferenceGuides(benchmark::State& s) { run(s, true, SimdLevel::Scalar, true); }
 
-// The default's variance denoising (the radius ladder's ṽ: radius 3, moderation d₀ = 16 as
-// the default operator sets it) at one SIMD level; Args: guides (0/1), level (1 scalar,
+// The default's variance denoising (the radius ladder's ṽ: radius 3, no interval test,
+// moderation d₀ = 16 towards neighbours that pass the test on the means at α = 0.05, as the
+// denoise plugin's defaults set it) at one SIMD level; Args: guides (0/1), level (1 scalar,
 // 2 AVX2, 3 AVX-512). All threads.
 void BM_VarianceFilter(benchmark::State& state)
 {
@@ -133,7 +134,9 @@ void BM_VarianceFilter(benchmark::State& state)
     static const bench::GuidePlanes guide_planes;
     const Guides guides = state.range(0) ? guide_planes.guides : Guides{};
     VarianceFilterOptions options = RadiusLadderOptions{}.variance;
+    options.interval_test = false;
     options.prior_dof = 16;
+    options.prior_alpha = 0.05;
     for (auto _ : state)
         benchmark::DoNotOptimize(denoise_variances(bench::frame().view(), TestDomain::Untransformed,
                                                    guides, options, 0, level));
