@@ -63,10 +63,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     } catch (const statmc::layers::FileError&) {
         return 0;
     }
+    const statmc::DenoiseImageOptions the_default, paper = statmc::DenoiseImageOptions::paper();
     for (const OIIO::ImageBuf& part : parts) {
         look_up_layers(part);
-        denoise_with(part, statmc::DenoiseImageOptions{});
-        denoise_with(part, statmc::DenoiseImageOptions::paper());
+        denoise_with(part, the_default);
+        denoise_with(part, paper);
     }
     return 0;
 }

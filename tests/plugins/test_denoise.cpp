@@ -327,6 +327,25 @@ TEST(DenoiseOperator, IciIsCoresRadiusLadderAndRoiSafe)
         0u);
 }
 
+// The default method in core's terms, on `f` without guides: the classic filter with the
+// context test, each pixel at its ICI radius among `radii` on moderated variances.
+std::vector<float> default_in_core(const Frame& f, const std::vector<int>& radii)
+{
+    const EstimatorImage est =
+        with_context(estimators_from_statistics(f.stats.view(), TestDomain::BoxCox), /*green*/ 1, 1,
+                     small_filter().firefly_ratio);
+    std::vector<float> expected(est.pixels() * 3);
+    RadiusLadderOptions ladder;
+    ladder.radii = radii;
+    ladder.alpha = 0.005;
+    ladder.variance.prior_dof = 16;
+    ladder.variance.prior_alpha = 0.05;
+    ladder.variance.interval_test = false;
+    filter_with_radius_ladder(f.stats.view(), est, {}, small_filter(), rgb_planes(expected),
+                              ladder);
+    return expected;
+}
+
 TEST(DenoiseOperator, TheDefaultIsTheClassicFilterWithTheModeratedLadderAndTheContextTest)
 {
     Frame f;
@@ -336,18 +355,31 @@ TEST(DenoiseOperator, TheDefaultIsTheClassicFilterWithTheModeratedLadderAndTheCo
     const OIIO::ImageBuf out = denoise(f.image, o);
     ASSERT_FALSE(out.has_error()) << out.geterror();
     EXPECT_EQ(out.spec().get_string_attribute("statmc:denoiseSkipped"), "");
-    const EstimatorImage est =
-        with_context(estimators_from_statistics(f.stats.view(), TestDomain::BoxCox), /*green*/ 1, 1,
-                     small_filter().firefly_ratio);
-    std::vector<float> expected(est.pixels() * 3);
-    RadiusLadderOptions ladder;
-    ladder.alpha = 0.005;
-    ladder.variance.prior_dof = 16;
-    ladder.variance.prior_alpha = 0.05;
-    ladder.variance.interval_test = false;
-    filter_with_radius_ladder(f.stats.view(), est, {}, small_filter(), rgb_planes(expected),
-                              ladder);
+    expect_rgb_equals(out, default_in_core(f, {1, 2, 3, 5, 8, 12, 20}));
+}
+
+TEST(DenoiseOperator, IciRadiiAreTheLaddersRungs)
+{
+    Frame f;
+    DenoiseImageOptions o;
+    o.filter = small_filter();
+    o.guides.albedo = o.guides.normal = GuideUse::Off;
+    o.ici_radii = {2};  // with radius 5: rungs 2 and 5
+    const OIIO::ImageBuf out = denoise(f.image, o);
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    const std::vector<float> expected = default_in_core(f, {2});
     expect_rgb_equals(out, expected);
+    EXPECT_NE(expected, default_in_core(f, {1, 2, 3}))
+        << "the rungs made no difference on this frame: the test would not see them";
+    o.ici_radii = {3, 2};
+    EXPECT_NE(denoise(f.image, o).geterror().find("ici_radii must ascend, each in [1, 100], got 3,2"),
+              std::string::npos);
+    o.ici_radii = {0, 4};
+    EXPECT_NE(denoise(f.image, o).geterror().find("got 0,4"), std::string::npos);
+    EXPECT_EQ(radii_from_text("1,2,30"), std::vector<int>({1, 2, 30}));
+    EXPECT_EQ(radii_from_text(""), std::vector<int>{});
+    for (const char* bad : {"1,,2", "1,2,", "3.5", "x", "1, 2"})
+        EXPECT_FALSE(radii_from_text(bad)) << bad;
 }
 
 TEST(DenoiseOperator, TheDefaultsLadderNeedsNoFourthMomentAndSaysWhatItLeavesOut)

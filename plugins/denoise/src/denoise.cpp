@@ -542,6 +542,7 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
     if (s.radius_ladder) {
         s.ladder.alpha = opt.ici_alpha;
         s.ladder.overrule_lone_stops = opt.ici_neighbours;
+        s.ladder.radii = opt.ici_radii;
         s.ladder.variance = variance_filter_options(s.ladder.variance, opt);
         require_moments(spec, all, "ici", opt);
     }

@@ -1,10 +1,37 @@
 #include "statmc/denoise/denoise_image_options.h"
 
 #include <algorithm>
+#include <charconv>
 
 #include "statmc/layers/renderer_presets.h"
 
 namespace statmc {
+
+std::string radii_text(const std::vector<int>& radii)
+{
+    std::string text;
+    for (int r : radii)
+        text += (text.empty() ? "" : ",") + std::to_string(r);
+    return text;
+}
+
+std::optional<std::vector<int>> radii_from_text(const std::string& text)
+{
+    std::vector<int> radii;
+    std::size_t begin = 0;
+    while (begin <= text.size() && !text.empty()) {
+        const std::size_t end = std::min(text.find(',', begin), text.size());
+        int r = 0;
+        const char* first = text.data() + begin;
+        const char* last = text.data() + end;
+        const auto [ptr, ec] = std::from_chars(first, last, r);
+        if (first == last || ec != std::errc() || ptr != last)
+            return std::nullopt;
+        radii.push_back(r);
+        begin = end + 1;
+    }
+    return radii;
+}
 
 std::string DenoiseImageOptions::validate() const
 {
@@ -25,6 +52,9 @@ std::string DenoiseImageOptions::validate() const
         return "do_no_harm must be 0 (off) or in (0, 1), got " + std::to_string(harm_alpha);
     if (!(ici_alpha >= 0 && ici_alpha < 1))
         return "ici must be 0 (off) or in (0, 1), got " + std::to_string(ici_alpha);
+    for (std::size_t k = 0; k < ici_radii.size(); ++k)
+        if (ici_radii[k] < 1 || ici_radii[k] > 100 || (k > 0 && ici_radii[k] <= ici_radii[k - 1]))
+            return "ici_radii must ascend, each in [1, 100], got " + radii_text(ici_radii);
     if (!(explained_alpha >= 0 && explained_alpha < 1))
         return "explained_variance must be 0 (off) or in (0, 1), got " +
                std::to_string(explained_alpha);

@@ -118,6 +118,8 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     opt.harm_alpha = p.get_float("do_no_harm", opt.harm_alpha);
     opt.ici_alpha = p.get_float("ici", opt.ici_alpha);
     opt.ici_neighbours = p.get_bool("ici_neighbours", opt.ici_neighbours);
+    if (const auto radii = statmc::radii_from_text(p.get_string("ici_radii", "")); radii)
+        opt.ici_radii = *radii;
     // The ladder asked for by name must run: its missing layers are then an error.
     if (p.has("ici"))
         opt.optional_stages = false;
@@ -218,7 +220,7 @@ std::vector<statmc::ParameterSpec> parameters()
                         "(needs the M3/M4 layers); 0 = off")
             .between(0, 0.5),
         float_parameter("ici", std::nullopt,
-                        "each pixel takes its own radius from 0,1,2,3,5,8,12,20 (up to radius) "
+                        "each pixel takes its own radius from 0 and the rungs of ici_radii "
                         "by intersecting confidence intervals at this significance (needs the "
                         "M3/M4 layers); 0 = off." +
                             only_in_the_default(kDefaults.ici_alpha))
@@ -228,6 +230,11 @@ std::vector<statmc::ParameterSpec> parameters()
                        "do, even when its own intervals would stop it (a lone stop is more "
                        "often the intervals' false alarm; docs/method.md §11); 0 = each pixel "
                        "by its own intervals"),
+        string_parameter("ici_radii", statmc::radii_text(kDefaults.ici_radii),
+                         "with ici: the ladder's rungs, ascending, each in [1, 100]; those at "
+                         "or above radius are dropped and radius is always the last. Each "
+                         "rung is a pass over the image: fewer rungs cost less "
+                         "(docs/filter-design.md)"),
         float_parameter("explained_variance", kDefaults.explained_alpha,
                         "experimental: first remove the part of each pixel's variance that a "
                         "gradient across the pixel explains, where significant at this level "
@@ -336,7 +343,12 @@ void register_denoise(statmc::PluginRegistry& registry)
               "cannot tell apart (Sakai et al. 2024). Reads the mean, sampleCount and "
               "variance or Box-Cox layers (docs/exr-layers.md); sets statmc:denoised=1.";
     op.parameters = parameters();
-    op.check = [](const ParameterValues& p) { return options_from(p).validate(); };
+    op.check = [](const ParameterValues& p) -> std::string {
+        const std::string radii = p.get_string("ici_radii", "");
+        if (!statmc::radii_from_text(radii))
+            return "ici_radii must be whole numbers separated by commas, got '" + radii + "'";
+        return options_from(p).validate();
+    };
     op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs, const ParameterValues& p,
                 const statmc::RunContext& ctx) {
         note_lossy_storage(*inputs[0], ctx);

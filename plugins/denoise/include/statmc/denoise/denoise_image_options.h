@@ -2,10 +2,12 @@
 // image-level choices (guides, test domain, non-finite policy).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "statmc/core/denoise_options.h"
+#include "statmc/core/radius_ladder.h"
 #include "statmc/core/temporal_merge.h"
 #include "statmc/layers/layer_names.h"
 
@@ -79,7 +81,7 @@ struct DenoiseImageOptions {
     /// confidence interval; needs the untransformed variance with M3 and M4 (format
     /// version 2). Experimental, off by default until the evaluation has measured it.
     double harm_alpha = 0;
-    /// 0: off. Else each pixel takes its own radius from the ladder 0, 1, 2, 3, 5, 8, 12, 20
+    /// 0: off. Else each pixel takes its own radius from 0 and the rungs of ici_radii
     /// (up to filter.radius) by the intersection of confidence intervals at this
     /// significance (core/radius_ladder.h, docs/method.md §11); needs the untransformed
     /// variance with M3 and M4. Cannot be combined with diagnostics yet.
@@ -87,6 +89,10 @@ struct DenoiseImageOptions {
     /// With the ladder: a pixel goes on up the ladder where all of its 8-neighbours do,
     /// even when its own intervals would stop it (RadiusLadderOptions::overrule_lone_stops).
     bool ici_neighbours = true;
+    /// With the ladder: its rungs, ascending, each in [1, 100]; those at or above
+    /// filter.radius are dropped, and filter.radius is always the last rung
+    /// (RadiusLadderOptions::radii). Fewer rungs cost less: each is a pass over the image.
+    std::vector<int> ici_radii = RadiusLadderOptions{}.radii;
     /// 0: off. Else, before every other stage, the part of each pixel's variance that a
     /// linear gradient across the pixel explains is removed where the regression is
     /// significant at this level (core/explained_variance.h, docs/method.md §12); needs
@@ -128,5 +134,10 @@ struct DenoiseImageOptions {
     /// Empty when valid, else a message naming the offending parameter.
     std::string validate() const;
 };
+
+/// Radii as a parameter spells them: "1,2,3,5,8,12,20" ("" for none).
+std::string radii_text(const std::vector<int>& radii);
+/// The radii that text spells, or nullopt where an item is not a whole number.
+std::optional<std::vector<int>> radii_from_text(const std::string& text);
 
 }  // namespace statmc
