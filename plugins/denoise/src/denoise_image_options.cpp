@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <charconv>
 
+#include <OpenImageIO/strutil.h>
+
 #include "statmc/layers/renderer_presets.h"
 
 namespace statmc {
@@ -18,17 +20,15 @@ std::string radii_text(const std::vector<int>& radii)
 std::optional<std::vector<int>> radii_from_text(const std::string& text)
 {
     std::vector<int> radii;
-    std::size_t begin = 0;
-    while (begin <= text.size() && !text.empty()) {
-        const std::size_t end = std::min(text.find(',', begin), text.size());
+    if (text.empty())
+        return radii;
+    for (const std::string& item : OIIO::Strutil::splits(text, ",")) {
         int r = 0;
-        const char* first = text.data() + begin;
-        const char* last = text.data() + end;
-        const auto [ptr, ec] = std::from_chars(first, last, r);
-        if (first == last || ec != std::errc() || ptr != last)
+        const char* end = item.data() + item.size();
+        const auto [ptr, ec] = std::from_chars(item.data(), end, r);
+        if (item.empty() || ec != std::errc() || ptr != end)
             return std::nullopt;
         radii.push_back(r);
-        begin = end + 1;
     }
     return radii;
 }
