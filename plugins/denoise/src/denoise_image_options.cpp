@@ -9,13 +9,7 @@
 
 namespace statmc {
 
-std::string radii_text(const std::vector<int>& radii)
-{
-    std::string text;
-    for (int r : radii)
-        text += (text.empty() ? "" : ",") + std::to_string(r);
-    return text;
-}
+std::string radii_text(const std::vector<int>& radii) { return OIIO::Strutil::join(radii, ","); }
 
 std::optional<std::vector<int>> radii_from_text(const std::string& text)
 {
