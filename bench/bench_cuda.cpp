@@ -71,7 +71,8 @@ void BM_CudaKernel(benchmark::State& state)
     const DenoiseOptions options;
     const detail::FilterLayout layout =
         detail::make_filter_layout(f.est, guided ? f.guide.guides : Guides{}, options,
-                                   detail::guard_levels(f.est, options), 0, 16);
+                                   detail::guard_levels(f.est, options), 0,
+                                   detail::filter_kernel(detected_simd_level()));
     detail::CudaFilter gpu(layout, false);
     double download_ms = 0;
     for (auto _ : state) {

@@ -89,34 +89,18 @@ SimdLevel usable_simd_level(SimdLevel level)
 }
 
 namespace detail {
-int kernel_width(SimdLevel level)
+FilterKernel filter_kernel(SimdLevel level)
 {
     switch (level) {
     case SimdLevel::Avx512:
-        return 16;
+        return filter_kernel_avx512();
     case SimdLevel::Avx2:
-        return 8;
+        return filter_kernel_avx2();
     default:
-        return 1;
+        return filter_kernel_scalar();
     }
 }
 }  // namespace detail
-
-namespace {
-
-detail::FilterRowsFn kernel(SimdLevel level)
-{
-    switch (level) {
-    case SimdLevel::Avx512:
-        return detail::filter_rows_avx512();
-    case SimdLevel::Avx2:
-        return detail::filter_rows_avx2();
-    default:
-        return detail::filter_rows_scalar();
-    }
-}
-
-}  // namespace
 
 bool filter_takes_channels(int channels) { return detail::kernel_takes_channels(channels); }
 
@@ -144,10 +128,9 @@ void check_arguments(const EstimatorImage& est, const DenoiseOptions& options,
 
 namespace {
 
-detail::FilterRowsFn checked_kernel(SimdLevel& level)
+detail::FilterKernel checked_kernel(SimdLevel level)
 {
-    level = usable_simd_level(level);
-    return kernel(level);
+    return detail::filter_kernel(usable_simd_level(level));
 }
 
 // Runs the kernel over the whole image. Tiles of a few rows by 64 columns keep the
@@ -212,15 +195,15 @@ void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOption
 {
     check_arguments(est, options, out);
     const bool gpu = on_cuda(est, options);
-    const detail::FilterRowsFn rows = checked_kernel(level);
+    const detail::FilterKernel kernel = checked_kernel(level);
     run_with_threads(nthreads, [&] {
         const detail::FilterLayout layout =
             detail::make_filter_layout(est, guides, options, detail::guard_levels(est, options),
-                                       nthreads, detail::kernel_width(level), diagnostics.any());
+                                       nthreads, kernel, diagnostics.any());
         if (const auto device = gpu_for(layout, options, gpu, false))
             device->run(layout, out, diagnostics);
         else
-            run_kernel(rows, layout, est.height, out, diagnostics);
+            run_kernel(kernel.rows, layout, est.height, out, diagnostics);
     });
 }
 
@@ -235,10 +218,10 @@ void filter_rungs(const EstimatorImage& est, const Guides& guides, const Denoise
         if (radii[k] < 1 || radii[k] > options.radius || (k > 0 && radii[k] <= radii[k - 1]))
             throw std::invalid_argument("filter rungs: radii must ascend within [1, radius]");
     const bool gpu = on_cuda(est, options);
-    const FilterRowsFn rows = checked_kernel(level);
+    const FilterKernel kernel = checked_kernel(level);
     run_with_threads(nthreads, [&] {
         FilterLayout layout = make_filter_layout(est, guides, options, guard_levels(est, options),
-                                                 nthreads, kernel_width(level), diagnostics.any());
+                                                 nthreads, kernel, diagnostics.any());
         // The running sums: on the GPU they stay in device memory between rungs.
         std::vector<float> sums;
         const std::unique_ptr<CudaFilter> device = gpu_for(layout, options, gpu, true);
@@ -254,7 +237,7 @@ void filter_rungs(const EstimatorImage& est, const Guides& guides, const Denoise
             if (device)
                 device->run(layout, out, diagnostics);
             else
-                run_kernel(rows, layout, est.height, out, diagnostics);
+                run_kernel(kernel.rows, layout, est.height, out, diagnostics);
             rung_done(radius);
             inner = radius;
         }

@@ -3,5 +3,5 @@
 #include "simd_avx2.h"
 
 namespace statmc::detail {
-FilterRowsFn filter_rows_avx2() { return &filter_rows<simd::Avx2>; }
+FilterKernel filter_kernel_avx2() { return kernel_build<simd::Avx2>(); }
 }  // namespace statmc::detail

@@ -9,5 +9,5 @@
 #include "simd_avx512.h"
 
 namespace statmc::detail {
-FilterRowsFn filter_rows_avx512() { return &filter_rows<simd::Avx512>; }
+FilterKernel filter_kernel_avx512() { return kernel_build<simd::Avx512>(); }
 }  // namespace statmc::detail

@@ -180,20 +180,27 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
                         far[k] = g == kHalf ? V::mul(d, d) : V::fmadd(d, d, far[k]);
                 }
             }
+            // The exponent; where every lane's is exactly the spatial one (guides that agree,
+            // as on a flat wall, or guide noise that explains their whole distance), its exp2
+            // is in a table. Left as it was written, so that the compiler fuses it as before.
+            F log2_weight[R];
             if constexpr (kNoise) {
                 // Guide noise: spatial − max(0, Σ(Δg)² − (u_i + min(u_i, u_j))). With u = 0
                 // the sum adds +0 and the min keeps it: the bits of the loop below.
                 const F noise = V::load(L.guide_noise + off);
-                for (int k = First; k < Last; ++k) {
-                    const F log2_weight =
+                for (int k = First; k < Last; ++k)
+                    log2_weight[k] = V::min(
                         V::add(V::sub(near[k], far[k]),
-                               V::add(ctr[k].guide_noise, V::min(ctr[k].guide_noise, noise)));
-                    w[k] = simd::exp2_nonpositive<V>(V::min(log2_weight, spatial[k]));
-                }
+                               V::add(ctr[k].guide_noise, V::min(ctr[k].guide_noise, noise))),
+                        spatial[k]);
             } else {
                 for (int k = First; k < Last; ++k)
-                    w[k] = simd::exp2_nonpositive<V>(V::sub(near[k], far[k]));
+                    log2_weight[k] = V::sub(near[k], far[k]);
             }
+            for (int k = First; k < Last; ++k)
+                w[k] = V::all(V::eq(log2_weight[k], spatial[k]))
+                           ? V::set1(L.flat_guide(dx, wy - y - k))
+                           : simd::exp2_nonpositive<V>(log2_weight[k]);
         }
         for (int c = 0; c < NA; ++c) {
             F value = V::load(L.value[c] + off);
@@ -470,6 +477,23 @@ void filter_rows(const FilterLayout& L, const std::vector<Plane>& out,
     default:
         return filter_rows_guides<V, 12>(L, out, diag, y0, y1, chunk0, chunk1);
     }
+}
+
+template <class V>
+void exp2_each(const float* x, float* out, std::size_t n)
+{
+    for (std::size_t i = 0; i < n; ++i) {
+        float lanes[V::kWidth];
+        V::store(lanes, simd::exp2_nonpositive<V>(V::set1(x[i])));
+        out[i] = lanes[0];
+    }
+}
+
+/// This instruction set's kernel, for the one exported function of its translation unit.
+template <class V>
+FilterKernel kernel_build()
+{
+    return {V::kWidth, &filter_rows<V>, &exp2_each<V>};
 }
 
 }  // namespace

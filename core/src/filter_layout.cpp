@@ -151,14 +151,15 @@ NoiseLevels guard_levels(const EstimatorImage& est, const DenoiseOptions& option
 
 FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                                 const DenoiseOptions& options, const NoiseLevels& noise,
-                                int nthreads, int lanes, bool with_inverse_count)
+                                int nthreads, const FilterKernel& kernel,
+                                bool with_inverse_count)
 {
     FilterLayout L;
     L.width = est.width;
     L.height = est.height;
     L.channels = est.channels;
     L.averaged = est.channels - est.context_channels;
-    L.lanes = lanes;
+    L.lanes = kernel.lanes;
     // No neighbour lies further than the image extends; clamping keeps padding small
     // for a radius larger than the image.
     L.pad_x = std::min(options.radius, est.width - 1);
@@ -316,6 +317,9 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         tbb::parallel_for(padded_rows, fill_rows);
 
     build_window(L, options);
+    L.flat_guide_weight.resize(L.spatial_log2_weight.size());
+    kernel.exp2(L.spatial_log2_weight.data(), L.flat_guide_weight.data(),
+                L.flat_guide_weight.size());
     return L;
 }
 

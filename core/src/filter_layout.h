@@ -65,6 +65,10 @@ struct FilterLayout {
     std::vector<int> inner_half_width;
     std::vector<float> spatial_weight;
     std::vector<float> spatial_log2_weight;
+    // 2^spatial_log2_weight by the kernel's own exp2 (FilterKernel::exp2): the guided weight
+    // of a tap whose guides agree exactly, as on a flat wall. The kernel takes it from here
+    // instead of computing the exp, and gets the same bits (docs/filter-design.md).
+    std::vector<float> flat_guide_weight;
 
     // The radius ladder's running sums (filter_rungs): planes of Σ W(F_j − F_i) per channel,
     // Σ W, the member count and Σ W²/n, `stride` floats per row. When set, each pixel's sums
@@ -75,22 +79,42 @@ struct FilterLayout {
 
     float spatial(int dx, int dy) const { return spatial_weight[table_index(dx, dy)]; }
     float spatial_log2(int dx, int dy) const { return spatial_log2_weight[table_index(dx, dy)]; }
+    float flat_guide(int dx, int dy) const { return flat_guide_weight[table_index(dx, dy)]; }
     std::size_t table_index(int dx, int dy) const
     {
         return std::size_t(dy + pad_y) * (2 * pad_x + 1) + (dx + pad_x);
     }
 };
 
+/// Filters output rows [y0, y1), chunks of kernel-width columns [chunk0, chunk1).
+using FilterRowsFn = void (*)(const FilterLayout& layout, const std::vector<Plane>& out,
+                              const FilterDiagnostics& diagnostics, int y0, int y1, int chunk0,
+                              int chunk1);
+
+/// One instruction set's build of the kernel (filter_scalar.cpp, filter_avx2.cpp,
+/// filter_avx512.cpp).
+struct FilterKernel {
+    int lanes = 1;  // its SIMD width, which sets the layout's chunks
+    FilterRowsFn rows = nullptr;
+    /// 2^x for x ≤ 0, element by element, with the very arithmetic `rows` uses.
+    void (*exp2)(const float* x, float* out, std::size_t n) = nullptr;
+};
+FilterKernel filter_kernel_scalar();
+FilterKernel filter_kernel_avx2();
+FilterKernel filter_kernel_avx512();
+/// The build for `level`, which must be resolved (not Auto) and run on this CPU.
+FilterKernel filter_kernel(SimdLevel level);
+
 /// The firefly guard's levels for `est` under `options` (empty where the guard does not
 /// apply).
 NoiseLevels guard_levels(const EstimatorImage& est, const DenoiseOptions& options);
 
-/// `lanes`: the kernel's SIMD width, which sets the chunks of `guarded`.
-/// `with_inverse_count` adds the 1/n plane the effective sample count needs. `noise`:
-/// guard_levels(est, options).
+/// The layout `kernel` reads. `with_inverse_count` adds the 1/n plane the effective sample
+/// count needs. `noise`: guard_levels(est, options).
 FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                                 const DenoiseOptions& options, const NoiseLevels& noise,
-                                int nthreads, int lanes, bool with_inverse_count = false);
+                                int nthreads, const FilterKernel& kernel,
+                                bool with_inverse_count = false);
 
 /// Makes the layout walk the annulus inner < |d| ≤ outer (radii ≤ the layout's own; inner
 /// 0 is the whole disk less the centre).
@@ -107,14 +131,6 @@ void filter_rungs(const EstimatorImage& est, const Guides& guides, const Denoise
                   const FilterDiagnostics& diagnostics, int nthreads, SimdLevel level,
                   const std::function<void(int radius)>& rung_done);
 
-/// Filters output rows [y0, y1), chunks of kernel-width columns [chunk0, chunk1).
-using FilterRowsFn = void (*)(const FilterLayout& layout, const std::vector<Plane>& out,
-                              const FilterDiagnostics& diagnostics, int y0, int y1, int chunk0,
-                              int chunk1);
-FilterRowsFn filter_rows_scalar();
-FilterRowsFn filter_rows_avx2();
-FilterRowsFn filter_rows_avx512();
-int kernel_width(SimdLevel level);
 /// The channel counts the kernels are built for: 1 to 4, and 6, 9 and 12 (joint AOVs).
 constexpr bool kernel_takes_channels(int channels)
 {

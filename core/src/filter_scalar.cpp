@@ -3,5 +3,5 @@
 #include "simd_scalar.h"
 
 namespace statmc::detail {
-FilterRowsFn filter_rows_scalar() { return &filter_rows<simd::Scalar>; }
+FilterKernel filter_kernel_scalar() { return kernel_build<simd::Scalar>(); }
 }  // namespace statmc::detail

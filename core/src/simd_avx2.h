@@ -29,7 +29,9 @@ struct Avx2 {
     // Masked lanes add 0·b, which leaves c as it is for the finite b the kernel passes.
     static F masked_fmadd(M m, F a, F b, F c) { return fmadd(select(m, a), b, c); }
     static F masked_add(M m, F acc, F a) { return add(acc, select(m, a)); }
+    static M eq(F a, F b) { return _mm256_cmp_ps(a, b, _CMP_EQ_OQ); }
     static bool none(M m) { return _mm256_movemask_ps(m) == 0; }
+    static bool all(M m) { return _mm256_movemask_ps(m) == 0xff; }
     static void store(float* p, F v) { _mm256_storeu_ps(p, v); }
     static void in_register(F& v) { asm("" : "+x"(v)); }
 

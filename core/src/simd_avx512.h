@@ -34,7 +34,9 @@ struct Avx512 {
     static M le_and(M m, F a, F b) { return _mm512_mask_cmp_ps_mask(m, a, b, _CMP_LE_OQ); }
     static F masked_fmadd(M m, F a, F b, F c) { return _mm512_mask3_fmadd_ps(a, b, c, m); }
     static F masked_add(M m, F acc, F a) { return _mm512_mask_add_ps(acc, m, acc, a); }
+    static M eq(F a, F b) { return _mm512_cmp_ps_mask(a, b, _CMP_EQ_OQ); }
     static bool none(M m) { return m == 0; }
+    static bool all(M m) { return m == 0xffff; }
     static void store(float* p, F v) { _mm512_storeu_ps(p, v); }
     /// Makes a loaded value live in a register: GCC would otherwise fold the load into
     /// each of its users as a memory operand, loading it once per user.

@@ -28,7 +28,9 @@ struct Scalar {
     static F select(M m, F a) { return m ? a : 0.f; }
     static F masked_fmadd(M m, F a, F b, F c) { return fmadd(select(m, a), b, c); }
     static F masked_add(M m, F acc, F a) { return add(acc, select(m, a)); }
+    static M eq(F a, F b) { return a == b; }
     static bool none(M m) { return !m; }
+    static bool all(M m) { return m; }
     static F round(F x) { return std::nearbyint(x); }
     static F scale_by_power_of_two(F p, F n) { return n < -125.f ? 0.f : std::ldexp(p, int(n)); }
     static void store(float* p, F v) { *p = v; }

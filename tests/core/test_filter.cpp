@@ -187,6 +187,71 @@ TEST(Filter, BitwiseIdenticalForAnyThreadCount)
     EXPECT_EQ(std::memcmp(one.effective.data(), all.effective.data(), one.effective.size() * 4), 0);
 }
 
+// A tap whose guides agree exactly in every lane takes its weight from a table
+// (FilterLayout::flat_guide_weight) instead of the exp; the table must hold the exp's own
+// bits. Guides `flat`: the first constant over 8-pixel stripes, the rest constant, so most
+// taps take the table. Guides `nudged` move every third pixel's last guide (summed apart
+// from the first, filter_kernel.h) by ~3·10⁻⁷ relative, in the kernel's scaled planes too:
+// its squared distance becomes ~10⁻¹², far below half an ulp of every log-weight at
+// σ_s = 10, so the exponents are the same floats, but those taps take the exp. The two
+// must agree bit for bit for each guide set, guide noise or not, for the plain filter and
+// the ladder's rungs.
+TEST(Filter, FlatGuidesTakeTheExpsBits)
+{
+    constexpr int w = 77, h = 41;
+    const EstimatorImage est = random_estimators(w, h, 3, 17);
+    for (auto [albedo, normal] : {std::pair{true, true}, {true, false}, {false, true}})
+        for (bool noise : {false, true}) {
+            GuideImages flat(w, h, albedo, normal, 6, noise),
+                nudged(w, h, albedo, normal, 6, noise);
+            const int first = albedo ? 0 : 3, last = normal ? 5 : 2;
+            for (int k = 0; k < 6; ++k)
+                for (int y = 0; y < h; ++y)
+                    for (int x = 0; x < w; ++x) {
+                        const std::size_t i = std::size_t(k) * w * h + std::size_t(y) * w + x;
+                        flat.data[i] = nudged.data[i] =
+                            0.3f + 0.1f * k + (k == first) * 0.05f * ((x / 8) % 2);
+                        if (k == last && (x + y) % 3 == 0)
+                            nudged.data[i] *= 1.f + 3e-7f;
+                    }
+            DenoiseOptions opt;
+            opt.radius = 7;
+            for (SimdLevel level : supported_simd_levels()) {
+                SCOPED_TRACE(std::string(simd_level_name(level)) + (albedo ? " albedo" : "") +
+                             (normal ? " normal" : "") + (noise ? ", guide noise" : ""));
+                // The nudge survives the scaling into the kernel's planes, so those taps do
+                // not take the table.
+                const detail::FilterLayout layout = detail::make_filter_layout(
+                    est, nudged.guides, opt, {}, 1, detail::filter_kernel(level));
+                const float* nudged_plane = layout.guide[layout.guide_count - 1];
+                int apart = 0;
+                for (int y = 0; y < h; ++y)
+                    for (int x = 1; x < w; ++x)
+                        apart += nudged_plane[std::ptrdiff_t(y) * layout.stride + x] !=
+                                 nudged_plane[std::ptrdiff_t(y) * layout.stride + x - 1];
+                EXPECT_GT(apart, w * h / 2);
+
+                Output a(w, h, 3), b(w, h, 3), rungs_a(w, h, 3), rungs_b(w, h, 3);
+                filter(est, flat.guides, opt, a.planes(), a.diagnostics(), 0, level);
+                filter(est, nudged.guides, opt, b.planes(), b.diagnostics(), 0, level);
+                EXPECT_EQ(std::memcmp(a.values.data(), b.values.data(), a.values.size() * 4), 0);
+                EXPECT_EQ(std::memcmp(a.weights.data(), b.weights.data(), a.weights.size() * 4),
+                          0);
+                EXPECT_EQ(
+                    std::memcmp(a.effective.data(), b.effective.data(), a.effective.size() * 4),
+                    0);
+                const std::vector<int> radii = {2, 5, 7};
+                detail::filter_rungs(est, flat.guides, opt, radii, rungs_a.planes(),
+                                     rungs_a.diagnostics(), 0, level, [](int) {});
+                detail::filter_rungs(est, nudged.guides, opt, radii, rungs_b.planes(),
+                                     rungs_b.diagnostics(), 0, level, [](int) {});
+                EXPECT_EQ(std::memcmp(rungs_a.values.data(), rungs_b.values.data(),
+                                      rungs_a.values.size() * 4),
+                          0);
+            }
+        }
+}
+
 TEST(Filter, VectorKernelsAgree)
 {
     // Without guides AVX2 and AVX-512 run the same operations per lane (masked forms
