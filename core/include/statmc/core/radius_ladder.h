@@ -18,10 +18,8 @@ namespace statmc {
 
 struct RadiusLadderOptions {
     /// The rungs above 0, ascending; those above the filter's radius are dropped and the
-    /// filter's radius is always the last rung. Three rungs measured as accurate as the
-    /// seven of 1, 2, 3, 5, 8, 12, 20 for less time: each rung is a pass over the image
-    /// (docs/method.md §11, docs/filter-design.md).
-    std::vector<int> radii = {3, 8, 20};
+    /// filter's radius is always the last rung.
+    std::vector<int> radii = {1, 2, 3, 5, 8, 12, 20};
     double alpha = 0.005;  ///< of each rung's interval, in (0, 1)
     /// A pixel whose intervals stop it at a rung where every one of its 8-neighbours (those
     /// inside the image) goes on goes on too, its intersection restarting from that rung's
