@@ -340,7 +340,7 @@ TEST(CliRun, HelpListsEveryCommandAndModifier)
           ":sigma_albedo=0.02 ", ":sigma_normal=0.1 ", ":guides=auto ", "(albedo,normal|auto|none)",
           ":albedo_layer=albedo ", ":normal_layer=normal ", ":test=auto ",
           "(auto|boxcox|untransformed)", ":nonfinite=error ", "(error|zero)", ":n=int ",
-          ":diagnostics=0 ", ":aov=name ",
+          ":diagnostics=0 ", ":aov=name ", ":aovs=name,name,... ", "(int,int,...) with ici",
           // the oiiotool commands, from the same table
           "-d TYPE", "--compression NAME", "-a ", "--ch[:mod=val...] CHANLIST",
           "--chnames[:mod=val...] NAMELIST", "--chappend", "--subimage[:mod=val...] N|NAME",

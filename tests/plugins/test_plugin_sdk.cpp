@@ -41,6 +41,14 @@ TEST(PluginApi, RangesDescribeAndCheckThemselves)
     EXPECT_EQ(int_parameter("n", std::nullopt, "").default_value, "");
 }
 
+TEST(PluginApi, StringsAreNamesUnlessWrittenOtherwise)
+{
+    EXPECT_EQ(string_parameter("aov", "", "").value_syntax(), "name");
+    EXPECT_EQ(string_parameter("radii", "1,2", "").written_as("int,int,...").value_syntax(),
+              "int,int,...");
+    EXPECT_EQ(int_parameter("n", 1, "").value_syntax(), "int");
+}
+
 TEST(PluginApi, ValuesFallBackToTheirDefaults)
 {
     ParameterValues values;

@@ -60,7 +60,8 @@ void register_compare(statmc::PluginRegistry& registry)
               "(as --display) and clamped to [0, 1].";
     op.parameters = {
         statmc::float_parameter("epsilon", 0.01, "epsilon of relMSE").above(0),
-        statmc::string_parameter("errorimage", "", "also write the absolute error image here"),
+        statmc::string_parameter("errorimage", "", "also write the absolute error image here")
+            .written_as("file"),
         statmc::string_parameter("view", "",
                                  "OCIO view SSIM sees the images through "
                                  "(default: the display's, sRGB in statmc's config)"),

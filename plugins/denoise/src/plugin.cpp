@@ -199,7 +199,8 @@ std::vector<statmc::ParameterSpec> parameters()
                          "bounce1L; empty: the beauty R,G,B"),
         string_parameter("aovs", "",
                          "more AOVs denoised beside aov, comma-separated (e.g. "
-                         "diffuse,specular); each by its own test unless joint"),
+                         "diffuse,specular); each by its own test unless joint")
+            .written_as("name,name,..."),
         bool_parameter("joint", kDefaults.joint,
                        "with aovs: average every listed AOV with aov's members and weights "
                        "(the beauty's test), so that AOVs summing to the beauty still sum to "
@@ -234,7 +235,8 @@ std::vector<statmc::ParameterSpec> parameters()
                          "with ici: the ladder's rungs, ascending, each in [1, 100]; those at "
                          "or above radius are dropped and radius is always the last. Each "
                          "rung is a pass over the image: fewer rungs cost less "
-                         "(docs/filter-design.md)"),
+                         "(docs/filter-design.md)")
+            .written_as("int,int,..."),
         float_parameter("explained_variance", kDefaults.explained_alpha,
                         "experimental: first remove the part of each pixel's variance that a "
                         "gradient across the pixel explains, where significant at this level "

@@ -87,7 +87,7 @@ std::string ParameterSpec::value_syntax() const
     using OIIO::Strutil::join;
     switch (type) {
     case ParameterType::String:
-        return "name";
+        return syntax.empty() ? "name" : syntax;
     case ParameterType::Choice:
         return join(choices, "|");
     case ParameterType::List:
@@ -95,6 +95,12 @@ std::string ParameterSpec::value_syntax() const
     default:
         return type_name(type);  // int, float, bool
     }
+}
+
+ParameterSpec& ParameterSpec::written_as(std::string value_syntax)
+{
+    syntax = std::move(value_syntax);
+    return *this;
 }
 
 ParameterSpec& ParameterSpec::between(double lo, double hi)

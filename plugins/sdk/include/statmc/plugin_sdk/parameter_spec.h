@@ -43,9 +43,14 @@ struct ParameterSpec {
     std::vector<std::string> choices;   ///< Choice and List
     std::vector<std::string> keywords;  ///< List only: values that stand alone ("auto")
     ParameterRange range;               ///< Int and Float only
+    std::string syntax;  ///< String only: how help writes its value when not a name ("file")
 
-    /// "int", "float", "auto|boxcox|untransformed", "albedo,normal|auto|none", "name"
+    /// "int", "float", "auto|boxcox|untransformed", "albedo,normal|auto|none", "name", or
+    /// a string parameter's own syntax
     std::string value_syntax() const;
+
+    /// A string parameter whose values are not names: how help writes them ("int,...").
+    ParameterSpec& written_as(std::string value_syntax);
 
     // Range setters, chained after a builder: int_parameter(...).between(0, 1000).
     ParameterSpec& between(double lo, double hi);       ///< [lo, hi]

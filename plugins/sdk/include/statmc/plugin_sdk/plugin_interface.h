@@ -16,7 +16,7 @@
 
 namespace statmc {
 
-inline constexpr int kPluginInterfaceVersion = 2;
+inline constexpr int kPluginInterfaceVersion = 3;
 
 }  // namespace statmc
 
