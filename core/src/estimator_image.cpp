@@ -71,6 +71,24 @@ void fill_estimator(EstimatorImage& est, const StatisticsView& stats, TestDomain
 
 }  // namespace
 
+void EstimatorImage::testable_row(int y, std::uint8_t* out) const
+{
+    // Locals: a byte store may alias anything, members included, which would keep the
+    // compiler from vectorising loops bounded by `width`.
+    const int w = width, k = channels;
+    const float* n = count.data() + index(0, 0, y);
+    for (int x = 0; x < w; ++x)
+        out[x] = n[x] >= 2;
+    for (int c = 0; c < k; ++c) {
+        const float* mean = test_mean.data() + index(c, 0, y);
+        const float* variance = test_variance.data() + index(c, 0, y);
+        // |v| ≤ FLT_MAX is std::isfinite(v) without the branch.
+        for (int x = 0; x < w; ++x)
+            out[x] &= (std::abs(mean[x]) <= FLT_MAX) & (std::abs(variance[x]) <= FLT_MAX) &
+                      (variance[x] >= 0);
+    }
+}
+
 EstimatorImage::EstimatorImage(int w, int h, int c) : width(w), height(h), channels(c)
 {
     require_channels(c);

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <limits>
 #include <new>
+#include <vector>
 
 #include <sys/mman.h>
 
@@ -151,8 +153,7 @@ NoiseLevels guard_levels(const EstimatorImage& est, const DenoiseOptions& option
 
 FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                                 const DenoiseOptions& options, const NoiseLevels& noise,
-                                int nthreads, const FilterKernel& kernel,
-                                bool with_inverse_count)
+                                int nthreads, const FilterKernel& kernel, bool with_inverse_count)
 {
     FilterLayout L;
     L.width = est.width;
@@ -266,6 +267,8 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
     const int row_end = L.stride - L.pad_x;  // one past the last padded column, from x = 0
     auto fill_rows = [&](const tbb::blocked_range<int>& rows) {
         double last_count = -1, last_gamma2 = 0;  // counts repeat: spare the table lookup
+        std::vector<std::uint8_t> testable(est.width);
+        std::vector<double> gamma2(est.width);
         for (int y = rows.begin(); y < rows.end(); ++y) {
             const std::ptrdiff_t row = std::ptrdiff_t(y) * L.stride;
             if (y < 0 || y >= est.height) {
@@ -274,25 +277,36 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
             }
             pad(row, -L.pad_x, 0);
             pad(row, est.width, row_end);
+            // The row plane by plane, so that the channels' loops vectorise.
+            est.testable_row(y, testable.data());
+            const float* count = est.count.data() + est.index(0, 0, y);
             for (int x = 0; x < est.width; ++x) {
-                const std::ptrdiff_t p = row + x;
-                const bool testable = est.testable(x, y);
-                const double n = est.count[est.index(0, x, y)];
-                if (testable && n != last_count) {
+                const double n = count[x];
+                if (testable[x] && n != last_count) {
                     // The fast form tests each side at df = 2n − 2 (docs/method.md §4).
                     const double gamma = critical.gamma(2.0 * std::floor(n) - 2.0);
                     last_count = n;
                     last_gamma2 = gamma * gamma;
                 }
-                for (int c = 0; c < L.channels; ++c) {
-                    const std::size_t i = est.index(c, x, y);
-                    value[c][p] = est.value[i];
-                    mean[c][p] = testable ? est.test_mean[i] : 0.f;
-                    threshold[c][p] =
-                        testable
-                            ? float(std::min(last_gamma2 * est.test_variance[i], double(FLT_MAX)))
-                            : kNever;
+                gamma2[x] = last_gamma2;
+            }
+            for (int c = 0; c < L.channels; ++c) {
+                const std::size_t i = est.index(c, 0, y);
+                const float *in_value = est.value.data() + i, *in_mean = est.test_mean.data() + i,
+                            *in_variance = est.test_variance.data() + i;
+                float *out_value = value[c] + row, *out_mean = mean[c] + row,
+                      *out_threshold = threshold[c] + row;
+                for (int x = 0; x < est.width; ++x) {
+                    out_value[x] = in_value[x];
+                    out_mean[x] = testable[x] ? in_mean[x] : 0.f;
+                    out_threshold[x] =
+                        testable[x] ? float(std::min(gamma2[x] * in_variance[x], double(FLT_MAX)))
+                                    : kNever;
                 }
+            }
+            for (int x = 0; x < est.width; ++x) {
+                const std::ptrdiff_t p = row + x;
+                const double n = count[x];
                 for (int g = 0; g < L.guide_count; ++g)
                     guide[g][p] = std::clamp(finite_or_zero(guide_planes[g].first(x, y)) *
                                                  guide_planes[g].second,
@@ -304,8 +318,8 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                     noise_limit[p] = noise.limit[std::size_t(y) * est.width + x];
                 }
                 if (inverse_count) {
-                    const float count = finite_or_zero(float(n));
-                    inverse_count[p] = count > 0 ? 1.f / count : 0.f;
+                    const float count_or_zero = finite_or_zero(float(n));
+                    inverse_count[p] = count_or_zero > 0 ? 1.f / count_or_zero : 0.f;
                 }
             }
         }

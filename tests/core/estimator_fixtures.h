@@ -2,6 +2,7 @@
 // accumulated with core's own accumulators.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <random>
 #include <vector>
@@ -46,6 +47,29 @@ inline float draw_lognormal(std::mt19937_64& rng, float mean)
 {
     const float s = 1.2f;
     return mean * std::lognormal_distribution<float>(-0.5f * s * s, s)(rng);
+}
+
+/// A 4-channel estimator image written by hand, 37 × 11: random means and variances, and
+/// every way a pixel can be untestable (n < 2, a NaN or infinite mean or variance, a
+/// negative variance), beside zero means and ±0 variances; the last `context` channels
+/// are context channels.
+inline EstimatorImage odd_estimators(TestDomain domain, int context, std::uint64_t seed)
+{
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    EstimatorImage est(37, 11, 4);
+    est.domain = domain;
+    est.context_channels = context;
+    for (std::size_t i = 0; i < est.pixels(); ++i)
+        est.count[i] = u(rng) < 0.05f ? 1.f : 2.f + std::floor(100 * u(rng));
+    const float odd[] = {NAN, INFINITY, -INFINITY, -1e-3f, 0.f, -0.f};
+    for (std::size_t i = 0; i < est.test_mean.size(); ++i) {
+        est.test_mean[i] = u(rng) < 0.1f ? 0.f : 4 * u(rng) - 1;
+        est.test_variance[i] = 1e-3f * u(rng);
+        if (u(rng) < 0.05f)
+            (u(rng) < 0.5f ? est.test_mean[i] : est.test_variance[i]) = odd[int(6 * u(rng)) % 6];
+    }
+    return est;
 }
 
 /// Mean squared error of dense planes (channel-major) against the truth.

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -261,6 +263,37 @@ TEST(Fireflies, TheUntransformedLevelDoesNotTakeBrightnessForNoise)
         const std::size_t dark = 10 * kSize + 10, bright = 10 * kSize + kSize - 10;
         EXPECT_LT(noise.level[bright], 1000 * noise.level[dark]) << "n = " << n;
     }
+}
+
+TEST(Fireflies, EachLevelIsItsPixelsLargestPerSampleVariance)
+{
+    // The levels straight from their definition (firefly_guard.h), pixel by pixel, on
+    // odd_estimators' pixels, with and without a context channel, in both domains. Exact:
+    // the levels are one product (and one division) per channel and a maximum.
+    for (TestDomain domain : {TestDomain::BoxCox, TestDomain::Untransformed})
+        for (int context : {0, 1}) {
+            const EstimatorImage est = testing::odd_estimators(domain, context, 17);
+            const NoiseLevels noise = noise_levels(est, 4);
+            for (int y = 0; y < est.height; ++y)
+                for (int x = 0; x < est.width; ++x) {
+                    float expected = 0;
+                    if (est.testable(x, y))
+                        for (int c = 0; c < est.channels - context; ++c) {
+                            const float n = est.count[est.index(0, x, y)];
+                            const float s2 = est.test_variance[est.index(c, x, y)] * n;
+                            const float mu = std::abs(est.test_mean[est.index(c, x, y)]);
+                            const float level = domain == TestDomain::BoxCox || s2 == 0 ? s2
+                                                : mu > 0                                ? s2 / mu
+                                                         : std::numeric_limits<float>::max();
+                            expected = std::max(expected, level);
+                        }
+                    const float got = noise.level[std::size_t(y) * est.width + x];
+                    ASSERT_EQ(std::memcmp(&got, &expected, sizeof got), 0)
+                        << got << " against " << expected << " at "
+                        << "(" << x << ", " << y << "), context " << context << ", "
+                        << (domain == TestDomain::BoxCox ? "Box-Cox" : "untransformed");
+                }
+        }
 }
 
 }  // namespace

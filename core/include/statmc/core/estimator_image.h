@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "statmc/core/plane.h"
@@ -65,6 +66,10 @@ struct EstimatorImage {
         }
         return true;
     }
+    /// testable(x, y) for the whole of row y, as 1 or 0 in out[0, width): plane by plane
+    /// and branch-free, so that it vectorises. The filter's layout and the firefly guard
+    /// ask it of every pixel.
+    void testable_row(int y, std::uint8_t* out) const;
 };
 
 /// Full statistics (mode 1) or mean + variance + count (mode 2, TestDomain::Untransformed).
