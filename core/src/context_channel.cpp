@@ -36,10 +36,8 @@ EstimatorImage with_context(const EstimatorImage& est, int channel, int radius, 
         const NoiseLevels noise = noise_levels(est, firefly_ratio);
         // Whether each pixel is testable, once: every box would otherwise test it again.
         std::vector<std::uint8_t> testable(est.pixels());
-        tbb::parallel_for(0, h, [&](int y) {
-            for (int x = 0; x < w; ++x)
-                testable[std::size_t(y) * w + x] = est.testable(x, y);
-        });
+        tbb::parallel_for(
+            0, h, [&](int y) { est.testable_row(y, testable.data() + std::size_t(y) * w); });
         const float* test_mean = est.test_mean.data() + est.index(channel, 0, 0);
         const float* test_variance = est.test_variance.data() + est.index(channel, 0, 0);
         const float* value_plane = est.value.data() + est.index(channel, 0, 0);

@@ -82,10 +82,8 @@ void EstimatorImage::testable_row(int y, std::uint8_t* out) const
     for (int c = 0; c < k; ++c) {
         const float* mean = test_mean.data() + index(c, 0, y);
         const float* variance = test_variance.data() + index(c, 0, y);
-        // |v| ≤ FLT_MAX is std::isfinite(v) without the branch.
         for (int x = 0; x < w; ++x)
-            out[x] &= (std::abs(mean[x]) <= FLT_MAX) & (std::abs(variance[x]) <= FLT_MAX) &
-                      (variance[x] >= 0);
+            out[x] &= testable_estimate(mean[x], variance[x]);
     }
 }
 

@@ -2,6 +2,7 @@
 // of statistics a renderer can give.
 #pragma once
 
+#include <cfloat>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -54,16 +55,19 @@ struct EstimatorImage {
     {
         return std::size_t(c) * pixels() + std::size_t(y) * width + x;
     }
+    /// One channel's part of testable(): a finite mean and a finite, non-negative variance.
+    /// Branch-free (|v| ≤ FLT_MAX is std::isfinite(v)), so that testable_row vectorises.
+    static bool testable_estimate(float mean, float variance)
+    {
+        return (std::abs(mean) <= FLT_MAX) & (std::abs(variance) <= FLT_MAX) & (variance >= 0);
+    }
     bool testable(int x, int y) const
     {
         if (!(count[index(0, x, y)] >= 2))
             return false;
-        for (int c = 0; c < channels; ++c) {
-            const float m = test_mean[index(c, x, y)];
-            const float v = test_variance[index(c, x, y)];
-            if (!std::isfinite(m) || !std::isfinite(v) || v < 0)
+        for (int c = 0; c < channels; ++c)
+            if (!testable_estimate(test_mean[index(c, x, y)], test_variance[index(c, x, y)]))
                 return false;
-        }
         return true;
     }
     /// testable(x, y) for the whole of row y, as 1 or 0 in out[0, width): plane by plane
