@@ -235,13 +235,13 @@ public:
         const std::size_t n = std::size_t(kBlock) * std::size_t(pixel);
         lo_.assign(n, 0.f);
         hi_.assign(n, 0.f);
-        free_.assign(n, 1);  // channels without a check (and other pixels' leading ones)
+        unchecked_.assign(n, 1);  // channels without a check (and other pixels' leading ones)
         for (const Bound& b : bounds_)
             for (int k = 0; k < kBlock; ++k) {
                 const std::size_t j = std::size_t(k) * pixel + std::size_t(b.plane.data - base);
                 lo_[j] = b.range.lo;
                 hi_[j] = b.range.hi;
-                free_[j] = 0;
+                unchecked_[j] = 0;
             }
     }
 
@@ -256,7 +256,7 @@ public:
             const int n = kBlock * int(xstride_);
             const float* lo = lo_.data();
             const float* hi = hi_.data();
-            const int* unchecked = free_.data();
+            const int* unchecked = unchecked_.data();
             for (; x + kBlock < x1; x += kBlock) {
                 const float* v = base_ + std::ptrdiff_t(y) * ystride_ + std::ptrdiff_t(x) * xstride_;
                 for (int j = 0; j < n; ++j)
@@ -277,7 +277,7 @@ private:
     const float* base_ = nullptr;  // null: the channels are not one interleaved pixel
     std::ptrdiff_t xstride_ = 0, ystride_ = 0;
     std::vector<float> lo_, hi_;  // kBlock pixels' worth of each channel's range
-    std::vector<int> free_;       // 1 where no check applies
+    std::vector<int> unchecked_;  // 1 where no check applies
 };
 
 // One pass over the rows checks every channel and every relation: the channels of a pixel

@@ -1,15 +1,17 @@
 // EstimatorImage's own rules: which pixels the test may use.
 #include <cfloat>
 #include <cmath>
-#include <cstring>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "estimator_fixtures.h"
+#include "same_bits.h"
 
 namespace statmc {
 namespace {
+
+using test::same_bits;
 
 TEST(EstimatorImage, TestableRowIsTestableOfEachPixel)
 {
@@ -37,8 +39,6 @@ TEST(EstimatorImage, TestableRowIsTestableOfEachPixel)
     EXPECT_LT(untestable, int(est.pixels()) / 2);
 }
 
-
-bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // estimators_from_statistics against the estimators written out pixel by pixel as
 // docs/method.md §3 defines them: the same floats bit for bit, in both test domains and

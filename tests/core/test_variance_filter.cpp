@@ -13,10 +13,13 @@
 #include "statmc/core/moments.h"
 #include "statmc/core/statistics_image.h"
 #include "statmc/core/variance_filter.h"
+#include "same_bits.h"
 #include "variance_filter_layout.h"
 
 namespace statmc {
 namespace {
+
+using test::same_bits;
 
 constexpr int kW = 48, kH = 32, kSpp = 8;
 
@@ -272,12 +275,6 @@ TEST(VarianceFilter, TheMeansTestKeepsAnotherExpectationsVarianceOutOfThePrior)
             // many of them.
             EXPECT_NEAR(tested[i], truth, 0.5 * truth) << x << "," << y;
         }
-}
-
-// Bit patterns, so that the NaN a NaN variance leaves compares equal to itself.
-bool same_bits(const std::vector<float>& a, const std::vector<float>& b)
-{
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
 TEST(VarianceFilter, EverySimdLevelGivesTheScalarLoopsBits)

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-#include <cstring>
 #include <memory>
 
 #include <OpenImageIO/imagebuf.h>
@@ -15,6 +14,7 @@
 #include "statmc/layers/statistics_layers.h"
 
 #include "renderer_test_support.h"
+#include "same_bits.h"
 #include "statmc/render/camera.h"
 #include "statmc/render/exr_output.h"
 #include "statmc/render/render_loop.h"
@@ -23,6 +23,7 @@
 
 using namespace statmc::render;
 using statmc::render::test::ScratchDir;
+using statmc::test::same_bits;
 
 namespace {
 
@@ -47,8 +48,6 @@ OIIO::ImageBuf read(const std::string& path)
     EXPECT_TRUE(buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << buf.geterror();
     return buf;
 }
-
-bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 }  // namespace
 

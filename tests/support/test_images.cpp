@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <random>
 #include <stdexcept>
 
@@ -186,7 +185,5 @@ OIIO::ImageBuf read_exr(const std::string& path)
     OIIO::ImageCache::create(true)->invalidate(OIIO::ustring(path), true);
     return buf;
 }
-
-bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof(float)) == 0; }
 
 }  // namespace statmc::test

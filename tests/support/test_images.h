@@ -14,6 +14,7 @@
 #include "statmc/core/filter.h"
 #include "statmc/core/statistics_image.h"
 #include "statmc/layers/guide_layers.h"
+#include "same_bits.h"
 
 namespace statmc::test {
 
@@ -61,8 +62,5 @@ void set_channel(OIIO::ImageBuf& buf, const std::string& name, int x, int y, flo
 /// Writes `buf` as EXR (throws on failure) and reads a file back as local float pixels.
 void write_exr(const OIIO::ImageBuf& buf, const std::string& path);
 OIIO::ImageBuf read_exr(const std::string& path);
-
-/// Bitwise float equality (NaN == NaN of the same payload, 0 != -0).
-bool same_bits(float a, float b);
 
 }  // namespace statmc::test
