@@ -1,6 +1,7 @@
 // EstimatorImage's own rules: which pixels the test may use.
 #include <cfloat>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -38,7 +39,6 @@ TEST(EstimatorImage, TestableRowIsTestableOfEachPixel)
     EXPECT_GT(untestable, est.width);  // the fixture holds plenty of each kind
     EXPECT_LT(untestable, int(est.pixels()) / 2);
 }
-
 
 // estimators_from_statistics against the estimators written out pixel by pixel as
 // docs/method.md §3 defines them: the same floats bit for bit, in both test domains and

@@ -119,7 +119,6 @@ TEST(StatisticsValidation, RoiLimitsTheCheckAndCoordinatesFollowTheDataWindow)
     EXPECT_TRUE(problems_of(buf, elsewhere).empty());
 }
 
-
 // The first look at a row compares runs of 16 pixels at once and leaves the rest to a
 // pixel-by-pixel loop: a bad value at any pixel of a 37-pixel row, in any checked
 // channel, with the region starting at 0 or at an odd column, is found where it is.
