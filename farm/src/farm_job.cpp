@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "statmc/layers/sample_provenance.h"
+
 namespace statmc::farm {
 
 namespace {
@@ -74,13 +76,19 @@ std::string task_output(const Frame& frame, int task)
     return with_suffix(frame.output, ".task" + std::to_string(task));
 }
 
+int frame_seed(const FarmJob& job, const Frame& frame)
+{
+    return layers::frame_seed(job.seed, frame.number);
+}
+
 std::string denoised_output(const Frame& frame) { return with_suffix(frame.output, ".denoised"); }
 
 std::string render_script(const FarmJob& job)
 {
-    std::vector<std::string> scenes, outputs;
+    std::vector<std::string> scenes, seeds, outputs;
     for (const Frame& f : job.frames) {
         scenes.push_back(f.scene);
+        seeds.push_back(std::to_string(frame_seed(job, f)));
         for (int t = 0; t < job.tasks; ++t)
             outputs.push_back(task_output(f, t));
     }
@@ -96,6 +104,7 @@ std::string render_script(const FarmJob& job)
     s += "#SBATCH --requeue\n";
     s += "set -u\n";
     s += bash_array("scenes", scenes);
+    s += bash_array("seeds", seeds);
     s += bash_array("outputs", outputs);
     s += "k=${SLURM_ARRAY_TASK_ID:?run this script with sbatch}\n";
     s += "frame=$((k / " + n + ")); task=$((k % " + n + "))\n";
@@ -108,7 +117,7 @@ std::string render_script(const FarmJob& job)
          "     \"task $task/" + n + " of ${scenes[$frame]}, attempt $attempt\"\n";
     s += shell_quote(job.render_exe) + " \"${scenes[$frame]}\" -o \"${outputs[$k]}\" --task \"$task/" +
          n + "\"" + (job.spp > 0 ? " --spp " + std::to_string(job.spp) : std::string()) +
-         " --seed " + std::to_string(job.seed) + " --checkpoint " + number(job.checkpoint_seconds) +
+         " --seed \"${seeds[$frame]}\" --checkpoint " + number(job.checkpoint_seconds) +
          " --resume --threads \"${SLURM_CPUS_PER_TASK:-0}\" -q" + extra + "\n";
     s += "status=$?\n";
     // Killed (SIGKILL, the OOM killer) or stopped (SIGTERM: the render saved its film and

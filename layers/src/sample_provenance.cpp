@@ -1,5 +1,7 @@
 #include "statmc/layers/sample_provenance.h"
 
+#include <cstdint>
+
 #include "statmc/layers/layer_error.h"
 #include "statmc/layers/layer_names.h"
 
@@ -66,6 +68,18 @@ void write_sample_provenance(OIIO::ImageSpec& spec, const SampleProvenance& p)
         spec.attribute(attr::kTaskIndex, *p.task_index);
         spec.attribute(attr::kTaskCount, *p.task_count);
     }
+}
+
+int frame_seed(int seed, int frame)
+{
+    const std::uint32_t mixed = std::uint32_t(seed) ^ (std::uint32_t(frame) * 0x9E3779B1u);
+    return int(mixed & 0x7fffffffu);
+}
+
+bool shares_samples(const SampleProvenance& a, const SampleProvenance& b)
+{
+    return a.seed && b.seed && *a.seed == *b.seed && a.range && b.range &&
+           a.range->overlaps(*b.range);
 }
 
 std::string describe(const SampleProvenance& p)

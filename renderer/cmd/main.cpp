@@ -95,17 +95,18 @@ OIIO::ImageBuf merge_tasks(const std::vector<OIIO::ImageBuf>& parts)
 struct FrameToRender {
     std::string output;
     double time = 0;
-    std::uint64_t seed = 0;
+    int seed = 0;
     std::optional<int> number;
 };
 
 // The frames --frame/--frames ask for (one still without them). A frame's seed mixes the
-// frame number into --seed, so that the frames of a sequence have independent noise.
+// frame number into --seed (layers::frame_seed), so that the frames of a sequence have
+// independent noise, and its header says which seed it drew with.
 std::vector<FrameToRender> frames_to_render(const std::string& output, const std::string& list,
                                             bool one_frame, int frame, double fps, int seed)
 {
     if (list.empty() && !one_frame)
-        return {{output, 0.0, std::uint64_t(seed), std::nullopt}};
+        return {{output, 0.0, seed, std::nullopt}};
     std::vector<int> numbers = {frame};
     if (!list.empty()) {
         const auto listed = statmc::layers::frame_list(list);
@@ -122,10 +123,8 @@ std::vector<FrameToRender> frames_to_render(const std::string& output, const std
                                  "(shot.#.exr, shot.%04d.exr)");
     std::vector<FrameToRender> frames;
     for (int n : numbers) {
-        const std::uint64_t mixed =
-            std::uint64_t(seed) ^ (std::uint64_t(std::uint32_t(n)) * 0x9E3779B97F4A7C15ull);
-        frames.push_back(
-            {pattern.empty() ? output : statmc::layers::frame_path(pattern, n), n / fps, mixed, n});
+        frames.push_back({pattern.empty() ? output : statmc::layers::frame_path(pattern, n),
+                          n / fps, statmc::layers::frame_seed(seed, n), n});
     }
     return frames;
 }
@@ -236,6 +235,10 @@ int main(int argc, char** argv)
             ->excludes("--checkpoint")
             ->excludes("--resume")
             ->excludes("--write-every-iteration");
+    bool validate = false;
+    app.add_flag("--validate", validate,
+                 "read the scene and check every option, then exit without rendering (what "
+                 "statmc-farm submit runs before it submits) [default: off]");
     app.add_flag("-q,--quiet", quiet, "no progress bar and no summary [default: off]");
     app.add_flag("--profile", profile,
                  "print samples/s, rays/s and the share of render time spent in Embree traversal "
@@ -284,6 +287,11 @@ int main(int argc, char** argv)
 
         const int frame_spp = int(schedule_samples(settings.schedule));
         task_samples(frame_spp, task_total > 0 ? RenderTask{task_total - 1, task_total} : task);
+        if (validate) {
+            std::printf("statmc-render: %s: the scene and options are valid\n",
+                        scene_path.c_str());
+            return 0;
+        }
 
         Scene scene(desc);
         scene.enable_profiling(profile);
@@ -292,7 +300,7 @@ int main(int argc, char** argv)
         std::signal(SIGTERM, on_interrupt);
         for (const FrameToRender& this_frame : frames) {
             const std::string& output = this_frame.output;
-            settings.seed = this_frame.seed;
+            settings.seed = std::uint64_t(this_frame.seed);
             const Camera camera(desc.camera.at_time(this_frame.time), width, height);
             std::optional<Camera> previous;
             if (this_frame.number)
@@ -306,7 +314,7 @@ int main(int argc, char** argv)
             auto output_info = [&](const Film& f, const RenderTask& task, double seconds) {
                 OutputInfo info;
                 info.spp = f.sample_counts();
-                info.provenance.seed = seed;
+                info.provenance.seed = this_frame.seed;
                 info.provenance.range = task_samples(frame_spp, task);
                 // Pixel p holds sample indices 0 .. n_p − 1: the range covers them all.
                 if (settings.adaptive.enabled)
@@ -332,8 +340,8 @@ int main(int argc, char** argv)
                 auto film = std::make_unique<Film>(width, height, layout);
                 if (share.previous_camera)
                     film->track_motion();
-                CheckpointIdentity identity{scene_path, desc.source_crc,
-                                            seed,       width,
+                CheckpointIdentity identity{scene_path,      desc.source_crc,
+                                            this_frame.seed, width,
                                             height,     task.index,
                                             task.count, range.begin,
                                             range.end,  settings_text(share, bounce_layers)};

@@ -102,7 +102,7 @@ TEST_F(CliError, MisnamedLayer)
     expect_failure({in, "--denoise", "-o", out()},
                    "missing layer variance (channels variance.R, variance.G, variance.B); "
                    "denoising needs it or the Box-Cox layers (boxcoxMean, boxcoxVariance, "
-                   "boxcoxM3); the image has layers (unprefixed), Variance, sampleCount; did you "
+                   "boxcoxM3); the image has layers R,G,B, Variance, sampleCount; did you "
                    "mean Variance?");
 }
 
@@ -147,10 +147,27 @@ TEST_F(CliError, PassesNeedsTwoRenders)
 {
     const auto a = input("a.exr", cli_render(0));
     expect_failure({a, "--passes", "-o", out()},
-                   "--passes: needs at least 2 renders on the stack, got 1");
+                   "--passes: needs at least 2 renders, got 1");
     expect_failure({a, a, "--passes:n=3", "-o", out()},
                    "--passes: needs 3 images, the stack holds 2");
     expect_failure({a, a, "--passes:n=1", "-o", out()}, "--passes: n must be at least 2, got 1");
+}
+
+TEST_F(CliError, PassesOfOneSeedAreRefusedAndWriteNothing)
+{
+    // Blender renders a frame K times identically unless each pass gets its own seed; the
+    // same file twice is the same mistake.
+    const auto a = input("a.exr", cli_render(0));
+    const auto b = input("b.exr", cli_render(0));
+    const auto c = input("c.exr", cli_render(1));
+    const std::string message =
+        " hold the same pixels: they were rendered with one seed, so they are one sample, not "
+        "two. Render each pass with its own seed (Blender: Render Properties > Sampling > "
+        "Advanced > Seed";
+    expect_failure({a, a, "--passes", "--denoise", "-o", out()},
+                   "--passes: render 1 (" + a + ") and render 0 (" + a + ")" + message);
+    expect_failure({c, a, b, "--passes", "-o", out()},
+                   "--passes: render 2 (" + b + ") and render 1 (" + a + ")" + message);
 }
 
 TEST_F(CliError, NegativeVariance)
@@ -246,7 +263,10 @@ TEST_F(CliError, UnwritableOutput)
                                                         dir.file("no/such/dir") +
                                                         "' does not exist");
     expect_failure({in, "-o", dir.file("out.png")},
-                   "out.png: cannot write: statmc writes OpenEXR files only");
+                   "out.png: cannot write: the image holds statistics (");
+    expect_failure({in, "-o", dir.file("out.png")},
+                   "), which statmc writes as OpenEXR only (use the .exr extension); for a "
+                   "picture, --display it first");
     expect_failure({in, "-o", dir.path().string()}, ": cannot write: it is a directory");
 }
 

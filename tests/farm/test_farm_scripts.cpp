@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <sys/wait.h>
@@ -15,6 +16,7 @@
 #include "statmc/farm/frame_pattern.h"
 #include "statmc/farm/job_record.h"
 #include "statmc/farm/slurm.h"
+#include "statmc/layers/sample_provenance.h"
 
 namespace statmc::farm {
 namespace {
@@ -104,7 +106,8 @@ TEST(FarmScripts, RenderArrayCoversEveryTaskOfEveryFrameAndRequeuesKilledOnes)
     EXPECT_FALSE(contains(render, "--account"));
     EXPECT_TRUE(contains(render, "'/s/it'\\''s.pbrt'")) << "quoted for the shell";
     EXPECT_TRUE(contains(render, "'/o/shot.0008.task2.exr'"));
-    EXPECT_TRUE(contains(render, "--task \"$task/3\" --spp 64 --seed 2 --checkpoint 30 --resume"));
+    EXPECT_TRUE(contains(render, "--task \"$task/3\" --spp 64 --seed \"${seeds[$frame]}\" "
+                                 "--checkpoint 30 --resume"));
     EXPECT_TRUE(contains(render, "scontrol requeue \"${SLURM_ARRAY_JOB_ID}_${k}\""));
     EXPECT_TRUE(contains(render, "-lt 3 ]"));
 }
@@ -134,6 +137,37 @@ TEST(FarmScripts, ElementRendersItsTaskAndIsRequeuedOnlyWhenKilled)
     EXPECT_TRUE(contains(killed, "scontrol requeue 41_4")) << killed;
     const std::string error = run_element(s, 4, 1);
     EXPECT_FALSE(contains(error, "scontrol")) << "a scene error is not retried: " << error;
+}
+
+TEST(FarmScripts, EveryFrameRendersWithItsOwnSeedAndEveryTaskOfAFrameWithTheFramesSeed)
+{
+    // Frames 7 and 8 of --seed 2: one seed shared by the frames would repeat their noise
+    // wherever the shot is still, and a temporal denoise would merge it as more samples.
+    const FarmJob job = two_frames();
+    const int seed7 = frame_seed(job, job.frames[0]), seed8 = frame_seed(job, job.frames[1]);
+    EXPECT_NE(seed7, seed8);
+    EXPECT_NE(seed7, job.seed);
+    // The seed of frame F is the one statmc-render --frames gives frame F of --seed S.
+    EXPECT_EQ(seed7, layers::frame_seed(2, 7));
+    Scratch s;
+    for (int k = 0; k < 6; ++k) {
+        const std::string out = run_element(s, k, 0);
+        const int expected = k < 3 ? seed7 : seed8;
+        EXPECT_TRUE(contains(out, "--seed " + std::to_string(expected) + " ")) << k << ": " << out;
+    }
+}
+
+TEST(FrameSeed, IsTheSeedForFrameZeroAndDistinctForEveryFrame)
+{
+    for (const int seed : {0, 1, 3, 1 << 30}) {
+        EXPECT_EQ(layers::frame_seed(seed, 0), seed);
+        std::set<int> seen;
+        for (int frame = -100; frame <= 10000; ++frame) {
+            const int s = layers::frame_seed(seed, frame);
+            EXPECT_GE(s, 0);
+            EXPECT_TRUE(seen.insert(s).second) << "seed " << seed << ", frame " << frame;
+        }
+    }
 }
 
 TEST(FarmScripts, SlurmsSigtermLetsTheRenderSaveAndRequeues)
@@ -212,7 +246,7 @@ TEST(FarmCommand, SbatchMissingOrFailingIsAnErrorThatSaysSo)
     // No sbatch on PATH.
     std::string out = farm_output(s, args, s.dir.string(), status);
     EXPECT_EQ(status, 1);
-    EXPECT_TRUE(contains(out, "sbatch: cannot run it: No such file or directory; is Slurm "
+    EXPECT_TRUE(contains(out, "sbatch: cannot run it: No such file or directory; is it "
                               "installed and on PATH?"))
         << out;
     // sbatch refusing the job.
@@ -245,6 +279,40 @@ TEST(FarmCommand, SbatchMissingOrFailingIsAnErrorThatSaysSo)
     EXPECT_EQ(status, 1);
     EXPECT_TRUE(contains(out, "frame 1: scene " + (s.dir / "missing.0001.pbrt").string() +
                                   " does not exist"))
+        << out;
+}
+
+TEST(FarmCommand, EveryCommandIsValidatedBeforeAnythingIsSubmitted)
+{
+    // The programs the jobs will run (this build's statmc-render and statmc) check their own
+    // command lines; a typo fails at submit, even with --dry-run, and submits nothing.
+    Scratch s;
+    const std::string scene =
+        s.write("s.pbrt", "Film \"image\" \"integer xresolution\" [8] "
+                          "\"integer yresolution\" [8]\nCamera \"perspective\"\nWorldBegin\n"
+                          "Translate 0 0 5\nShape \"sphere\"\nWorldEnd\n");
+    s.write("sbatch", "#!/bin/sh\necho SBATCH-RAN >&2\nexit 1\n", true);
+    const std::string path = s.dir.string() + ":/usr/bin:/bin";
+    const std::string base =
+        "submit '" + scene + "' --tasks 2 --spp 8 -o '" + (s.dir / "o.exr").string() + "' ";
+    int status = 0;
+    std::string out = farm_output(s, base + "--denoise radious=2 --dry-run", path, status);
+    EXPECT_EQ(status, 1) << out;
+    EXPECT_TRUE(contains(out, "frame 0: ")) << out;
+    EXPECT_TRUE(contains(out, "would fail in the merge job")) << out;
+    EXPECT_TRUE(contains(out, "radious")) << out;
+    EXPECT_FALSE(contains(out, "#!/bin/bash")) << "no script printed: " << out;
+    out = farm_output(s, base + "--render-args=--maxdepthh --render-args=3", path, status);
+    EXPECT_EQ(status, 1) << out;
+    EXPECT_TRUE(contains(out, "would fail in the render job")) << out;
+    EXPECT_TRUE(contains(out, "--maxdepthh")) << out;
+    EXPECT_FALSE(contains(out, "SBATCH-RAN")) << "sbatch must not run: " << out;
+    EXPECT_FALSE(fs::exists(s.dir / "statmc-farm")) << "nothing written";
+    // Valid options pass the check; the dry run then prints exactly what submit runs.
+    out = farm_output(s, base + "--denoise method=classic:radius=4 --dry-run", path, status);
+    EXPECT_EQ(status, 0) << out;
+    EXPECT_TRUE(contains(out, "# would run: sbatch --parsable --kill-on-invalid-dep=yes "
+                              "--dependency=afterok:<render job>_0:<render job>_1 "))
         << out;
 }
 

@@ -228,6 +228,55 @@ TEST(DenoiseTemporal, MismatchedFramesAreErrorsNamingTheFrame)
     expect_error(seq.images[0], {{}, {&lacking}}, "boxcox");
 }
 
+// `noise` with the pixels of rows [0, rows) taken from `from`: a static region of a shot
+// rendered with one seed in every frame.
+OIIO::ImageBuf with_rows_of(const OIIO::ImageBuf& noise, const OIIO::ImageBuf& from, int rows)
+{
+    OIIO::ImageBuf out = noise;
+    OIIO::ImageBufAlgo::paste(out, 0, 0, 0, 0, from, OIIO::ROI(0, kW, 0, rows));
+    return out;
+}
+
+TEST(DenoiseTemporal, FramesThatShareTheirSamplesAreRefused)
+{
+    const Sequence seq(2);
+    // The centre itself as its neighbour: every noisy pixel repeated.
+    expect_error(seq.images[0], {{}, {&seq.images[0]}},
+                 "frame t+1 and the frame denoised repeat the same noise in");
+    expect_error(seq.images[0], {{}, {&seq.images[0]}}, "rendered with one seed");
+    // More than half the rows repeated is refused, a third is not (and merges as before).
+    const OIIO::ImageBuf most = with_rows_of(seq.images[1], seq.images[0], kH * 2 / 3);
+    expect_error(seq.images[0], {{&most}, {}}, "frame t−1 and the frame denoised repeat");
+    const OIIO::ImageBuf third = with_rows_of(seq.images[1], seq.images[0], kH / 3);
+    EXPECT_FALSE(
+        denoise(seq.images[0], FrameNeighbours{{&third}, {}}, temporal_options(1)).has_error());
+
+    // The headers: one seed and overlapping sample ranges are the same samples.
+    OIIO::ImageBuf a = seq.images[0], b = seq.images[1];
+    for (OIIO::ImageBuf* f : {&a, &b}) {
+        f->specmod().attribute("statmc:seed", 3);
+        f->specmod().attribute("statmc:spp", 8);
+    }
+    expect_error(a, {{}, {&b}}, "frame t+1 and the frame denoised drew the same samples (seed 3, "
+                                "samples 0..7): merged over time they would count twice");
+    b.specmod().attribute("statmc:seed", 4);
+    EXPECT_FALSE(denoise(a, FrameNeighbours{{}, {&b}}, temporal_options(1)).has_error());
+    // Disjoint ranges of one seed are different samples.
+    b.specmod().attribute("statmc:seed", 3);
+    b.specmod().attribute("statmc:sampleBegin", 8);
+    b.specmod().attribute("statmc:sampleEnd", 16);
+    EXPECT_FALSE(denoise(a, FrameNeighbours{{}, {&b}}, temporal_options(1)).has_error());
+    // Frames of an older statmc-render sequence: the sequence's seed with the frame numbers
+    // it was mixed with.
+    b.specmod().erase_attribute("statmc:sampleBegin");
+    b.specmod().erase_attribute("statmc:sampleEnd");
+    a.specmod().attribute("statmc:frame", 1);
+    b.specmod().attribute("statmc:frame", 2);
+    EXPECT_FALSE(denoise(a, FrameNeighbours{{}, {&b}}, temporal_options(1)).has_error());
+    b.specmod().attribute("statmc:frame", 1);
+    expect_error(a, {{}, {&b}}, "drew the same samples");
+}
+
 TEST(DenoiseTemporal, BitwiseTheSameForAnyThreadCount)
 {
     const Sequence seq(5);

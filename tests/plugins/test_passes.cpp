@@ -295,12 +295,42 @@ TEST(PassesOperator, BlenderMultilayerRendersAreReadUnderTheContractsNames)
         << out.geterror();
 }
 
+TEST(PassesOperator, BlenderFilesOfOneSeedAreRefusedNamingBoth)
+{
+    // Blender's defaults (seed 0, animated seed off) render a frame identically every time.
+    test::TempDir dir;
+    const std::string a = dir.file("noseed1-0001.exr"), b = dir.file("noseed2-0001.exr"),
+                      c = dir.file("seed2-0001.exr");
+    test::write_exr(blender_multilayer(0, "Combined", false), a);
+    test::write_exr(blender_multilayer(0, "Combined", false), b);
+    test::write_exr(blender_multilayer(1, "Combined", false), c);
+    const std::vector<OIIO::ImageBuf> same = {test::read_exr(a), test::read_exr(b)};
+    const std::string error = passes_error(same);
+    EXPECT_EQ(error.rfind("render 1 (" + b + ") and render 0 (" + a +
+                              ") hold the same pixels: they were rendered with one seed",
+                          0),
+              0u)
+        << error;
+    EXPECT_NE(error.find("scene.cycles.seed"), std::string::npos) << error;
+    // One distinct render does not make the pair distinct.
+    EXPECT_NE(passes_error({test::read_exr(c), test::read_exr(a), test::read_exr(b)})
+                  .find("render 2 (" + b + ") and render 1 (" + a + ") hold the same pixels"),
+              std::string::npos);
+    // Renders that differ in a single pixel are distinct renders.
+    OIIO::ImageBuf one_pixel = blender_multilayer(0, "Combined", false);
+    float px[8];
+    one_pixel.getpixel(3, 2, px, 8);
+    px[1] += 0.125f;
+    one_pixel.setpixel(3, 2, px, 8);
+    EXPECT_FALSE(passes(pointers({test::read_exr(a), one_pixel})).has_error());
+}
+
 TEST(PassesOperator, BlenderLightGroupsBecomeAovsThatDenoiseJointly)
 {
     // Two light groups that sum to Combined, as Cycles writes them (Combined_<group>).
     std::vector<OIIO::ImageBuf> renders;
     for (int k = 0; k < 4; ++k) {
-        OIIO::ImageBuf r = blender_multilayer(k % 3, "Combined", false);
+        OIIO::ImageBuf r = blender_multilayer(k, "Combined", false);
         OIIO::ImageSpec spec = r.spec();
         std::vector<int> order;
         std::vector<std::string> names = spec.channelnames;

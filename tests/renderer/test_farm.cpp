@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,7 @@
 
 #include "renderer_test_support.h"
 #include "temp_dir.h"
+#include "statmc/layers/sample_provenance.h"
 #include "statmc/render/render_task.h"
 
 namespace statmc::render::test {
@@ -318,6 +320,73 @@ TEST(Farm, CheckpointThatCannotBeWrittenKeepsThePreviousOne)
     for (const auto& entry : fs::directory_iterator(fs::path(out).parent_path()))
         EXPECT_EQ(entry.path().filename().string().find(".statmc-tmp"), std::string::npos)
             << "left behind: " << entry.path();
+}
+
+TEST(Farm, FramesRenderedWithOneSeedAreRefusedByTheTemporalDenoise)
+{
+    // The room is still: frames of one seed repeat each other's noise to the bit, as the
+    // farm's frames did when every frame got the job's --seed.
+    const FarmScene f;
+    auto render_frame = [&](const std::string& name, int frame, int seed) {
+        char path[64];
+        std::snprintf(path, sizeof path, "%s.%04d.exr", name.c_str(), frame);
+        const std::string args = quoted(f.scene) + " --resolution 24x16 --spp 8 --seed " +
+                                 std::to_string(seed) + " --threads 2 -q -o " +
+                                 quoted(f.dir.file(path));
+        ASSERT_EQ(render_cli(args, f.dir).status, 0);
+    };
+    auto temporal = [&](const std::string& name) {
+        return run_program(quoted(STATMC_CLI_EXE) + " " + quoted(f.dir.file(name + ".#.exr")) +
+                               " --frames 1-2 --denoise:temporal=1 -o " +
+                               quoted(f.dir.file(name + "-out.#.exr")),
+                           f.dir);
+    };
+    for (int frame : {1, 2}) {
+        render_frame("same", frame, 3);
+        render_frame("own", frame, layers::frame_seed(3, frame));
+    }
+    const ProgramRun same = temporal("same");
+    EXPECT_EQ(same.status, 1) << same.output;
+    EXPECT_NE(same.output.find("and the frame denoised drew the same samples (seed 3, samples "
+                               "0..7): merged over time they would count twice"),
+              std::string::npos)
+        << same.output;
+    EXPECT_FALSE(fs::exists(f.dir.file("same-out.0001.exr")));
+    EXPECT_FALSE(fs::exists(f.dir.file("same-out.0002.exr")));
+    const ProgramRun own = temporal("own");
+    EXPECT_EQ(own.status, 0) << own.output;
+
+    // Without the header's seed (another renderer, or the attribute stripped) the pixels
+    // still tell.
+    for (int frame : {1, 2}) {
+        char from[64], to[64];
+        std::snprintf(from, sizeof from, "same.%04d.exr", frame);
+        std::snprintf(to, sizeof to, "bare.%04d.exr", frame);
+        OIIO::ImageBuf img = read(f.dir.file(from));
+        for (const char* name : {"statmc:seed", "statmc:sampleBegin", "statmc:sampleEnd"})
+            img.specmod().erase_attribute(name);
+        ASSERT_TRUE(img.write(f.dir.file(to))) << img.geterror();
+    }
+    const ProgramRun bare = temporal("bare");
+    EXPECT_EQ(bare.status, 1) << bare.output;
+    EXPECT_NE(bare.output.find("noisy pixels, bit for bit: they were rendered with one seed"),
+              std::string::npos)
+        << bare.output;
+}
+
+TEST(Farm, EveryFrameOfASequenceRecordsTheSeedItDrewWith)
+{
+    const FarmScene f;
+    const ProgramRun r = render_cli(f.common(4) + " --frames 1-2 -o " +
+                                        quoted(f.dir.file("seq.#.exr")),
+                                    f.dir);
+    ASSERT_EQ(r.status, 0) << r.output;
+    for (int frame : {1, 2}) {
+        char name[64];
+        std::snprintf(name, sizeof name, "seq.%04d.exr", frame);
+        EXPECT_EQ(read(f.dir.file(name)).spec().get_int_attribute("statmc:seed", -1),
+                  layers::frame_seed(3, frame));
+    }
 }
 
 }  // namespace

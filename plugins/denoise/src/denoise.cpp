@@ -13,6 +13,7 @@
 #include "statmc/core/filter.h"
 #include "statmc/core/harm_guard.h"
 #include "statmc/core/radius_ladder.h"
+#include "statmc/core/sample_independence.h"
 #include "statmc/core/temporal_merge.h"
 #include "statmc/core/variance_filter.h"
 #include "statmc/layers/float_pixels.h"
@@ -23,6 +24,7 @@
 #include "statmc/layers/layer_lookup.h"
 #include "statmc/layers/layer_names.h"
 #include "statmc/layers/renderer_presets.h"
+#include "statmc/layers/sample_provenance.h"
 #include "statmc/layers/statistics_layers.h"
 #include "statmc/layers/statistics_validation.h"
 #include "statmc/layers/view_window.h"
@@ -591,6 +593,33 @@ StatisticsChannels same_statistics(const OIIO::ImageSpec& spec, const Statistics
     return ch;
 }
 
+// A neighbour whose samples are the centre's own, by its header (one seed, overlapping
+// sample ranges) or by its pixels (the noise of a static region repeated to the bit), would
+// be merged as if it were more samples (docs/method.md, "Independent samples").
+void require_independent_frames(const OIIO::ImageBuf& frame, const StatisticsView& frame_stats,
+                                const OIIO::ImageBuf& centre, const StatisticsView& centre_stats,
+                                const std::string& what)
+{
+    const layers::SampleProvenance a = layers::read_sample_provenance(frame.spec()),
+                                   b = layers::read_sample_provenance(centre.spec());
+    // statmc-render sequences written before the header held each frame's own seed carry
+    // the sequence's seed and their frame numbers, and drew with the two mixed.
+    const OIIO::ParamValue* fa = frame.spec().find_attribute(layers::attr::kFrame, OIIO::TypeInt);
+    const OIIO::ParamValue* fb = centre.spec().find_attribute(layers::attr::kFrame, OIIO::TypeInt);
+    const bool mixed_by_frame = fa && fb && fa->get_int() != fb->get_int();
+    const std::string fix =
+        ": merged over time they would count twice. Render every frame with its own seed "
+        "(statmc-render --frames and statmc-farm do; Blender: Render Properties > Sampling > "
+        "Advanced > the clock icon beside Seed, scene.cycles.use_animated_seed = True)";
+    if (layers::shares_samples(a, b) && !mixed_by_frame)
+        throw LayerError(what + " drew the same samples (" + layers::describe(a) + ")" + fix);
+    const SharedNoise shared = shared_noise(centre_stats, frame_stats);
+    if (shared.same_samples())
+        throw LayerError(what + " repeat the same noise in " + std::to_string(shared.identical) +
+                         " of " + std::to_string(shared.noisy) +
+                         " noisy pixels, bit for bit: they were rendered with one seed" + fix);
+}
+
 // `src` followed by its neighbours, in time order, as the temporal merge takes them.
 struct Sequence {
     std::vector<const OIIO::ImageBuf*> frames;  // float pixels
@@ -648,6 +677,9 @@ StatisticsPlanes merged_over_time(const OIIO::ImageBuf& in, const StatisticsChan
                                            frame_label(offset, frame) + " and the frame denoised");
                 frame_ch = same_statistics(frame.spec(), ch);
                 check_statistics(frame, frame_ch, opt, {});
+                require_independent_frames(frame, layers::statistics_view(frame, frame_ch), in,
+                                           layers::statistics_view(in, ch),
+                                           frame_label(offset, frame) + " and the frame denoised");
             }
             const std::array<ConstPlane, 2> motion = layers::motion_planes(frame);
             frames.push_back({layers::statistics_view(frame, frame_ch), motion[0], motion[1]});

@@ -49,8 +49,7 @@ void refuse_overlaps(const Parts& parts, const std::vector<layers::SampleProvena
     for (std::size_t i = 0; i < all.size(); ++i)
         for (std::size_t j = i + 1; j < all.size(); ++j) {
             const auto &a = all[i], &b = all[j];
-            if (a.seed && b.seed && *a.seed == *b.seed && a.range && b.range &&
-                a.range->overlaps(*b.range))
+            if (layers::shares_samples(a, b))
                 throw std::invalid_argument(
                     label(parts, i, a) + " and " + label(parts, j, b) +
                     " drew the same samples: merged, they would count twice. Render the "

@@ -11,6 +11,7 @@
 #include <OpenImageIO/strutil.h>
 
 #include "statmc/core/passes.h"
+#include "statmc/core/sample_independence.h"
 #include "statmc/layers/float_pixels.h"
 #include "statmc/layers/frame_match.h"
 #include "statmc/layers/imagebufalgo_forms.h"
@@ -195,6 +196,23 @@ OIIO::ImageBuf guide_variances(const std::vector<const OIIO::ImageBuf*>& floats,
     return out;
 }
 
+// Renders of one seed drew the same samples: averaged, they would claim K samples where
+// there is one, and their variance would be 0 (docs/method.md, "Independent samples").
+void require_distinct_renders(const Renders& given,
+                              const std::vector<std::vector<ConstPlane>>& beauty,
+                              const OIIO::ROI& region)
+{
+    for (std::size_t k = 1; k < beauty.size(); ++k)
+        for (std::size_t j = 0; j < k; ++j)
+            if (identical_pixels(beauty[k], beauty[j], region.width(), region.height()))
+                throw std::invalid_argument(
+                    label(given, k) + " and " + label(given, j) +
+                    " hold the same pixels: they were rendered with one seed, so they are one "
+                    "sample, not two. Render each pass with its own seed (Blender: Render "
+                    "Properties > Sampling > Advanced > Seed, or scene.cycles.seed = pass "
+                    "number; statmc-render: --seed)");
+}
+
 void keep_metadata(OIIO::ImageBuf& result, const OIIO::ImageBuf& first, const OIIO::ROI& region)
 {
     const OIIO::ParamValueList statmc_attribs = result.spec().extra_attribs;
@@ -253,6 +271,7 @@ bool passes_impl(OIIO::ImageBuf& dst, const Renders& given, const PassesOptions&
     std::vector<std::vector<ConstPlane>> beauty;
     for (const OIIO::ImageBuf* f : floats)
         beauty.push_back(region_planes(*f, suffixes, region));
+    require_distinct_renders(given, beauty, region);
     const StatisticsPlanes stats = statistics_from_passes(beauty, region.width(), region.height());
 
     OIIO::ImageBuf result = layers::make_statistics_image(stats);

@@ -25,7 +25,7 @@ struct FarmJob {
     std::vector<Frame> frames;
     int tasks = 1;             ///< tasks per frame
     int spp = 0;               ///< samples per pixel of each frame (0: the scene's)
-    int seed = 0;
+    int seed = 0;              ///< mixed with each frame's number (frame_seed)
     double checkpoint_seconds = 60;
     int max_restarts = 3;      ///< requeues of a killed render task before it fails
     bool denoise = false;          ///< also write OUT.denoised.exr
@@ -38,6 +38,10 @@ struct FarmJob {
 
 /// Where task `task` of `frame` writes: "out/shot.0001.exr" -> "out/shot.0001.task2.exr".
 std::string task_output(const Frame& frame, int task);
+/// The seed every task of `frame` renders with: job.seed mixed with the frame's number, as
+/// statmc-render --frames mixes it, so that no two frames share their noise (a temporal
+/// denoise over the frames would merge it as if it were more samples).
+int frame_seed(const FarmJob& job, const Frame& frame);
 /// Where the denoised image of `frame` goes: "out/shot.0001.denoised.exr".
 std::string denoised_output(const Frame& frame);
 

@@ -37,6 +37,15 @@ SampleProvenance read_sample_provenance(const OIIO::ImageSpec& spec);
 /// Writes the attributes that `provenance` has; leaves the others alone.
 void write_sample_provenance(OIIO::ImageSpec& spec, const SampleProvenance& provenance);
 
+/// The seed of frame `frame` of a sequence rendered with `seed` (statmc-render --frames,
+/// statmc-farm): `seed` for frame 0, and a different non-negative seed for every other frame
+/// (an odd multiplier is one-to-one modulo 2^31), so the frames' samples are independent and
+/// their provenance says so.
+int frame_seed(int seed, int frame);
+
+/// Whether `a` and `b` drew some of the same samples: one seed and overlapping ranges.
+bool shares_samples(const SampleProvenance& a, const SampleProvenance& b);
+
 /// "seed 3, samples 0..63, task 2/4" (what an error message calls an input).
 std::string describe(const SampleProvenance& provenance);
 
