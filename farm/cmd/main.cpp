@@ -16,6 +16,7 @@
 #include "statmc/farm/farm_job.h"
 #include "statmc/farm/frame_pattern.h"
 #include "statmc/farm/job_record.h"
+#include "statmc/farm/job_validation.h"
 #include "statmc/farm/slurm.h"
 #include "statmc/layers/atomic_file.h"
 
@@ -96,6 +97,14 @@ std::string task_elements(const std::string& render_job, std::size_t frame, int 
     return ids;
 }
 
+// sbatch's options for frame i's merge: after its tasks, removed when one fails for good.
+std::vector<std::string> merge_options(const std::string& render_job, std::size_t frame,
+                                       int tasks)
+{
+    return {"--kill-on-invalid-dep=yes",
+            "--dependency=afterok:" + task_elements(render_job, frame, tasks)};
+}
+
 // A value that goes into an #SBATCH line: one line, no spaces, and no '%' (Slurm expands
 // it in --output paths).
 void require_sbatch_value(const std::string& option, const std::string& value)
@@ -115,13 +124,17 @@ int submit_job(FarmJob job, bool dry_run)
     require_sbatch_value("--job-dir", job.job_dir);
     const std::string render = job.job_dir + "/render.sbatch",
                       merge = job.job_dir + "/merge.sbatch";
+    validate_job(job);
     if (dry_run) {
         std::printf("# %s\n%s\n# %s\n%s\n", render.c_str(), render_script(job).c_str(),
                     merge.c_str(), merge_script(job).c_str());
         std::printf("# would run: sbatch --parsable %s\n", render.c_str());
-        for (std::size_t i = 0; i < job.frames.size(); ++i)
-            std::printf("# would run: sbatch --parsable --dependency=afterok:%s %s %zu\n",
-                        task_elements("<render job>", i, job.tasks).c_str(), merge.c_str(), i);
+        for (std::size_t i = 0; i < job.frames.size(); ++i) {
+            std::string line = "sbatch --parsable";
+            for (const std::string& option : merge_options("<render job>", i, job.tasks))
+                line += " " + option;
+            std::printf("# would run: %s %s %zu\n", line.c_str(), merge.c_str(), i);
+        }
         return 0;
     }
     fs::create_directories(job.job_dir + "/logs");
@@ -133,10 +146,7 @@ int submit_job(FarmJob job, bool dry_run)
     for (std::size_t i = 0; i < job.frames.size(); ++i) {
         try {
             record.merge_jobs.push_back(
-                submit(merge,
-                       {"--kill-on-invalid-dep=yes",
-                        "--dependency=afterok:" + task_elements(record.render_job, i, job.tasks)},
-                       {std::to_string(i)}));
+                submit(merge, merge_options(record.render_job, i, job.tasks), {std::to_string(i)}));
         } catch (const std::runtime_error& e) {
             // No job left behind that nothing follows: the renders and merges go too.
             std::vector<std::string> cancel{"scancel", record.render_job};
@@ -248,7 +258,7 @@ int main(int argc, char** argv)
         ->add_option("--spp", job.spp, "samples per pixel of each frame [default: the scene's]")
         ->check(CLI::Range(1, 1 << 30));
     submit_cmd->add_option("--frames", frames, "frame range A-B of a sequence [default: unset]");
-    submit_cmd->add_option("--seed", job.seed, "random seed of every task")
+    submit_cmd->add_option("--seed", job.seed, "random seed, mixed with each frame's number so frames have independent noise")
         ->capture_default_str()
         ->check(CLI::Range(0, 1 << 30));
     submit_cmd

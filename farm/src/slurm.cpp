@@ -90,7 +90,7 @@ CommandResult run_command(const std::vector<std::string>& argv)
         ::close(out_pipe[0]);
         ::close(err_pipe[0]);
         throw std::runtime_error(argv[0] + ": cannot run it: " + std::strerror(spawned) +
-                                 (spawned == ENOENT ? "; is Slurm installed and on PATH?" : ""));
+                                 (spawned == ENOENT ? "; is it installed and on PATH?" : ""));
     }
     CommandResult r;
     drain(out_pipe[0], err_pipe[0], r.out, r.err);

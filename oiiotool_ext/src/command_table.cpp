@@ -52,7 +52,8 @@ const std::vector<Command>& command_table()
         verbose_command(),      stats_command(),         diff_command(),
         echo_command(),         threads_command(),       max_memory_command(),
         check_inputs_command(), frames_command(),        skip_missing_command(),
-        list_ops_command(),     help_command(),          version_command(),
+        list_ops_command(),     help_command(),          validate_command(),
+        version_command(),
     };
     return table;
 }

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <system_error>
 
+#include <dlfcn.h>
+
 #include "help_text.h"
 #include "statmc/plugin_sdk/plugin_loader.h"
 #include "statmc/tool/tool_error.h"
@@ -18,18 +20,38 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Relative to the running executable, so that a build tree or an installed prefix can be
-// moved as a whole. The build tree's directory is only a fallback for programs that do
-// not sit beside the modules (the tests).
+// The directories of the files this code runs from: the running executable, and the
+// shared object holding the host when that is another (the Python module).
+std::vector<fs::path> host_dirs()
+{
+    std::vector<fs::path> dirs;
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec)
+        dirs.push_back(exe.parent_path());
+    Dl_info info{};
+    if (::dladdr(reinterpret_cast<void*>(&host_dirs), &info) && info.dli_fname) {
+        const fs::path module = fs::absolute(info.dli_fname, ec);
+        if (!ec && module != exe)
+            dirs.push_back(module.parent_path());
+    }
+    return dirs;
+}
+
+// Relative to the running program, so that a build tree or an installed prefix can be
+// moved as a whole: PREFIX/bin/statmc and PREFIX/lib/pythonX.Y/site-packages/statmc find
+// PREFIX/lib/statmc/plugins. The build tree's directory is only a fallback for programs
+// that do not sit beside the modules (the tests, the Python module in the build tree).
 std::vector<std::string> shipped_plugin_dirs()
 {
     std::error_code ec;
-    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     std::vector<std::string> dirs;
-    if (!ec)
-        for (const fs::path& dir : {exe.parent_path() / "plugins",
-                                    exe.parent_path() / ".." / "lib" / "statmc" / "plugins"})
-            if (fs::is_directory(dir, ec))
+    for (const fs::path& host : host_dirs())
+        for (const fs::path& dir : {host / "plugins", host / ".." / "lib" / "statmc" / "plugins",
+                                    host / ".." / ".." / ".." / "statmc" / "plugins"})
+            if (fs::is_directory(dir, ec) &&
+                std::find(dirs.begin(), dirs.end(), dir.lexically_normal().string()) ==
+                    dirs.end())
                 dirs.push_back(dir.lexically_normal().string());
 #ifdef STATMC_BUILD_PLUGIN_DIR
     if (dirs.empty() && fs::is_directory(STATMC_BUILD_PLUGIN_DIR, ec))
@@ -65,9 +87,8 @@ std::size_t input_count(const statmc::OperatorSpec& op, const Invocation& inv,
         return std::size_t(op.inputs);
     const std::size_t k =
         inv.modifiers.has("n") ? std::size_t(inv.modifiers.get_int("n")) : ctx.stack.size();
-    if (k < std::size_t(op.min_inputs))
-        throw ToolError(inv.name + ": needs at least " + std::to_string(op.min_inputs) + " " +
-                        op.input_noun + " on the stack, got " + std::to_string(k));
+    if (const std::string why = op.input_count_problem(k); !why.empty())
+        throw ToolError(inv.name + ": " + why);
     return k;
 }
 

@@ -1,4 +1,4 @@
-// --help, --version, --threads and --echo: commands that touch no image.
+// --help, --version, --validate, --threads and --echo: commands that touch no image.
 #include <OpenImageIO/imageio.h>
 
 #include "statmc/tool/plugin_commands.h"
@@ -71,6 +71,20 @@ Command echo_command()
     c.modifiers = {statmc::bool_parameter("newline", true, "end with a new line")};
     c.run = [](ToolContext& ctx, const Invocation& inv) {
         ctx.out << inv.args[0] << (inv.modifiers.get_bool("newline") ? "\n" : "");
+    };
+    return c;
+}
+
+Command validate_command()
+{
+    Command c;
+    c.name = "--validate";
+    c.summary = "Check the commands before it (their arguments, modifiers and the operators' "
+                "parameter ranges) and exit without reading or writing an image";
+    c.immediate = true;
+    // parse_program has checked every command before this one when it runs.
+    c.run = [](ToolContext& ctx, const Invocation&) {
+        ctx.out << "statmc: the command line is valid\n";
     };
     return c;
 }

@@ -16,7 +16,7 @@ struct CommandResult {
 };
 
 /// Runs `argv` (argv[0] looked up on PATH) without a shell. Throws std::runtime_error when
-/// the program cannot be started ("sbatch: not found; is Slurm installed and on PATH?").
+/// the program cannot be started ("sbatch: cannot run it: No such file or directory; is it installed and on PATH?").
 CommandResult run_command(const std::vector<std::string>& argv);
 
 /// `sbatch --parsable [options] script [script_args]`; returns the job id. Throws

@@ -60,6 +60,7 @@ Command echo_command();
 Command list_ops_command();
 Command threads_command();
 Command help_command();
+Command validate_command();
 Command version_command();
 
 }  // namespace statmc::tool
