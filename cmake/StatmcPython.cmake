@@ -5,6 +5,10 @@ set(STATMC_PYTHON_MODULE OFF)
 if(NOT STATMC_PYTHON STREQUAL "OFF" AND NOT STATMC_FUZZ)
   # Debian's interpreter, whose numpy and OpenImageIO bindings are installed, rather than
   # whatever python3 comes first on PATH (a pyenv shim has neither).
+  # -DPython3_EXECUTABLE= (FindPython3's spelling) names the interpreter too.
+  if(NOT DEFINED Python_EXECUTABLE AND DEFINED Python3_EXECUTABLE)
+    set(Python_EXECUTABLE ${Python3_EXECUTABLE})
+  endif()
   if(NOT DEFINED Python_EXECUTABLE AND EXISTS /usr/bin/python3)
     set(Python_EXECUTABLE /usr/bin/python3)
   endif()

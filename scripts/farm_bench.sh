@@ -2,7 +2,7 @@
 # The farm's costs, measured (docs/farm.md, "Measured"): samples/s of a 640x360 render with
 # and without a checkpoint every 10 s; a 4-task statmc-farm render on a single-node Slurm on
 # localhost against one local render; and the time a SIGKILLed task loses. Root, and the
-# Slurm packages of scripts/install-deps.sh. Usage: scripts/farm_bench.sh [build-dir]
+# Slurm packages of scripts/install-test-deps.sh. Usage: scripts/farm_bench.sh [build-dir]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=$(cd "${1:-build}" && pwd)

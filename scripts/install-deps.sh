@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
-# Installs everything statmc needs to build, test and run, from Debian 12 packages.
+# Installs what building and running statmc need, from Debian 12 packages (as root): the
+# compiler and CMake, the image, renderer and math libraries, GoogleTest and Google
+# Benchmark (the default build builds the tests and benchmarks), and Python's headers,
+# pybind11 and numpy for `import statmc`. The tests' own tools (Slurm, clang's fuzzer,
+# pytest) are scripts/install-test-deps.sh's.
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev openexr
   libopencolorio-dev libembree-dev libtbb-dev libboost-math-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev zlib1g-dev
-  slurm-wlm slurmctld slurmd slurm-client munge
-  clang libclang-rt-14-dev
-  python3-matplotlib python3-numpy python3-openimageio python3-venv
-  python3-dev pybind11-dev python3-pytest
+  python3-dev pybind11-dev python3-numpy
 )
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq

@@ -45,6 +45,8 @@ py::dict attributes_of(const OIIO::ImageSpec& spec)
             out[py::str(p.name().string())] = p.get_int();
         else if (t == OIIO::TypeFloat)
             out[py::str(p.name().string())] = p.get_float();
+        else if (t == OIIO::TypeDesc::DOUBLE)
+            out[py::str(p.name().string())] = *static_cast<const double*>(p.data());
         else if (t == OIIO::TypeString)
             out[py::str(p.name().string())] = p.get_string();
     }
@@ -193,9 +195,8 @@ py::tuple run_operator(const std::string& name, const std::vector<PythonImage>& 
     if (op->check)
         if (const std::string why = op->check(values); !why.empty())
             throw py::value_error(command + ": " + why);
-    if (op->inputs != statmc::kVariadicInputs ? std::size_t(op->inputs) != inputs.size()
-                                              : inputs.size() < std::size_t(op->min_inputs))
-        throw py::value_error(command + ": got " + std::to_string(inputs.size()) + " images");
+    if (const std::string why = op->input_count_problem(inputs.size()); !why.empty())
+        throw py::value_error(command + ": " + why);
 
     const std::vector<OIIO::ImageBuf> images = images_from_python(inputs);
     const std::vector<OIIO::ImageBuf> before = images_from_python(previous);
@@ -240,6 +241,8 @@ PYBIND11_MODULE(_statmc, m)
           py::arg("options"), py::arg("previous") = std::vector<PythonImage>{},
           py::arg("next") = std::vector<PythonImage>{}, py::arg("nthreads") = 0,
           "runs a plugin operator; returns ((names, pixels, attributes, origin), report)");
+    m.def("help", [](const std::string& name) { return statmc::tool::operator_help_text(name); },
+          py::arg("operator"), "the operator's help and parameter table, as statmc --help OP");
     m.def("operators", [] {
         std::vector<std::string> names;
         for (const statmc::OperatorSpec& op : statmc::tool::plugin_registry().operators())

@@ -11,13 +11,32 @@ plugins, with the same parameters, defaults and error messages as the command li
 """
 
 import os
+import sys
 
-import numpy as np
+from ._build import PYTHON_EXECUTABLE, PYTHON_VERSION, VERSION
 
-from ._statmc import FileError, ToolError  # noqa: F401  (part of the API)
-from . import _statmc
+__version__ = VERSION
 
-__all__ = ["Image", "read_statistics", "write_statistics", "denoise", "passes", "merge",
+try:
+    import numpy as np
+except ImportError as e:
+    raise ImportError(
+        f"statmc needs numpy, which this Python ({sys.executable}) does not have: "
+        "pip install numpy, or make the venv with --system-site-packages to use Debian's "
+        "python3-numpy") from e
+
+try:
+    from ._statmc import FileError, ToolError  # noqa: F401  (part of the API)
+    from . import _statmc
+except ImportError as e:
+    _running = f"{sys.version_info.major}.{sys.version_info.minor}"
+    raise ImportError(
+        f"statmc's native module was built for Python {PYTHON_VERSION} ({PYTHON_EXECUTABLE}); "
+        f"this is Python {_running} ({sys.executable}). Import it from that interpreter, or "
+        "build statmc for this one with cmake -DPython3_EXECUTABLE=" + sys.executable +
+        f" ({e})") from e
+
+__all__ = ["__version__", "Image", "read_statistics", "write_statistics", "denoise", "passes", "merge",
            "compare", "FileError", "ToolError"]
 
 BEAUTY = "beauty"
@@ -182,6 +201,18 @@ def merge(sources, nthreads=0, **options):
     return _run("merge", list(sources), options, nthreads)
 
 
+METRICS = ("RMSE", "MAE", "relMSE", "SSIM", "DSSIM")
+
+
 def compare(image, reference, nthreads=0, **options):
-    """The compare operator; its table is the result's .report."""
-    return _run("compare", [image, reference], options, nthreads)
+    """The compare operator: the absolute error image, with the metrics as numbers in its
+    .metrics dict (RMSE, MAE, relMSE, SSIM, DSSIM) and as the table in its .report."""
+    result = _run("compare", [image, reference], options, nthreads)
+    result.metrics = {name: result.attributes[f"statmc:compare:{name}"] for name in METRICS}
+    return result
+
+
+# Each operator's docstring ends with its parameter table, as `statmc --help OP` prints it.
+for _function, _operator in ((denoise, "denoise"), (passes, "passes"), (merge, "merge"),
+                             (compare, "compare")):
+    _function.__doc__ += "\n\n" + _statmc.help(_operator)

@@ -206,8 +206,40 @@ def test_passes_compare_and_merge_take_lists(tmp_path):
     assert np.all(stats["sampleCount"] == 3)
     report = statmc.compare(renders[0], renders[0]).report
     assert "relMSE" in report or "RMSE" in report, report
-    with pytest.raises(ValueError, match="--passes: got 1 images"):
+    with pytest.raises(ValueError, match="^--passes: needs at least 2 renders, got 1$"):
         statmc.passes(renders[:1])
+
+
+def test_compare_returns_its_metrics_as_numbers():
+    reference = statmc.Image({"beauty": np.full((6, 9, 3), 0.5, np.float32)})
+    offset = statmc.Image({"beauty": np.full((6, 9, 3), 0.625, np.float32)})
+    metrics = statmc.compare(offset, reference).metrics
+    assert set(metrics) == {"RMSE", "MAE", "relMSE", "SSIM", "DSSIM"}
+    assert metrics["RMSE"] == pytest.approx(0.125, abs=1e-7)
+    assert metrics["MAE"] == pytest.approx(0.125, abs=1e-7)
+    # relMSE = mean of (x - r)^2 / (r^2 + 0.01)
+    assert metrics["relMSE"] == pytest.approx(0.125 ** 2 / (0.25 + 0.01), rel=1e-6)
+    assert statmc.compare(reference, reference).metrics["DSSIM"] == pytest.approx(0, abs=1e-12)
+
+
+def test_errors_are_the_command_lines(tmp_path):
+    if not CLI:
+        pytest.fail("STATMC_CLI is not set: ctest sets it to the statmc executable")
+    render = statmc.Image({"beauty": np.full((6, 9, 3), 0.5, np.float32)})
+    statmc.write_statistics(tmp_path / "one.exr", render)
+    cli = subprocess.run([CLI, str(tmp_path / "one.exr"), "--passes", "-o",
+                          str(tmp_path / "out.exr")], capture_output=True, text=True)
+    assert cli.returncode == 1
+    with pytest.raises(ValueError) as python:
+        statmc.passes([tmp_path / "one.exr"])
+    assert cli.stderr == f"statmc: error: {python.value}\n"
+
+
+def test_version_and_operator_docstrings():
+    assert statmc.__version__.count(".") == 2, statmc.__version__
+    for function, parameter in ((statmc.denoise, "radius"), (statmc.passes, "from"),
+                                (statmc.merge, "allow_partial"), (statmc.compare, "epsilon")):
+        assert parameter in function.__doc__, (function.__name__, function.__doc__)
 
 
 def test_temporal_denoise_equals_the_command_lines_sequence(tmp_path):

@@ -1,7 +1,9 @@
 // compare: error metrics of an image against a reference, as a statmc plugin.
 // The parameter table is `statmc --help compare`, generated from the specs below.
 // Pops the reference (top) and the image (below it); prints one row per metric (RMSE,
-// MAE, relMSE, SSIM, DSSIM) and pushes the per-pixel absolute error image.
+// MAE, relMSE, SSIM, DSSIM) and pushes the per-pixel absolute error image, which carries
+// them as statmc:compare:<metric> (double) attributes.
+#include <array>
 #include <iomanip>
 #include <ostream>
 
@@ -11,16 +13,17 @@
 
 namespace {
 
+std::array<std::pair<const char*, double>, 5> metric_rows(const statmc::CompareMetrics& m)
+{
+    return {{{"RMSE", m.rmse}, {"MAE", m.mae}, {"relMSE", m.relmse}, {"SSIM", m.ssim},
+             {"DSSIM", m.dssim}}};
+}
+
 void print_table(std::ostream& out, const statmc::CompareMetrics& m, const std::string& image,
                  const std::string& reference)
 {
     out << "compare: " << image << " against " << reference << "\n";
-    const std::pair<const char*, double> rows[] = {{"RMSE", m.rmse},
-                                                   {"MAE", m.mae},
-                                                   {"relMSE", m.relmse},
-                                                   {"SSIM", m.ssim},
-                                                   {"DSSIM", m.dssim}};
-    for (const auto& [name, value] : rows)
+    for (const auto& [name, value] : metric_rows(m))
         out << "  " << std::left << std::setw(8) << name << std::setprecision(6) << value << "\n";
 }
 
@@ -38,6 +41,10 @@ OIIO::ImageBuf run(const std::vector<const OIIO::ImageBuf*>& inputs,
         return error;
     if (ctx.out)
         print_table(*ctx.out, metrics, ctx.input_labels.at(0), ctx.input_labels.at(1));
+    // The numbers travel with the error image too, for hosts that read them (Python).
+    for (const auto& [name, value] : metric_rows(metrics))
+        error.specmod().attribute(std::string("statmc:compare:") + name, OIIO::TypeDesc::DOUBLE,
+                                  &value);
     if (const std::string path = p.get_string("errorimage"); !path.empty()) {
         try {
             statmc::layers::write_image_file(error, path);

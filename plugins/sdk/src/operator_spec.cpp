@@ -13,4 +13,16 @@ void take_variadic_inputs(OperatorSpec& op, int min_inputs, const std::string& n
             .at_least(min_inputs));
 }
 
+std::string OperatorSpec::input_count_problem(std::size_t count) const
+{
+    const std::string got = ", got " + std::to_string(count);
+    if (inputs == kVariadicInputs)
+        return count < std::size_t(min_inputs)
+                   ? "needs at least " + std::to_string(min_inputs) + " " + input_noun + got
+                   : "";
+    return count != std::size_t(inputs)
+               ? "needs " + std::to_string(inputs) + (inputs == 1 ? " image" : " images") + got
+               : "";
+}
+
 }  // namespace statmc

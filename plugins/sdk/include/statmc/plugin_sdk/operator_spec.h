@@ -63,6 +63,10 @@ struct OperatorSpec {
     /// on an image it owns, sparing the operator a copy of its input.
     RunInPlaceFunction run_in_place;
     std::string module;  ///< set by the loader: the file it came from
+
+    /// "" when `count` inputs suit the operator, else what every host says after the
+    /// command's name: "needs at least 2 renders, got 1", "needs 2 images, got 1".
+    std::string input_count_problem(std::size_t count) const;
 };
 
 /// Makes `op` pop a run of images: the value of its `n` parameter (added here) when given,
