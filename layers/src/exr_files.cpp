@@ -12,6 +12,7 @@
 #include "statmc/layers/atomic_file.h"
 #include "statmc/layers/file_error.h"
 #include "statmc/layers/input_path.h"
+#include "statmc/layers/layer_names.h"
 #include "statmc/layers/openexr_check.h"
 #include "statmc/layers/storage_rules.h"
 
@@ -43,14 +44,42 @@ FileError unreadable(const std::string& path, const std::string& why)
     throw FileError(path + ": cannot write: " + why);
 }
 
-std::unique_ptr<OIIO::ImageOutput> exr_writer(const std::string& path)
+// The first statistics channel of `subimages`, empty when they hold a plain picture.
+std::string statistics_channel(const std::vector<OIIO::ImageBuf>& subimages)
+{
+    for (const OIIO::ImageBuf& image : subimages)
+        for (const std::string& channel : image.spec().channelnames)
+            if (is_statistics_channel(channel))
+                return channel;
+    return {};
+}
+
+// OpenEXR for everything; another format OIIO writes (PNG, JPEG, TIFF) only for one plain
+// picture, such as --display makes: statistics need OpenEXR's float channels and parts.
+std::unique_ptr<OIIO::ImageOutput> image_writer(const std::string& path,
+                                                const std::vector<OIIO::ImageBuf>& subimages,
+                                                bool mip_mapped)
 {
     auto out = OIIO::ImageOutput::create(path);
     if (!out)
         cannot_write(path, "no writer for this file type (" + OIIO::geterror() + ")");
-    if (std::string(out->format_name()) != "openexr")
-        cannot_write(path, "statmc writes OpenEXR files only (use the .exr extension)");
+    if (std::string(out->format_name()) == "openexr")
+        return out;
+    const std::string why = " (use the .exr extension)";
+    if (const std::string channel = statistics_channel(subimages); !channel.empty())
+        cannot_write(path, "the image holds statistics (" + channel +
+                               "), which statmc writes as OpenEXR only" + why +
+                               "; for a picture, --display it first");
+    if (subimages.size() > 1 || mip_mapped)
+        cannot_write(path, std::string("several subimages or MIP levels are written as OpenEXR "
+                                       "only") +
+                               why);
     return out;
+}
+
+bool is_openexr_writer(const OIIO::ImageOutput& out)
+{
+    return std::string(out.format_name()) == "openexr";
 }
 
 void check_target(const std::string& path)
@@ -217,7 +246,10 @@ void write_image_file(const std::vector<OIIO::ImageBuf>& subimages, const std::s
                                    std::to_string(mip_levels[s].size() + 1) +
                                    " MIP levels, which statmc cannot write into a multi-part "
                                    "file (keep one part with --subimage, or write each alone)");
-    auto out = exr_writer(path);
+    const bool mip_mapped =
+        std::any_of(mip_levels.begin(), mip_levels.end(), [](const auto& l) { return !l.empty(); });
+    auto out = image_writer(path, subimages, mip_mapped);
+    const bool openexr = is_openexr_writer(*out);
     static const std::vector<OIIO::ImageBuf> none;
     auto levels_of = [&](std::size_t s) -> const std::vector<OIIO::ImageBuf>& {
         return mip_levels.empty() ? none : mip_levels[s];
@@ -225,7 +257,8 @@ void write_image_file(const std::vector<OIIO::ImageBuf>& subimages, const std::s
     // The storage rules, the user's overrides, and for a MIP map the tiles it needs.
     auto stored_spec = [&](const OIIO::ImageSpec& image_spec, bool mip_mapped) {
         OIIO::ImageSpec spec = image_spec;
-        apply_storage_rules(spec);
+        if (openexr)
+            apply_storage_rules(spec);
         if (options.format != OIIO::TypeDesc::UNKNOWN)
             spec.set_format(options.format);
         if (!options.compression.empty())

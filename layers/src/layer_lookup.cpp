@@ -24,9 +24,16 @@ bool equal_ignoring_case(std::string_view a, std::string_view b)
            });
 }
 
-std::string display_name(std::string_view layer)
+// A layer as a message names it: the unprefixed one by its channels ("R,G,B,A").
+std::string display_name(const OIIO::ImageSpec& spec, std::string_view layer)
 {
-    return layer.empty() ? std::string("(unprefixed)") : std::string(layer);
+    if (!layer.empty())
+        return std::string(layer);
+    std::string channels;
+    for (const std::string& channel : spec.channelnames)
+        if (layer_of(channel).empty())
+            channels += (channels.empty() ? "" : ",") + channel;
+    return channels;
 }
 
 }  // namespace
@@ -86,7 +93,7 @@ std::string missing_layer_message(const OIIO::ImageSpec& spec, std::string_view 
     if (present.empty())
         message += "no channels";
     for (std::size_t i = 0; i < present.size(); ++i)
-        message += (i ? ", " : "layers ") + display_name(present[i]);
+        message += (i ? ", " : "layers ") + display_name(spec, present[i]);
     // A layer differing only in case is the commonest naming slip ("Variance").
     for (const std::string& other : present)
         if (other != layer && equal_ignoring_case(other, layer))

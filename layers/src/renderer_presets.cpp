@@ -391,4 +391,16 @@ ImportedImage render_from_preset(const OIIO::ImageBuf& src, const std::string& p
     return import_image(src, named_preset(preset), false);
 }
 
+const OIIO::ImageBuf& contract_beauty(const OIIO::ImageBuf& src, ImportedImage& scratch)
+{
+    const OIIO::ImageSpec& spec = src.spec();
+    if (spec.channelindex("R") >= 0 && spec.channelindex("G") >= 0 && spec.channelindex("B") >= 0)
+        return src;
+    const std::string preset = resolve_renderer_preset(spec, "auto");
+    if (preset.empty() || preset == "statmc")
+        return src;
+    scratch = render_from_preset(src, preset);
+    return scratch.image;
+}
+
 }  // namespace statmc::layers

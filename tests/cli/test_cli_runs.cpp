@@ -106,6 +106,42 @@ TEST(CliRun, OutputMayReplaceTheInput)
     expect_same_channels(read_exr(dir.file("frame.exr")), expected);
 }
 
+TEST(CliRun, DisplayedPicturesGoToPngJpegAndTiff)
+{
+    TempDir dir;
+    write_exr(cli_statistics_image(), dir.file("frame.exr"));
+    expect_success(run_cli({dir.file("frame.exr"), "--denoise", "--display", "-o",
+                            dir.file("shown.exr")}));
+    const OIIO::ImageBuf exr = read_exr(dir.file("shown.exr"));
+    for (const char* name : {"shown.png", "shown.tif", "shown.jpg"}) {
+        expect_success(run_cli({dir.file("frame.exr"), "--denoise", "--display", "-o",
+                                dir.file(name)}));
+        OIIO::ImageBuf picture(dir.file(name));
+        ASSERT_TRUE(picture.read(0, 0, true, OIIO::TypeFloat)) << name;
+        ASSERT_EQ(picture.spec().width, exr.spec().width) << name;
+        // The same picture, as the format quantizes it (JPEG also compresses it).
+        const float tolerance = std::string(name).find(".jpg") != std::string::npos ? 0.08f : 0.003f;
+        for (int y = 0; y < exr.spec().height; y += 3)
+            for (int x = 0; x < exr.spec().width; x += 3)
+                ASSERT_NEAR(picture.getchannel(x, y, 0, 1), exr.getchannel(x, y, 0, 1), tolerance)
+                    << name << " at (" << x << ", " << y << ")";
+    }
+}
+
+TEST(CliRun, DenoisingADenoisedFileWarnsNamingIt)
+{
+    TempDir dir;
+    write_exr(cli_statistics_image(), dir.file("frame.exr"));
+    expect_success(run_cli({dir.file("frame.exr"), "--denoise", "-o", dir.file("once.exr")}));
+    const CliResult again =
+        run_cli({dir.file("once.exr"), "--denoise", "-o", dir.file("twice.exr")});
+    EXPECT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_EQ(again.err, "--denoise: warning: " + dir.file("once.exr") +
+                             ": denoised already (statmc:denoised = 1): what was denoised there "
+                             "is no longer its samples' mean; denoise the statistics it came "
+                             "from\n");
+}
+
 // A tiled RGB MIP map of `levels` levels from 32x32 down, level m filled with m + 0.5.
 void write_mip_map(const std::string& path, int levels)
 {

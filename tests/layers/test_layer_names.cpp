@@ -63,7 +63,7 @@ TEST(LayerLookup, DescribesAndListsLayers)
               (std::vector<std::string>{"", "Variance", "bounce1.variance", "sampleCount"}));
     EXPECT_EQ(missing_layer_message(spec, "variance", colour_suffixes()),
               "missing layer variance (channels variance.R, variance.G, variance.B); the image "
-              "has layers (unprefixed), Variance, bounce1.variance, sampleCount; did you mean "
+              "has layers R,G,B, Variance, bounce1.variance, sampleCount; did you mean "
               "Variance?");
 }
 

@@ -156,5 +156,27 @@ TEST(Compare, RefusesDifferentWindowsAndMissingChannels)
     EXPECT_NE(message.find("the reference has no channel"), std::string::npos) << message;
 }
 
+// `rgb` as Blender writes a multilayer reference: ViewLayer.Combined.R,G,B,A.
+OIIO::ImageBuf as_cycles_multilayer(const OIIO::ImageBuf& rgb)
+{
+    return OIIO::ImageBufAlgo::channels(
+        rgb, 4, {0, 1, 2, -1}, {0.f, 0.f, 0.f, 1.f},
+        {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B",
+         "ViewLayer.Combined.A"});
+}
+
+TEST(Compare, ReadsAnotherRenderersBeautyByItsPreset)
+{
+    const std::vector<float> ref = textured(16, 12);
+    std::vector<float> x = ref;
+    for (float& v : x)
+        v += 0.125f;
+    const OIIO::ImageBuf cycles_ref = as_cycles_multilayer(rgb_image(16, 12, ref));
+    ASSERT_EQ(cycles_ref.spec().channelindex("R"), -1);
+    const CompareMetrics m = metrics(rgb_image(16, 12, x), cycles_ref);
+    EXPECT_NEAR(m.rmse, 0.125, 1e-6);
+    EXPECT_EQ(metrics(cycles_ref, cycles_ref).rmse, 0);
+}
+
 }  // namespace
 }  // namespace statmc

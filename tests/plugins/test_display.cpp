@@ -51,6 +51,20 @@ TEST(Display, FilmicViewIsALogCurveWithAShoulder)
     }
 }
 
+TEST(Display, ReadsAnotherRenderersBeautyByItsPreset)
+{
+    // Blender's multilayer names: ViewLayer.Combined.R,G,B,A.
+    const OIIO::ImageBuf cycles = OIIO::ImageBufAlgo::channels(
+        gray_rgba(0.18f), 4, {0, 1, 2, 3}, {},
+        {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B",
+         "ViewLayer.Combined.A"});
+    const OIIO::ImageBuf out = display(cycles, {kConfig, "sRGB", "sRGB"});
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    EXPECT_EQ(out.spec().channelnames, (std::vector<std::string>{"R", "G", "B", "A"}));
+    EXPECT_NEAR(out.getchannel(1, 1, 0, 0), 0.461356f, 1e-4f);
+    EXPECT_NEAR(out.getchannel(1, 1, 0, 3), 0.5f, 0.f);
+}
+
 TEST(Display, ErrorsNameTheDisplayViewAndConfig)
 {
     OIIO::ImageBuf out = display(gray_rgba(0.18f), {kConfig, "P3", ""});

@@ -12,21 +12,25 @@
 #include "statmc/core/luminance.h"
 #include "statmc/layers/frame_match.h"
 #include "statmc/layers/imagebufalgo_forms.h"
+#include "statmc/layers/renderer_presets.h"
 
 namespace statmc {
 
 namespace {
 
-// The R,G,B channels of `buf` as a float image, found by name (OIIO may reorder them).
-OIIO::ImageBuf beauty(const OIIO::ImageBuf& buf, const char* role, int nthreads)
+// The R,G,B channels of `given` as a float image, found by name (OIIO may reorder them),
+// or those a renderer's preset names (a Cycles reference's ViewLayer.Combined).
+OIIO::ImageBuf beauty(const OIIO::ImageBuf& given, const char* role, int nthreads)
 {
+    layers::ImportedImage scratch;
+    const OIIO::ImageBuf& buf = layers::contract_beauty(given, scratch);
     const OIIO::ImageSpec& spec = buf.spec();
     std::array<int, 3> order{};
     const char* names[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c)
         if ((order[c] = spec.channelindex(names[c])) < 0)
             throw std::invalid_argument(std::string(role) +
-                                        (buf.name().empty() ? "" : " " + std::string(buf.name())) +
+                                        (given.name().empty() ? "" : " " + std::string(given.name())) +
                                         " has no channel " + names[c]);
     OIIO::ImageBuf rgb;
     if (!OIIO::ImageBufAlgo::channels(rgb, buf, 3, order, {}, {}, false, nthreads))

@@ -284,15 +284,31 @@ std::vector<statmc::ParameterSpec> parameters()
     };
 }
 
+// One line on stderr about the input: "--denoise: note: in.exr: ...".
+void tell(const char* kind, const statmc::RunContext& ctx, const std::string& text)
+{
+    const std::string label = ctx.input_labels.empty() ? "" : ctx.input_labels[0] + ": ";
+    std::cerr << "--denoise: " << kind << ": " << label << text << "\n";
+}
+
 // The user learns once, on stderr, that the method ran without one of its stages.
 void note_skipped_stages(const OIIO::ImageBuf& result, const statmc::RunContext& ctx)
 {
     const std::string skipped =
         result.spec().get_string_attribute(statmc::layers::attr::kDenoiseSkipped);
-    if (skipped.empty() || result.has_error())
-        return;
-    const std::string label = ctx.input_labels.empty() ? "" : ctx.input_labels[0] + ": ";
-    std::cerr << "--denoise: note: " << label << "left out " << skipped << "\n";
+    if (!skipped.empty() && !result.has_error())
+        tell("note", ctx, "left out " + skipped);
+}
+
+// A denoised file keeps its statistics but not its mean: denoised again, the beauty is
+// tested against statistics of samples it no longer is the mean of. Another AOV of it
+// (aov=) is still as rendered, so this warns rather than refuses.
+void warn_denoised_input(const OIIO::ImageBuf& input, const statmc::RunContext& ctx)
+{
+    if (input.spec().get_int_attribute(statmc::layers::attr::kDenoised, 0) == 1)
+        tell("warning", ctx,
+             "denoised already (statmc:denoised = 1): what was denoised there is no longer "
+             "its samples' mean; denoise the statistics it came from");
 }
 
 // Statistics stored under lossy compression carry its rounding in every moment: the
@@ -302,10 +318,10 @@ void note_lossy_storage(const OIIO::ImageBuf& input, const statmc::RunContext& c
     const std::string compression = input.spec().get_string_attribute("compression");
     if (compression.empty() || statmc::layers::is_lossless_compression(compression))
         return;
-    const std::string label = ctx.input_labels.empty() ? "" : ctx.input_labels[0] + ": ";
-    std::cerr << "--denoise: warning: " << label << "statistics stored with lossy compression '"
-              << compression << "': their variances and moments carry its rounding (the layer "
-              << "contract stores them lossless)\n";
+    tell("warning", ctx,
+         "statistics stored with lossy compression '" + compression +
+             "': their variances and moments carry its rounding (the layer contract stores "
+             "them lossless)");
 }
 
 // The neighbours the host can lend, up to `reach` on each side; a sequence needed and not
@@ -354,6 +370,7 @@ void register_denoise(statmc::PluginRegistry& registry)
     op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs, const ParameterValues& p,
                 const statmc::RunContext& ctx) {
         note_lossy_storage(*inputs[0], ctx);
+        warn_denoised_input(*inputs[0], ctx);
         const statmc::DenoiseImageOptions opt = options_from(p);
         OIIO::ImageBuf result;
         try {
@@ -368,6 +385,7 @@ void register_denoise(statmc::PluginRegistry& registry)
     op.run_in_place = [](OIIO::ImageBuf& image, const ParameterValues& p,
                          const statmc::RunContext& ctx) {
         note_lossy_storage(image, ctx);
+        warn_denoised_input(image, ctx);
         const statmc::DenoiseImageOptions opt = options_from(p);
         bool ok = false;
         try {

@@ -10,6 +10,7 @@
 #include <OpenImageIO/imagebufalgo_util.h>
 
 #include "statmc/layers/imagebufalgo_forms.h"
+#include "statmc/layers/renderer_presets.h"
 
 namespace statmc {
 
@@ -78,9 +79,12 @@ std::pair<std::string, std::string> display_view(const OCIO::ConstConfigRcPtr& c
     return {display, view};
 }
 
-// R,G,B (and A when present) of `src` as a float image, in that order.
-OIIO::ImageBuf rgba_of(const OIIO::ImageBuf& src, int nthreads)
+// R,G,B (and A when present) of `given` as a float image, in that order: its own, or
+// those a renderer's preset names.
+OIIO::ImageBuf rgba_of(const OIIO::ImageBuf& given, int nthreads)
 {
+    layers::ImportedImage scratch;
+    const OIIO::ImageBuf& src = layers::contract_beauty(given, scratch);
     std::vector<int> order;
     for (const char* name : {"R", "G", "B"}) {
         order.push_back(src.spec().channelindex(name));

@@ -55,7 +55,9 @@ struct WriteOptions {
 };
 
 /// Writes `image` to `path` as OpenEXR under the layer contract's storage rules (float,
-/// scanline, lossless). Throws FileError "<path>: cannot write: ...".
+/// scanline, lossless); a plain picture without statistics channels (what --display
+/// makes) may go to any format OIIO writes, chosen by the extension (PNG, JPEG, TIFF).
+/// Throws FileError "<path>: cannot write: ...".
 void write_image_file(const OIIO::ImageBuf& image, const std::string& path);
 
 /// Writes `subimages` (at least one) as the parts of one OpenEXR file, atomically as

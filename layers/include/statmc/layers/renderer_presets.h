@@ -54,4 +54,10 @@ ImportedImage statistics_from_preset(const OIIO::ImageBuf& src, const std::strin
 /// Throws LayerError when the beauty is missing.
 ImportedImage render_from_preset(const OIIO::ImageBuf& src, const std::string& preset);
 
+/// `src` itself when it has R,G,B; else, when a renderer's preset claims it (a Cycles
+/// reference, a RenderMan beauty), its beauty and guides under the contract's names in
+/// `scratch`, as render_from_preset makes them. What operators that read a beauty alone
+/// (compare, display) take, so that they read every renderer --denoise reads.
+const OIIO::ImageBuf& contract_beauty(const OIIO::ImageBuf& src, ImportedImage& scratch);
+
 }  // namespace statmc::layers
