@@ -2,8 +2,9 @@
 # Installs what the tests and CI need beyond scripts/install-deps.sh, from Debian 12
 # packages (as root): a single-node Slurm cluster (slurmctld, slurmd, munge) for the farm
 # test, clang and its sanitizer runtimes for the fuzz targets, pytest, venv and
-# OpenImageIO's Python bindings for the Python tests, and matplotlib for the evaluation's
-# charts. A workstation that only denoises needs none of them.
+# OpenImageIO's Python bindings for the Python tests, Blender for the Cycles route's tests
+# (about 30 s to install), and matplotlib for the evaluation's charts. A workstation that
+# only denoises needs none of them.
 set -euo pipefail
 cd "$(dirname "$0")"
 bash install-deps.sh
@@ -11,6 +12,7 @@ packages=(
   slurm-wlm slurmctld slurmd slurm-client munge
   clang libclang-rt-14-dev
   python3-pytest python3-venv python3-openimageio python3-matplotlib
+  blender
 )
 export DEBIAN_FRONTEND=noninteractive
 apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null

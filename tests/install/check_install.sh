@@ -21,6 +21,8 @@ bin=$prefix/usr/bin
 for program in statmc statmc-render statmc-farm; do
   [[ -x "$bin/$program" ]] || fail "$program is not installed in $bin"
 done
+[[ -f "$prefix/usr/share/statmc/blender/statmc_cycles_passes.py" ]] ||
+  fail "the Blender script is not installed in $prefix/usr/share/statmc/blender"
 ops=$("$bin/statmc" --list-ops)
 for op in denoise passes merge compare display; do
   grep -q -- "--$op" <<<"$ops" || fail "the installed statmc does not list --$op: $ops"
