@@ -137,9 +137,29 @@ TEST(CliRun, DenoisingADenoisedFileWarnsNamingIt)
         run_cli({dir.file("once.exr"), "--denoise", "-o", dir.file("twice.exr")});
     EXPECT_EQ(again.exit_code, 0) << again.err;
     EXPECT_EQ(again.err, "--denoise: warning: " + dir.file("once.exr") +
-                             ": denoised already (statmc:denoised = 1): what was denoised there "
-                             "is no longer its samples' mean; denoise the statistics it came "
-                             "from\n");
+                             ": beauty denoised already (statmc:denoisedLayers = beauty): what "
+                             "was denoised is no longer its samples' mean; denoise the "
+                             "statistics it came from\n");
+}
+
+TEST(CliRun, DenoisingAnotherLayerOfADenoisedFileIsNotWarnedAbout)
+{
+    TempDir dir;
+    write_exr(cli_statistics_image(), dir.file("frame.exr"));
+    expect_success(run_cli({dir.file("frame.exr"), "--ch",
+                            "R,G,B,variance.R,variance.G,variance.B,sampleCount.Y,"
+                            "diffuse.R=R,diffuse.G=G,diffuse.B=B,diffuse.variance.R=variance.R,"
+                            "diffuse.variance.G=variance.G,diffuse.variance.B=variance.B",
+                            "-o", dir.file("aovs.exr")}));
+    // One AOV after the other, as README's recipe does: the second is as rendered.
+    expect_success(run_cli({dir.file("aovs.exr"), "--denoise", "--denoise:aov=diffuse", "-o",
+                            dir.file("both.exr")}));
+    const CliResult again =
+        run_cli({dir.file("both.exr"), "--denoise:aov=diffuse", "-o", dir.file("again.exr")});
+    EXPECT_EQ(again.exit_code, 0) << again.err;
+    EXPECT_NE(again.err.find("diffuse denoised already (statmc:denoisedLayers = beauty,diffuse)"),
+              std::string::npos)
+        << again.err;
 }
 
 // A tiled RGB MIP map of `levels` levels from 32x32 down, level m filled with m + 0.5.

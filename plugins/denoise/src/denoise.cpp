@@ -620,6 +620,19 @@ void require_independent_frames(const OIIO::ImageBuf& frame, const StatisticsVie
                          " noisy pixels, bit for bit: they were rendered with one seed" + fix);
 }
 
+// statmc:denoisedLayers of `spec` with the layers `opt` denoises added: what a later
+// denoise of the file is warned about.
+std::string with_denoised_layers(const OIIO::ImageSpec& spec, const DenoiseImageOptions& opt)
+{
+    std::string layers = spec.get_string_attribute(layers::attr::kDenoisedLayers);
+    std::vector<std::string> now = {opt.aov.empty() ? std::string("beauty") : opt.aov};
+    now.insert(now.end(), opt.aovs.begin(), opt.aovs.end());
+    for (const std::string& layer : now)
+        if (("," + layers + ",").find("," + layer + ",") == std::string::npos)
+            layers += (layers.empty() ? "" : ",") + layer;
+    return layers;
+}
+
 // `src` followed by its neighbours, in time order, as the temporal merge takes them.
 struct Sequence {
     std::vector<const OIIO::ImageBuf*> frames;  // float pixels
@@ -790,7 +803,8 @@ void denoise_imported(OIIO::ImageBuf& dst, const OIIO::ImageBuf& in,
             copy_channel(denoised, result.spec().channelnames[c], result,
                          result.spec().channelnames[c]);
     }
-    for (const char* name : {layers::attr::kDenoised, layers::attr::kDenoiseSkipped})
+    for (const char* name :
+         {layers::attr::kDenoised, layers::attr::kDenoiseSkipped, layers::attr::kDenoisedLayers})
         if (const OIIO::ParamValue* value = spec.find_attribute(name))
             result.specmod().attribute(name, value->type(), value->data());
     dst = std::move(result);
@@ -932,6 +946,8 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
             regions, nthreads);
     }
     result.specmod().attribute(layers::attr::kDenoised, 1);
+    result.specmod().attribute(layers::attr::kDenoisedLayers,
+                               with_denoised_layers(result.spec(), opt));
     std::string skipped = stages.skipped;
     if (!joint_note.empty())
         skipped += (skipped.empty() ? "" : "; ") + joint_note;

@@ -300,15 +300,29 @@ void note_skipped_stages(const OIIO::ImageBuf& result, const statmc::RunContext&
         tell("note", ctx, "left out " + skipped);
 }
 
-// A denoised file keeps its statistics but not its mean: denoised again, the beauty is
-// tested against statistics of samples it no longer is the mean of. Another AOV of it
-// (aov=) is still as rendered, so this warns rather than refuses.
-void warn_denoised_input(const OIIO::ImageBuf& input, const statmc::RunContext& ctx)
+// A denoised layer keeps its statistics but not its mean: denoised again, it is tested
+// against statistics of samples it no longer is the mean of. Another layer of the file
+// (aov=) is still as rendered, so this warns, and only about layers denoised before.
+void warn_denoised_input(const OIIO::ImageBuf& input, const statmc::DenoiseImageOptions& opt,
+                         const statmc::RunContext& ctx)
 {
-    if (input.spec().get_int_attribute(statmc::layers::attr::kDenoised, 0) == 1)
-        tell("warning", ctx,
-             "denoised already (statmc:denoised = 1): what was denoised there is no longer "
-             "its samples' mean; denoise the statistics it came from");
+    const OIIO::ImageSpec& spec = input.spec();
+    if (spec.get_int_attribute(statmc::layers::attr::kDenoised, 0) != 1)
+        return;
+    // Files from before statmc:denoisedLayers say only that something was denoised.
+    const std::string done = spec.get_string_attribute(statmc::layers::attr::kDenoisedLayers);
+    std::vector<std::string> asked = {opt.aov.empty() ? std::string("beauty") : opt.aov};
+    asked.insert(asked.end(), opt.aovs.begin(), opt.aovs.end());
+    for (const std::string& layer : asked)
+        if (done.empty() || ("," + done + ",").find("," + layer + ",") != std::string::npos) {
+            tell("warning", ctx,
+                 (done.empty() ? std::string("denoised already (statmc:denoised = 1)")
+                               : layer + " denoised already (statmc:denoisedLayers = " + done +
+                                     ")") +
+                     ": what was denoised is no longer its samples' mean; denoise the "
+                     "statistics it came from");
+            return;
+        }
 }
 
 // Statistics stored under lossy compression carry its rounding in every moment: the
@@ -370,8 +384,8 @@ void register_denoise(statmc::PluginRegistry& registry)
     op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs, const ParameterValues& p,
                 const statmc::RunContext& ctx) {
         note_lossy_storage(*inputs[0], ctx);
-        warn_denoised_input(*inputs[0], ctx);
         const statmc::DenoiseImageOptions opt = options_from(p);
+        warn_denoised_input(*inputs[0], opt, ctx);
         OIIO::ImageBuf result;
         try {
             result = statmc::denoise(*inputs[0], neighbours_from(ctx, opt.temporal.frames), opt, {},
@@ -385,8 +399,8 @@ void register_denoise(statmc::PluginRegistry& registry)
     op.run_in_place = [](OIIO::ImageBuf& image, const ParameterValues& p,
                          const statmc::RunContext& ctx) {
         note_lossy_storage(image, ctx);
-        warn_denoised_input(image, ctx);
         const statmc::DenoiseImageOptions opt = options_from(p);
+        warn_denoised_input(image, opt, ctx);
         bool ok = false;
         try {
             ok = statmc::denoise(image, image, neighbours_from(ctx, opt.temporal.frames), opt, {},

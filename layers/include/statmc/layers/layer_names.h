@@ -28,6 +28,8 @@ inline constexpr const char* kSeed = "statmc:seed";          // int
 inline constexpr const char* kDenoised = "statmc:denoised";  // int 1
 // string: the default's stages that --denoise left out, and why (docs/exr-layers.md)
 inline constexpr const char* kDenoiseSkipped = "statmc:denoiseSkipped";
+// string: the layers denoise replaced, comma-separated ("beauty" for R,G,B)
+inline constexpr const char* kDenoisedLayers = "statmc:denoisedLayers";
 inline constexpr const char* kRenderTime = "statmc:renderTime";  // float seconds (statmc-render)
 inline constexpr const char* kScene = "statmc:scene";  // string: the scene file (statmc-render)
 inline constexpr const char* kFrame =
