@@ -85,6 +85,8 @@ struct KernelParams {
     const float* guide_noise;  // u per pixel, with guides (filter_layout.h)
     const float* noise;
     const float* noise_limit;
+    const float* noise_own;
+    const float* noise_mutual;
     const float* inverse_count;  // present with diagnostics
     const int* half_width;       // the window (set_window), index dy + pad_y
     const int* inner_half_width;
@@ -103,7 +105,7 @@ struct KernelParams {
 /// the guides' noise u, the firefly level and 1/n where present.
 int staged_planes(int channels, int guides, bool guide_noise, bool guard, bool inverse)
 {
-    return 3 * channels + guides + (guide_noise ? 1 : 0) + (guard ? 1 : 0) + (inverse ? 1 : 0);
+    return 3 * channels + guides + (guide_noise ? 1 : 0) + (guard ? 2 : 0) + (inverse ? 1 : 0);
 }
 
 template <int NC, int NG>
@@ -120,7 +122,8 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
     float* s_guide = s_value + NC * span;
     float* s_guide_noise = s_guide + NG * span;
     float* s_noise = s_guide_noise + (guide_noise ? span : 0);
-    float* s_inverse = s_noise + (guard ? span : 0);
+    float* s_limit = s_noise + (guard ? span : 0);
+    float* s_inverse = s_limit + (guard ? span : 0);
 
     const int x0 = blockIdx.x * kBlockX, y0 = blockIdx.y * kBlockY;
     const int x = x0 + threadIdx.x, y = y0 + threadIdx.y;
@@ -129,7 +132,7 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
     const long long at = (long long)y * p.width + x;
 
     float mean_i[NC], threshold_i[NC], value_i[NC], guide_i[NG > 0 ? NG : 1];
-    float guide_noise_i = 0, limit_i = 0;
+    float guide_noise_i = 0, limit_i = 0, level_i = 0;
     float acc[NC], weight_sum = 1, member_count = 1, inverse_sum = 0;
     if (inside) {
         for (int c = 0; c < NC; ++c) {
@@ -142,8 +145,10 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
             guide_i[g] = p.guide[g][centre];
         if (guide_noise)
             guide_noise_i = p.guide_noise[centre];
-        if (guard)
+        if (guard) {
             limit_i = p.noise_limit[centre];
+            level_i = p.noise_own[centre];
+        }
         if (diagnostics)
             inverse_sum = p.inverse_count[centre];
         if (p.carry_from_previous) {
@@ -176,8 +181,10 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
                 s_guide[g * span + k] = p.guide[g][from];
             if (guide_noise)
                 s_guide_noise[k] = p.guide_noise[from];
-            if (guard)
+            if (guard) {
                 s_noise[k] = p.noise[from];
+                s_limit[k] = p.noise_mutual[from];
+            }
             if (diagnostics)
                 s_inverse[k] = p.inverse_count[from];
         }
@@ -190,7 +197,8 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
         const int table_row = (dy + p.pad_y) * cols + p.pad_x;
         auto tap = [&](int dx) {
             const int k = threadIdx.x + p.pad_x + dx;
-            bool member = !guard || s_noise[k] <= limit_i;
+            // The mutual firefly guard (firefly_guard.h).
+            bool member = !guard || (s_noise[k] <= limit_i && level_i <= s_limit[k]);
             for (int c = 0; c < NC; ++c) {
                 const float d = mean_i[c] - s_mean[c * span + k];
                 member = member && fmaf(d, d, -s_threshold[c * span + k]) <= threshold_i[c];
@@ -477,6 +485,8 @@ CudaFilter::CudaFilter(const FilterLayout& L, bool carry)
     p.guide_noise = L.guide_noise ? on_device(L.guide_noise) : nullptr;
     p.noise = on_device(L.noise);
     p.noise_limit = on_device(L.noise_limit);
+    p.noise_own = on_device(L.noise_own);
+    p.noise_mutual = on_device(L.noise_mutual);
     p.inverse_count = on_device(L.inverse_count);
     p.half_width = m.half_width.get();
     p.inner_half_width = m.inner_half_width.get();

@@ -25,6 +25,7 @@ EstimatorImage with_context(const EstimatorImage& est, int channel, int radius, 
     out.domain = est.domain;
     out.context_channels = est.context_channels + 1;
     std::copy(est.count.begin(), est.count.end(), out.count.begin());
+    out.support = est.support;
     std::copy(est.value.begin(), est.value.end(), out.value.begin());
     std::copy(est.test_mean.begin(), est.test_mean.end(), out.test_mean.begin());
     std::copy(est.test_variance.begin(), est.test_variance.end(), out.test_variance.begin());

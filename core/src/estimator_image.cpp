@@ -1,5 +1,6 @@
 #include "statmc/core/estimator_image.h"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <limits>
@@ -35,6 +36,23 @@ void mark_untestable(EstimatorImage& est, int x, int y)
     }
 }
 
+// EstimatorImage::support of pixel (x, y): the effective count of its brightest channel's
+// sample values; +∞ where that channel is all zero (nothing rests on few samples there).
+float sample_support(const StatisticsView& stats, int x, int y)
+{
+    const double n = stats.count(x, y);
+    int brightest = 0;
+    for (int c = 1; c < stats.channels; ++c)
+        if (stats.mean[c](x, y) > stats.mean[brightest](x, y))
+            brightest = c;
+    const double m = stats.mean[brightest](x, y), v = stats.variance[brightest](x, y);
+    const double per_sample = stats.variance_of_mean ? v * n : v;
+    const double square = m * m + per_sample * (n - 1) / std::max(n, 1.0);  // mean of x²
+    if (!(n >= 1) || !std::isfinite(square) || !std::isfinite(m))
+        return 0.f;
+    return square > 0 ? float(n * m * m / square) : std::numeric_limits<float>::infinity();
+}
+
 // Pixel (x, y) of `est` from the statistics, in the chosen test domain.
 void fill_estimator(EstimatorImage& est, const StatisticsView& stats, TestDomain domain, int x,
                     int y)
@@ -67,6 +85,8 @@ void fill_estimator(EstimatorImage& est, const StatisticsView& stats, TestDomain
     }
     if (!finite_value || !est.testable(x, y))
         mark_untestable(est, x, y);
+    if (!est.support.empty())
+        est.support[std::size_t(y) * est.width + x] = sample_support(stats, x, y);
 }
 
 }  // namespace
@@ -116,6 +136,8 @@ EstimatorImage estimators_from_statistics(const StatisticsView& stats, TestDomai
 
     EstimatorImage est(stats.width, stats.height, stats.channels);
     est.domain = domain;
+    if (stats.has_variance())
+        est.support.assign(est.pixels(), 0.f);
     // Rows are independent; threads only split the work.
     tbb::parallel_for(tbb::blocked_range<int>(0, stats.height, 16),
                       [&](const tbb::blocked_range<int>& rows) {
@@ -144,6 +166,7 @@ EstimatorImage side_by_side(const std::vector<const EstimatorImage*>& parts)
     EstimatorImage out(first.width, first.height, channels);
     out.domain = first.domain;
     out.count = first.count;
+    out.support = first.support;  // the lead's: the guard guards the lead
     std::size_t at = 0;
     for (const EstimatorImage* p : parts) {
         const std::size_t n = p->value.size();

@@ -37,7 +37,7 @@ struct Partial {
 template <class V, int NC, int NA, int NG>
 struct CentreState {
     using F = typename V::F;
-    F mean[NC], threshold[NC], noise_limit;
+    F mean[NC], threshold[NC], noise_limit, noise_level;
     F value[NA];
     F guide[NG > 0 ? NG : 1];
     F guide_noise;
@@ -111,8 +111,10 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
         }
         for (int c = 0; c < NA; ++c)
             s.value[c] = V::load(L.value[c] + centre);
-        if constexpr (kGuard)
+        if constexpr (kGuard) {
             s.noise_limit = V::load(L.noise_limit + centre);
+            s.noise_level = V::load(L.noise_own + centre);
+        }
         for (int g = 0; g < NG; ++g)
             s.guide[g] = V::load(L.guide[g] + centre);
         if constexpr (kNoise)
@@ -128,12 +130,15 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
         // Membership: all channels pass (μ̃_i − μ̃_j)² − T_j ≤ T_i, the fast form of
         // docs/method.md §4, (μ̃_i − μ̃_j)² ≤ γ_i²v_i + γ_j²v_j, kept in difference form:
         // expanding it into D_i + D_j ≤ 2μ̃_iμ̃_j cancels catastrophically in float once
-        // v ≪ μ̃² (high spp). The firefly guard, where needed, starts the mask chain.
+        // v ≪ μ̃² (high spp). The firefly guard, where needed, starts the mask chain; it is
+        // mutual for centres whose value rests on several samples: a glint its neighbour
+        // would refuse does not take that neighbour either, and keeps its light
+        // (firefly_guard.h).
         typename V::M m[R];
         if constexpr (kGuard) {
-            const F level = V::load(L.noise + off);
+            const F level = V::load(L.noise + off), limit = V::load(L.noise_mutual + off);
             for (int k = First; k < Last; ++k)
-                m[k] = V::le(level, ctr[k].noise_limit);
+                m[k] = V::le_and(V::le(level, ctr[k].noise_limit), ctr[k].noise_level, limit);
         }
         for (int c = 0; c < NC; ++c) {
             F mean = V::load(L.mean[c] + off), threshold = V::load(L.threshold[c] + off);

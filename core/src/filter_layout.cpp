@@ -88,9 +88,11 @@ float* page_memory(std::size_t floats)
     return static_cast<float*>(p);
 }
 
-/// Marks the chunks whose window may hold a level above some centre's limit. The
-/// largest level near a chunk is bounded through the maxima of 16×16 blocks: coarse, so
-/// it marks a little more than needed, and one pass over the levels.
+/// Marks the chunks where the guard may refuse a pair: some window pixel's level above
+/// some centre's limit, or some centre's own level (the mutual half) above some window
+/// pixel's mutual limit.
+/// The window's extremes are bounded through those of 16×16 blocks: coarse, so it marks a
+/// little more than needed, and one pass over the levels.
 void mark_guarded_chunks(FilterLayout& L, const NoiseLevels& noise)
 {
     L.chunks = (L.width + L.lanes - 1) / L.lanes;
@@ -100,31 +102,38 @@ void mark_guarded_chunks(FilterLayout& L, const NoiseLevels& noise)
         return;
     constexpr int kBlock = 16;
     const int bw = (L.width + kBlock - 1) / kBlock, bh = (L.height + kBlock - 1) / kBlock;
-    std::vector<float> block_max(std::size_t(bw) * bh, 0.f);
+    std::vector<float> block_max(std::size_t(bw) * bh, 0.f), block_min(block_max.size(), kAny);
     tbb::parallel_for(0, bh, [&](int by) {
         float* row_max = block_max.data() + std::size_t(by) * bw;
+        float* row_min = block_min.data() + std::size_t(by) * bw;
         for (int y = by * kBlock; y < std::min(L.height, (by + 1) * kBlock); ++y)
-            for (int x = 0; x < L.width; ++x)
-                row_max[x / kBlock] =
-                    std::max(row_max[x / kBlock], noise.level[std::size_t(y) * L.width + x]);
+            for (int x = 0; x < L.width; ++x) {
+                const std::size_t i = std::size_t(y) * L.width + x;
+                row_max[x / kBlock] = std::max(row_max[x / kBlock], noise.level[i]);
+                row_min[x / kBlock] = std::min(row_min[x / kBlock], noise.mutual_limit[i]);
+            }
     });
     tbb::parallel_for(
         tbb::blocked_range<int>(0, L.height, 16), [&](const tbb::blocked_range<int>& rows) {
             for (int y = rows.begin(); y < rows.end(); ++y)
                 for (int k = 0; k < L.chunks; ++k) {
                     const int x0 = k * L.lanes, x1 = std::min(L.width, x0 + L.lanes) - 1;
-                    float least = kAny;
-                    for (int x = x0; x <= x1; ++x)
+                    float least = kAny, loudest = 0;
+                    for (int x = x0; x <= x1; ++x) {
                         least = std::min(least, noise.limit[std::size_t(y) * L.width + x]);
-                    if (least == kAny)
-                        continue;
-                    float most = 0;
+                        loudest = std::max(loudest, noise.own[std::size_t(y) * L.width + x]);
+                    }
+                    float most = 0, window_least = kAny;
                     for (int by = std::max(0, (y - L.pad_y) / kBlock);
                          by <= std::min(bh - 1, (y + L.pad_y) / kBlock); ++by)
                         for (int bx = std::max(0, (x0 - L.pad_x) / kBlock);
-                             bx <= std::min(bw - 1, (x1 + L.pad_x) / kBlock); ++bx)
+                             bx <= std::min(bw - 1, (x1 + L.pad_x) / kBlock); ++bx) {
                             most = std::max(most, block_max[std::size_t(by) * bw + bx]);
-                    L.guarded[std::size_t(y) * L.chunks + k] = most > least;
+                            window_least =
+                                std::min(window_least, block_min[std::size_t(by) * bw + bx]);
+                        }
+                    L.guarded[std::size_t(y) * L.chunks + k] =
+                        most > least || loudest > window_least;
                 }
         });
 }
@@ -200,7 +209,7 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
     const bool guard = std::find(L.guarded.begin(), L.guarded.end(), 1) != L.guarded.end();
     // Only guides with their variances get the plane (and the kernel's noise loop).
     const int noise_planes = guide_variances.empty() ? 0 : 1;
-    const int planes = 3 * L.channels + L.guide_count + noise_planes + (guard ? 2 : 0) +
+    const int planes = 3 * L.channels + L.guide_count + noise_planes + (guard ? 4 : 0) +
                        (with_inverse_count ? 1 : 0);
     // Not zeroed: every float, padding included, is written once below, by the thread
     // that will mostly read it (zeroing 50 MB first cost as much as filling it).
@@ -229,10 +238,14 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
     L.guide_noise = guide_noise;
     float* noise_level = guard ? plane_origin(first_after_guides) : nullptr;
     float* noise_limit = guard ? plane_origin(first_after_guides + 1) : nullptr;
+    float* noise_own = guard ? plane_origin(first_after_guides + 2) : nullptr;
+    float* noise_mutual = guard ? plane_origin(first_after_guides + 3) : nullptr;
+    L.noise_own = noise_own;
+    L.noise_mutual = noise_mutual;
     L.noise = noise_level;
     L.noise_limit = noise_limit;
     float* inverse_count =
-        with_inverse_count ? plane_origin(first_after_guides + (guard ? 2 : 0)) : nullptr;
+        with_inverse_count ? plane_origin(first_after_guides + (guard ? 4 : 0)) : nullptr;
     L.inverse_count = inverse_count;
 
     const float max_count = tbb::parallel_reduce(
@@ -260,6 +273,8 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
         if (guard) {
             std::fill(noise_level + p + x0, noise_level + p + x1, 0.f);
             std::fill(noise_limit + p + x0, noise_limit + p + x1, 0.f);
+            std::fill(noise_own + p + x0, noise_own + p + x1, 0.f);
+            std::fill(noise_mutual + p + x0, noise_mutual + p + x1, 0.f);
         }
         if (inverse_count)
             std::fill(inverse_count + p + x0, inverse_count + p + x1, 0.f);
@@ -316,6 +331,8 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                 if (guard) {
                     noise_level[p] = noise.level[std::size_t(y) * est.width + x];
                     noise_limit[p] = noise.limit[std::size_t(y) * est.width + x];
+                    noise_own[p] = noise.own[std::size_t(y) * est.width + x];
+                    noise_mutual[p] = noise.mutual_limit[std::size_t(y) * est.width + x];
                 }
                 if (inverse_count) {
                     const float count_or_zero = finite_or_zero(float(n));

@@ -36,6 +36,8 @@ struct FilterLayout {
         {};                              // T = γ²(df = 2n − 2)·v, or −∞ when untestable
     const float* noise = nullptr;        // the level a neighbour presents (firefly_guard.h)
     const float* noise_limit = nullptr;  // the largest level a centre accepts
+    const float* noise_own = nullptr;    // the level a centre presents to the mutual guard
+    const float* noise_mutual = nullptr;  // the largest own level a neighbour lets through
     // Per output row and chunk of `lanes` pixels: 1 where some window pixel's level may
     // exceed some centre's limit, so the kernel must test the guard there. Elsewhere —
     // nearly everywhere — it runs without the extra compare.

@@ -90,7 +90,8 @@ void filter_reference(const EstimatorImage& est, const Guides& guides,
                         p2 > double(r) * r || (xj == xi && yj == yi) || !est.testable(xj, yj))
                         continue;
                     // The firefly guard (firefly_guard.h).
-                    if (!(noise.level[pixel(xj, yj)] <= noise.limit[pixel(xi, yi)]))
+                    if (!(noise.level[pixel(xj, yj)] <= noise.limit[pixel(xi, yi)]) ||
+                        !(noise.own[pixel(xi, yi)] <= noise.mutual_limit[pixel(xj, yj)]))
                         continue;
                     const double gj = gamma(xj, yj);
                     bool member = true;

@@ -119,7 +119,8 @@ bool firefly_guard_applies(const EstimatorImage&, float ratio) { return ratio > 
 NoiseLevels noise_levels(const EstimatorImage& est, float ratio)
 {
     const int w = est.width, h = est.height;
-    NoiseLevels out{std::vector<float>(est.pixels()), std::vector<float>(est.pixels())};
+    NoiseLevels out{std::vector<float>(est.pixels()), std::vector<float>(est.pixels()),
+                    std::vector<float>(est.pixels(), 0.f), std::vector<float>(est.pixels())};
     std::vector<std::uint8_t> testable(est.pixels());
     std::vector<std::uint8_t> row_testable(h);  // every pixel of the row is
     for_each_row(h, [&](int y) {
@@ -131,8 +132,15 @@ NoiseLevels noise_levels(const EstimatorImage& est, float ratio)
     });
     if (!firefly_guard_applies(est, ratio)) {
         std::fill(out.limit.begin(), out.limit.end(), kAny);
+        std::fill(out.mutual_limit.begin(), out.mutual_limit.end(), kAny);
         return out;
     }
+    if (!est.support.empty())
+        for_each_row(h, [&](int y) {
+            const std::size_t row = std::size_t(y) * w;
+            for (int x = 0; x < w; ++x)
+                out.own[row + x] = est.support[row + x] >= kGlintSupport ? out.level[row + x] : 0.f;
+        });
     auto level = [&](int x, int y) { return out.level[std::size_t(y) * w + x]; };
     for_each_row(h, [&](int y) {
         float* limit = out.limit.data() + std::size_t(y) * w;
@@ -172,6 +180,9 @@ NoiseLevels noise_levels(const EstimatorImage& est, float ratio)
             else if (!all_zero(est, x, y))
                 limit[x] = 0;  // noise-free and lit (an emitter): certain, takes only its equals
         }
+        float* mutual = out.mutual_limit.data() + std::size_t(y) * w;
+        for (int x = 0; x < w; ++x)
+            mutual[x] = limit[x] > 0 ? limit[x] : kAny;
     });
     return out;
 }

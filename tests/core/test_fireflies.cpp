@@ -214,6 +214,43 @@ TEST(Fireflies, SparseSamplesInBlackRegionsStillSpread)
                 0.05 * testing::mse(paper, kSize, kSize, 3, truth));
 }
 
+TEST(Fireflies, TheGuardIsMutualForAGlintOfSeveralSamplesButNotForAFirefly)
+{
+    // A flat dark field of 16 exponential samples per pixel; at (kFx, kFy) either three hits
+    // of 30 among misses (a glint: support 3) or one (a firefly: support 1). Its neighbours
+    // refuse both; the glint refuses them back and keeps its mean, the firefly takes them.
+    for (const int hits : {3, 1}) {
+        std::mt19937_64 rng(7);
+        StatisticsImage<3> img(kSize, kSize);
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x)
+                for (int i = 0; i < 16; ++i) {
+                    const bool glint = x == kFx && y == kFy;
+                    const float e = std::exponential_distribution<float>(1.f)(rng);
+                    const float v = glint ? (i < hits ? 30.f : 0.f) : 0.02f * e;
+                    const float s[3] = {v, v, v};
+                    img.add(x, y, s);
+                }
+        const StatisticsPlanes stats = img.planes();
+        const EstimatorImage est = estimators_from_statistics(stats.view(), TestDomain::BoxCox);
+        const std::size_t at = std::size_t(kFy) * kSize + kFx;
+        EXPECT_NEAR(est.support[at], hits, 1e-4) << hits;
+        std::vector<float> out(est.value.size());
+        std::vector<Plane> planes;
+        for (int c = 0; c < 3; ++c)
+            planes.push_back(dense_plane(out.data() + c * est.pixels(), est.width));
+        filter(est, {}, DenoiseOptions{}, planes);
+        const float mean = 30.f * hits / 16;
+        if (hits > 1)
+            EXPECT_EQ(out[at], mean);
+        else
+            EXPECT_LT(out[at], 0.1f * mean);
+        // Neither lends its light to the field.
+        EXPECT_LT(out[at + 1], 0.05f);
+        EXPECT_LT(out[at + kSize], 0.05f);
+    }
+}
+
 TEST(Fireflies, ZeroTurnsTheGuardOff)
 {
     const StatisticsPlanes fire = render(kTexture, 16, 2e4f, 5);

@@ -46,6 +46,12 @@ struct EstimatorImage {
     /// that holds a firefly would otherwise raise its neighbours' levels, and with them
     /// what they accept.
     int context_channels = 0;
+    /// Per pixel, how many samples' worth its value rests on: for its brightest channel,
+    /// the effective count (Σx)²/Σx² = n·m²/(m² + s²(n − 1)/n) of the samples' values
+    /// themselves, ≈ n for an even pixel, ≈ k for k bright hits among misses, ≈ 1 for a
+    /// single outlier (a firefly). Empty where the statistics have no untransformed
+    /// variance. The firefly guard reads it (firefly_guard.h).
+    std::vector<float> support;
 
     EstimatorImage() = default;
     EstimatorImage(int width, int height, int channels);

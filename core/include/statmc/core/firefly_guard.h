@@ -8,6 +8,12 @@
 // average's MSE only if v_f is within a small factor of the members' variance (the
 // inverse-variance argument, docs/filter-design.md). The guard therefore lets centre i
 // accept neighbour j only if j's noise level is at most `ratio` times i's reference level.
+//
+// The guard is mutual for a pixel whose value rests on several samples: a glint (a few
+// bright hits among misses) that its dark neighbours refuse does not take them either, so
+// it keeps its light instead of averaging it away. A pixel whose value rests on about one
+// sample (support below kGlintSupport, estimator_image.h) is what the guard was made for,
+// a firefly, and still takes its neighbourhood (docs/method.md, "The mutual guard").
 #pragma once
 
 #include <vector>
@@ -33,7 +39,19 @@ struct NoiseLevels {
     /// the paper's filter) so that the rare samples still spread. +∞ too with fewer than
     /// three testable neighbours, and everywhere when ratio = 0.
     std::vector<float> limit;
+    /// The level a centre presents to its neighbours' limits (the mutual half of the
+    /// guard): `level` where its value rests on at least kGlintSupport samples, else 0 (it
+    /// is refused by nobody's limit). All 0 where the estimators carry no support.
+    std::vector<float> own;
+    /// The largest own level a pixel lets take it as a member: its limit, but +∞ where the
+    /// limit is 0 (a certain, noise-free pixel refuses noisy members to stay certain, not
+    /// because they are outliers: a noisy pixel of its value may still take it).
+    std::vector<float> mutual_limit;
 };
+
+/// The support (samples' worth, EstimatorImage::support) from which a pixel refused by its
+/// neighbours keeps its own value: two bright hits agree on a glint, one is a firefly.
+inline constexpr float kGlintSupport = 2.f;
 
 /// Whether the guard can exclude anything: ratio > 0.
 bool firefly_guard_applies(const EstimatorImage& est, float ratio);

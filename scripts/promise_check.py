@@ -1,0 +1,135 @@
+"""The promise, checked on frames the evaluation does not tune on (docs/evaluation-notes.md,
+"The promise check"): the evaluation's scenes at another resolution and other seeds, every
+sample count from 4 to 256, against long references whose own noise is subtracted. For
+each method and cell it reports MSE, relMSE and DSSIM, and the energy kept in windows
+around emitters and highlights, beside the noisy input's.
+
+Not part of CI: renders are cached in OUT and reused.
+
+    python3 scripts/promise_check.py                       # this build's default and classic
+    python3 scripts/promise_check.py --method before=/tmp/old/statmc   # another build too
+
+A method is NAME=STATMC[:MODIFIERS]; the default list is default=build's statmc,
+classic=build's statmc with method=classic.
+"""
+
+import argparse
+import csv
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+from image_metrics import EPS  # noqa: E402
+
+SCENES = {
+    "cornell-box": "../shared/scenes/cornell-box/scene.pbrt",
+    "veach-mis": "../shared/scenes/veach-mis/scene.pbrt",
+    "veach-ajar": "../shared/scenes/veach-ajar/scene.pbrt",
+    "caustic-corner": "bench/evaluation/scenes/caustic-corner/scene.pbrt",
+}
+
+
+def run(cmd):
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+
+
+def render(args, scene, spp, seed, path):
+    if not os.path.exists(path):
+        run([args.render, os.path.join(ROOT, SCENES[scene]), "-o", path + ".part.exr", "--spp",
+             str(spp), "--resolution", args.resolution, "--seed", str(seed), "-q"])
+        os.replace(path + ".part.exr", path)
+    return path
+
+
+def layers(statmc, path):
+    image = statmc.read_statistics(path)
+    return image
+
+
+def highlight_windows(reference_rgb):
+    """Pixels near the reference's brightest: luminance above both its 99.5th percentile and
+    4 times its median, grown by 2 pixels."""
+    lum = reference_rgb @ np.array([0.2126, 0.7152, 0.0722])
+    bright = lum >= max(np.percentile(lum, 99.5), 4 * np.median(lum))
+    grown = bright.copy()
+    for dy in range(-2, 3):
+        for dx in range(-2, 3):
+            grown |= np.roll(np.roll(bright, dy, 0), dx, 1)
+    return grown
+
+
+def scores(x, ref, ref_share, window):
+    """MSE and relMSE less the reference's own share, and the energy ratio in `window`."""
+    d2 = (x - ref) ** 2
+    mse = float(d2.mean()) - ref_share["mse"]
+    rel = float((d2 / (ref ** 2 + EPS)).mean()) - ref_share["relmse"]
+    energy = float(x[window].sum() / max(ref[window].sum(), 1e-12))
+    return mse, rel, energy
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", default=os.path.join(ROOT, "build", "promise"))
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
+    parser.add_argument("--resolution", default="320x180")
+    parser.add_argument("--ref-spp", type=int, default=4096)
+    parser.add_argument("--spps", default="4 16 64 256")
+    parser.add_argument("--seeds", default="11 12")
+    parser.add_argument("--scenes", default=" ".join(SCENES))
+    parser.add_argument("--method", action="append", default=[])
+    args = parser.parse_args()
+    args.render = os.path.join(args.build, "renderer", "statmc-render")
+    statmc_cli = os.path.join(args.build, "oiiotool_ext", "statmc")
+    sys.path.insert(0, os.path.join(args.build, "python"))
+    import statmc  # noqa: E402
+
+    methods = [("default", statmc_cli, ""), ("classic", statmc_cli, ":method=classic")]
+    for text in args.method:
+        name, rest = text.split("=", 1)
+        exe, _, modifiers = rest.partition(":")
+        methods.append((name, exe, ":" + modifiers if modifiers else ""))
+    os.makedirs(args.out, exist_ok=True)
+    rows = []
+    for scene in args.scenes.split():
+        d = os.path.join(args.out, scene)
+        os.makedirs(d, exist_ok=True)
+        ref_path = render(args, scene, args.ref_spp, 1000,
+                          os.path.join(d, f"reference-{args.ref_spp}-{args.resolution}.exr"))
+        ref_image = layers(statmc, ref_path)
+        ref = ref_image["beauty"][:, :, :3].astype(np.float64)
+        share = ref_image["variance"][:, :, :3] / ref_image["sampleCount"]
+        ref_share = {"mse": float(share.mean()),
+                     "relmse": float((share / (ref ** 2 + EPS)).mean())}
+        window = highlight_windows(ref)
+        for spp in [int(s) for s in args.spps.split()]:
+            for seed in [int(s) for s in args.seeds.split()]:
+                noisy_path = render(args, scene, spp, seed,
+                                    os.path.join(d, f"noisy-{args.resolution}-{spp}-{seed}.exr"))
+                outputs = [("noisy", noisy_path)]
+                for name, exe, modifiers in methods:
+                    out = os.path.join(d, f"{name}-{spp}-{seed}.exr")
+                    run([exe, noisy_path, "--denoise" + modifiers, "-o", out])
+                    outputs.append((name, out))
+                for name, path in outputs:
+                    x = layers(statmc, path)["beauty"][:, :, :3].astype(np.float64)
+                    mse, rel, energy = scores(x, ref, ref_share, window)
+                    dssim = statmc.compare(path, ref_path).metrics["DSSIM"]
+                    rows.append({"scene": scene, "spp": spp, "seed": seed, "method": name,
+                                 "mse": mse, "relmse": rel, "dssim": dssim, "energy": energy,
+                                 "ref_mse_share": ref_share["mse"],
+                                 "ref_relmse_share": ref_share["relmse"]})
+                    print(f"{scene:15s} {spp:5d} {seed:3d} {name:10s} MSE {mse:.4g} "
+                          f"relMSE {rel:.4g} DSSIM {dssim:.4f} energy {energy:.3f}", flush=True)
+    with open(os.path.join(args.out, "results.csv"), "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+
+
+if __name__ == "__main__":
+    main()

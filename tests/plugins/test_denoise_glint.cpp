@@ -1,0 +1,225 @@
+// A glint amid dark neighbours (docs/method.md §5, "The mutual guard"): a few bright hits
+// among misses, which the t-test at few samples cannot tell from the dark pixels around
+// it. Where its value rests on two samples' worth or more, the default keeps its light;
+// no neighbour is brightened or darkened beyond 3 standard errors of its own truth. And a
+// caustic-like region's error falls with every doubling of the sample count.
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "statmc/core/statistics_image.h"
+#include "statmc/denoise/denoise.h"
+#include "statmc/layers/statistics_layers.h"
+#include "statmc/passes/passes.h"
+
+namespace statmc {
+namespace {
+
+constexpr int kW = 33, kH = 33, kGx = 16, kGy = 16;
+constexpr float kHit = 30.f, kP = 0.3f;  // the glint's expectation: 9
+
+float dark_truth(int c) { return 0.02f * (1.f + 0.2f * c); }
+
+// One sample of pixel (x, y): the glint hits kHit (less 10% per channel) with probability
+// kP; the field is exponential with mean dark_truth.
+void sample(std::mt19937_64& rng, int x, int y, float* s)
+{
+    if (x == kGx && y == kGy) {
+        const bool hit = std::uniform_real_distribution<float>(0, 1)(rng) < kP;
+        for (int c = 0; c < 3; ++c)
+            s[c] = hit ? kHit * (1.f - 0.1f * c) : 0.f;
+        return;
+    }
+    const float e = std::exponential_distribution<float>(1.f)(rng);
+    for (int c = 0; c < 3; ++c)
+        s[c] = dark_truth(c) * e;
+}
+
+// The effective count (Σx)²/Σx² of the glint's red values: what it rests on.
+struct Glint {
+    double sum = 0, squares = 0;
+    void add(double v)
+    {
+        sum += v;
+        squares += v * v;
+    }
+    double support() const { return squares > 0 ? sum * sum / squares : 0; }
+};
+
+// Statistics of n samples per pixel.
+OIIO::ImageBuf full_statistics(int n, std::uint64_t seed, Glint& glint)
+{
+    std::mt19937_64 rng(seed);
+    StatisticsImage<3> img(kW, kH);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            for (int i = 0; i < n; ++i) {
+                float s[3];
+                sample(rng, x, y, s);
+                img.add(x, y, s);
+                if (x == kGx && y == kGy)
+                    glint.add(s[0]);
+            }
+    return layers::make_statistics_image(img.planes());
+}
+
+// K renders of 4 samples per pixel through --passes: each render is one sample.
+OIIO::ImageBuf k_passes(int K, std::uint64_t seed, Glint& glint)
+{
+    std::mt19937_64 rng(seed);
+    std::vector<OIIO::ImageBuf> renders;
+    for (int k = 0; k < K; ++k) {
+        OIIO::ImageBuf r(OIIO::ImageSpec(kW, kH, 3, OIIO::TypeFloat));
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                float px[3] = {0, 0, 0};
+                for (int i = 0; i < 4; ++i) {
+                    float s[3];
+                    sample(rng, x, y, s);
+                    for (int c = 0; c < 3; ++c)
+                        px[c] += s[c] / 4;
+                }
+                r.setpixel(x, y, px);
+                if (x == kGx && y == kGy)
+                    glint.add(px[0]);
+            }
+        renders.push_back(r);
+    }
+    std::vector<const OIIO::ImageBuf*> pointers;
+    for (const OIIO::ImageBuf& r : renders)
+        pointers.push_back(&r);
+    return passes(pointers);
+}
+
+// What 20 seeds of a route gave: the glint's output over its noisy mean, summed over the
+// runs where its value rests on two samples' worth or more, and how many those were.
+struct GlintRuns {
+    int supported = 0, kept = 0;
+    double energy = 0;  // Σ out / Σ noisy at the glint over the supported runs
+};
+
+// Runs 20 seeds; in every run every 8-neighbour must end within 3 standard errors
+// (σ/√samples) of its truth: the glint's light neither leaks into them nor darkens them.
+GlintRuns check_runs(const std::string& route, int samples,
+                     const std::function<OIIO::ImageBuf(std::uint64_t, Glint&)>& make)
+{
+    const DenoiseImageOptions defaults;
+    GlintRuns runs;
+    double out_sum = 0, in_sum = 0;
+    for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+        Glint glint;
+        const OIIO::ImageBuf in = make(seed, glint);
+        const OIIO::ImageBuf out = denoise(in, defaults);
+        EXPECT_FALSE(out.has_error()) << out.geterror();
+        if (glint.support() >= 2) {
+            ++runs.supported;
+            runs.kept += out.getchannel(kGx, kGy, 0, 0) == in.getchannel(kGx, kGy, 0, 0);
+            out_sum += out.getchannel(kGx, kGy, 0, 0);
+            in_sum += in.getchannel(kGx, kGy, 0, 0);
+        }
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx)
+                for (int c = 0; c < 3; ++c)
+                    if (dx || dy) {
+                        const float se = dark_truth(c) / std::sqrt(float(samples));
+                        EXPECT_NEAR(out.getchannel(kGx + dx, kGy + dy, 0, c), dark_truth(c),
+                                    3 * se)
+                            << route << ", seed " << seed << ", neighbour (" << dx << ", " << dy
+                            << "), channel " << c;
+                    }
+    }
+    runs.energy = in_sum > 0 ? out_sum / in_sum : 0;
+    EXPECT_GT(runs.supported, 0) << route << ": no run had a glint of two samples' worth";
+    return runs;
+}
+
+TEST(Glint, KeepsItsLightWhereItRestsOnSeveralSamplesAndLeavesItsNeighbours)
+{
+    // Where the glint's hits are few (n = 4) it may still be averaged away: 55% of its light
+    // was kept there when this was written. From n = 8 and K = 8 the mutual guard keeps it
+    // (93-100% measured); at n = 64 and K = 16, in every run. K = 4 passes (df = 6) is left
+    // out: there the guard's variance ratio cannot tell the glint from its neighbours, and
+    // its light spreads into them (up to 1.1 against a truth of 0.02): the open part of
+    // the promise, docs/research-log.md.
+    for (int n : {4, 8, 16, 64}) {
+        const GlintRuns runs =
+            check_runs("n = " + std::to_string(n), n,
+                       [&](std::uint64_t seed, Glint& g) { return full_statistics(n, seed, g); });
+        if (n >= 8) {
+            EXPECT_GT(runs.energy, 0.9) << "n = " << n;
+        }
+        if (n >= 64) {
+            EXPECT_EQ(runs.kept, runs.supported) << "n = " << n;
+        }
+    }
+    for (int K : {8, 16}) {
+        const GlintRuns runs =
+            check_runs("K = " + std::to_string(K), 4 * K,
+                       [&](std::uint64_t seed, Glint& g) { return k_passes(K, seed, g); });
+        EXPECT_GT(runs.energy, 0.9) << "K = " << K;
+        if (K >= 16) {
+            EXPECT_EQ(runs.kept, runs.supported) << "K = " << K;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace statmc
+
+namespace statmc {
+namespace {
+
+// A caustic-like patch (samples 0 or 1/p, expectation 1) on a dark exponential field.
+OIIO::ImageBuf caustic(int n, std::uint64_t seed, float p)
+{
+    std::mt19937_64 rng(seed);
+    StatisticsImage<3> img(32, 32);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x)
+            for (int i = 0; i < n; ++i) {
+                float s[3];
+                const bool patch = x >= 10 && x < 22 && y >= 10 && y < 22;
+                const bool hit = std::uniform_real_distribution<float>(0, 1)(rng) < p;
+                const float e = std::exponential_distribution<float>(1.f)(rng);
+                for (int c = 0; c < 3; ++c)
+                    s[c] = patch ? (hit ? 1.f / p : 0.f) : 0.02f * e;
+                img.add(x, y, s);
+            }
+    return layers::make_statistics_image(img.planes());
+}
+
+double caustic_mse(const OIIO::ImageBuf& image)
+{
+    double sum = 0;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) {
+            const bool patch = x >= 10 && x < 22 && y >= 10 && y < 22;
+            for (int c = 0; c < 3; ++c)
+                sum += std::pow(image.getchannel(x, y, 0, c) - (patch ? 1.0 : 0.02), 2);
+        }
+    return sum / (32 * 32 * 3);
+}
+
+TEST(Consistency, ACausticPatchsErrorFallsWithEveryDoublingOfTheSamples)
+{
+    // Hits of 20 with probability 0.05 (mean 1) in a 12×12 patch, mean over three seeds.
+    // With rarer hits (p = 0.01) the default's error still rises from 16 to 64 samples:
+    // docs/research-log.md, the open part of the promise.
+    const DenoiseImageOptions defaults;
+    double previous = 1e30;
+    for (int n = 4; n <= 1024; n *= 2) {
+        double error = 0;
+        for (std::uint64_t seed : {1u, 2u, 3u})
+            error += caustic_mse(denoise(caustic(n, seed, 0.05f), defaults)) / 3;
+        EXPECT_LT(error, previous) << "n = " << n;
+        previous = error;
+    }
+}
+
+}  // namespace
+}  // namespace statmc
