@@ -2,7 +2,7 @@
 # Installs what building and running statmc need, from Debian 12 packages (as root): the
 # compiler and CMake, the image, renderer and math libraries, GoogleTest and Google
 # Benchmark (the default build builds the tests and benchmarks), and Python's headers,
-# pybind11 and numpy for `import statmc`. The tests' own tools (Slurm, clang's fuzzer,
+# pybind11, numpy and venv for `import statmc`. The tests' own tools (Slurm, clang's fuzzer,
 # pytest) are scripts/install-test-deps.sh's.
 set -euo pipefail
 packages=(
@@ -10,7 +10,7 @@ packages=(
   libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev openexr
   libopencolorio-dev libembree-dev libtbb-dev libboost-math-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev zlib1g-dev
-  python3-dev pybind11-dev python3-numpy
+  python3-dev pybind11-dev python3-numpy python3-venv
 )
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq

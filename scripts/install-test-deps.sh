@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what the tests and CI need beyond scripts/install-deps.sh, from Debian 12
 # packages (as root): a single-node Slurm cluster (slurmctld, slurmd, munge) for the farm
-# test, clang and its sanitizer runtimes for the fuzz targets, pytest, venv and
+# test, clang and its sanitizer runtimes for the fuzz targets, pytest and
 # OpenImageIO's Python bindings for the Python tests, Blender for the Cycles route's tests
 # (about 30 s to install), and matplotlib for the evaluation's charts. A workstation that
 # only denoises needs none of them.
@@ -11,7 +11,7 @@ bash install-deps.sh
 packages=(
   slurm-wlm slurmctld slurmd slurm-client munge
   clang libclang-rt-14-dev
-  python3-pytest python3-venv python3-openimageio python3-matplotlib
+  python3-pytest python3-openimageio python3-matplotlib
   blender
 )
 export DEBIAN_FRONTEND=noninteractive

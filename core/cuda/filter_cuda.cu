@@ -102,7 +102,7 @@ struct KernelParams {
 };
 
 /// Planes staged per window row: mean, threshold and value per channel, the guides, and
-/// the guides' noise u, the firefly level and 1/n where present.
+/// the guides' noise u, the firefly level and mutual limit, and 1/n where present.
 int staged_planes(int channels, int guides, bool guide_noise, bool guard, bool inverse)
 {
     return 3 * channels + guides + (guide_noise ? 1 : 0) + (guard ? 2 : 0) + (inverse ? 1 : 0);

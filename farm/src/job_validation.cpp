@@ -1,5 +1,6 @@
 #include "statmc/farm/job_validation.h"
 
+#include <cstdio>
 #include <stdexcept>
 
 #include "statmc/farm/slurm.h"
@@ -7,6 +8,14 @@
 namespace statmc::farm {
 
 namespace {
+
+// As the render script writes it (farm_job.cpp): "%g".
+std::string number(double value)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
 
 std::string trimmed(const std::string& text)
 {
@@ -23,7 +32,7 @@ std::vector<std::string> render_validation(const FarmJob& job, const Frame& fram
     if (job.spp > 0)
         argv.insert(argv.end(), {"--spp", std::to_string(job.spp)});
     argv.insert(argv.end(), {"--seed", std::to_string(frame_seed(job, frame)), "--checkpoint",
-                             std::to_string(job.checkpoint_seconds), "--resume", "-q"});
+                             number(job.checkpoint_seconds), "--resume", "-q"});
     argv.insert(argv.end(), job.render_args.begin(), job.render_args.end());
     argv.push_back("--validate");
     return argv;

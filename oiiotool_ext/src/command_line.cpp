@@ -103,8 +103,13 @@ std::vector<Invocation> parse_program(const std::vector<std::string>& args)
     for (std::size_t i = 0; i < args.size();) {
         program.push_back(parse_invocation(args, i));
         const Invocation& inv = program.back();
-        if (inv.command->immediate)
+        if (inv.command->immediate) {
+            // --validate checks what comes before it: anything after would go unchecked.
+            if (inv.command->name == "--validate" && i < args.size())
+                throw ToolError("--validate checks the commands before it: put it last, not "
+                                "before '" + args[i] + "'");
             break;
+        }
         if (inv.command->check)
             inv.command->check(inv);
     }

@@ -30,6 +30,8 @@ try:
     from . import _statmc
 except ImportError as e:
     _running = f"{sys.version_info.major}.{sys.version_info.minor}"
+    if _running == PYTHON_VERSION:
+        raise
     raise ImportError(
         f"statmc's native module was built for Python {PYTHON_VERSION} ({PYTHON_EXECUTABLE}); "
         f"this is Python {_running} ({sys.executable}). Import it from that interpreter, or "
@@ -215,4 +217,5 @@ def compare(image, reference, nthreads=0, **options):
 # Each operator's docstring ends with its parameter table, as `statmc --help OP` prints it.
 for _function, _operator in ((denoise, "denoise"), (passes, "passes"), (merge, "merge"),
                              (compare, "compare")):
-    _function.__doc__ += "\n\n" + _statmc.help(_operator)
+    if _function.__doc__ is not None:  # None under python -OO
+        _function.__doc__ += "\n\n" + _statmc.help(_operator)

@@ -170,6 +170,15 @@ TEST_F(CliError, PassesOfOneSeedAreRefusedAndWriteNothing)
                    "--passes: render 2 (" + b + ") and render 1 (" + a + ")" + message);
 }
 
+TEST_F(CliError, ValidateChecksTheCommandsBeforeItAndMustComeLast)
+{
+    const auto in = input("in.exr", cli_statistics_image());
+    expect_failure({in, "--denoise:radious=2", "-o", out(), "--validate"}, "radious");
+    expect_failure({"--validate", in, "--denoise:radious=2"},
+                   "--validate checks the commands before it: put it last, not before '" + in +
+                       "'");
+}
+
 TEST_F(CliError, NegativeVariance)
 {
     OIIO::ImageBuf img = cli_variance_aov_image();

@@ -128,6 +128,17 @@ TEST(CliRun, DisplayedPicturesGoToPngJpegAndTiff)
     }
 }
 
+TEST(CliRun, ValidateRunsNothing)
+{
+    TempDir dir;
+    write_exr(cli_statistics_image(), dir.file("in.exr"));
+    const CliResult r = run_cli({dir.file("in.exr"), "--denoise:radius=4", "-o",
+                                 dir.file("out.exr"), "--validate"});
+    expect_success(r);
+    EXPECT_EQ(r.out, "statmc: the command line is valid\n");
+    EXPECT_EQ(dir.entries(), (std::vector<std::string>{"in.exr"}));
+}
+
 TEST(CliRun, DenoisingADenoisedFileWarnsNamingIt)
 {
     TempDir dir;

@@ -44,6 +44,7 @@ inline EstimatorImage random_estimators(int w, int h, int channels, std::uint64_
     std::uniform_real_distribution<float> u(0.f, 1.f);
     EstimatorImage est(w, h, channels);
     est.domain = TestDomain::BoxCox;  // so that the firefly guard takes part
+    est.support.assign(est.pixels(), 1.f);  // fireflies below get support ≥ 2 in part
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             est.count[est.index(0, x, y)] = float(2 + rng() % 64);
@@ -56,12 +57,14 @@ inline EstimatorImage random_estimators(int w, int h, int channels, std::uint64_
             }
             if (rng() % 23 == 0)  // a few untestable pixels
                 est.test_variance[est.index(0, x, y)] = NAN;
-            else if (rng() % 31 == 0)  // a few fireflies
+            else if (rng() % 31 == 0) {  // a few fireflies, half of them glints (support 3)
                 for (int c = 0; c < channels; ++c) {
                     est.value[est.index(c, x, y)] += 40.f;
                     est.test_mean[est.index(c, x, y)] += 0.5f;
                     est.test_variance[est.index(c, x, y)] *= 3000.f;
                 }
+                est.support[std::size_t(y) * w + x] = rng() % 2 ? 3.f : 1.f;
+            }
         }
     return est;
 }

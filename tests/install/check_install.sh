@@ -23,6 +23,9 @@ for program in statmc statmc-render statmc-farm; do
 done
 [[ -f "$prefix/usr/share/statmc/blender/statmc_cycles_passes.py" ]] ||
   fail "the Blender script is not installed in $prefix/usr/share/statmc/blender"
+for op in denoise passes merge compare display; do
+  [[ -f "$prefix/usr/lib/statmc/plugins/$op.so" ]] || fail "$op.so is not installed in $prefix/usr/lib/statmc/plugins"
+done
 ops=$("$bin/statmc" --list-ops)
 for op in denoise passes merge compare display; do
   grep -q -- "--$op" <<<"$ops" || fail "the installed statmc does not list --$op: $ops"
@@ -37,7 +40,7 @@ done
   --dry-run >"$prefix/farm.log" || { cat "$prefix/farm.log" >&2; fail "statmc-farm --dry-run"; }
 grep -q "'$bin/statmc-render'" "$prefix/farm.log" || fail "the farm job does not run $bin/statmc-render"
 
-site=$(find "$prefix/usr/lib" -maxdepth 3 -type d -path '*/python3*/*-packages' | head -n 1)
+site=$(find "$prefix/usr/lib" -maxdepth 3 -type d -path '*/python3*/*-packages' -print -quit)
 [[ -n "$site" && -f "$site/statmc/__init__.py" ]] || fail "no statmc package under $prefix/usr/lib"
 check_import='import sys, statmc
 image = statmc.denoise(sys.argv[1])

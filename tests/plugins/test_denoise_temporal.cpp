@@ -242,11 +242,11 @@ TEST(DenoiseTemporal, FramesThatShareTheirSamplesAreRefused)
     const Sequence seq(2);
     // The centre itself as its neighbour: every noisy pixel repeated.
     expect_error(seq.images[0], {{}, {&seq.images[0]}},
-                 "frame t+1 and the frame denoised repeat the same noise in");
+                 "frame t+1: it and the frame denoised repeat the same noise in");
     expect_error(seq.images[0], {{}, {&seq.images[0]}}, "rendered with one seed");
     // More than half the rows repeated is refused, a third is not (and merges as before).
     const OIIO::ImageBuf most = with_rows_of(seq.images[1], seq.images[0], kH * 2 / 3);
-    expect_error(seq.images[0], {{&most}, {}}, "frame t−1 and the frame denoised repeat");
+    expect_error(seq.images[0], {{&most}, {}}, "frame t−1: it and the frame denoised repeat");
     const OIIO::ImageBuf third = with_rows_of(seq.images[1], seq.images[0], kH / 3);
     EXPECT_FALSE(
         denoise(seq.images[0], FrameNeighbours{{&third}, {}}, temporal_options(1)).has_error());
@@ -257,7 +257,7 @@ TEST(DenoiseTemporal, FramesThatShareTheirSamplesAreRefused)
         f->specmod().attribute("statmc:seed", 3);
         f->specmod().attribute("statmc:spp", 8);
     }
-    expect_error(a, {{}, {&b}}, "frame t+1 and the frame denoised drew the same samples (seed 3, "
+    expect_error(a, {{}, {&b}}, "frame t+1: it and the frame denoised drew the same samples (seed 3, "
                                 "samples 0..7): merged over time they would count twice");
     b.specmod().attribute("statmc:seed", 4);
     EXPECT_FALSE(denoise(a, FrameNeighbours{{}, {&b}}, temporal_options(1)).has_error());

@@ -347,7 +347,7 @@ TEST(Farm, FramesRenderedWithOneSeedAreRefusedByTheTemporalDenoise)
     }
     const ProgramRun same = temporal("same");
     EXPECT_EQ(same.status, 1) << same.output;
-    EXPECT_NE(same.output.find("and the frame denoised drew the same samples (seed 3, samples "
+    EXPECT_NE(same.output.find(".exr): it and the frame denoised drew the same samples (seed 3, samples "
                                "0..7): merged over time they would count twice"),
               std::string::npos)
         << same.output;

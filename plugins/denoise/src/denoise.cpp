@@ -692,7 +692,7 @@ StatisticsPlanes merged_over_time(const OIIO::ImageBuf& in, const StatisticsChan
                 check_statistics(frame, frame_ch, opt, {});
                 require_independent_frames(frame, layers::statistics_view(frame, frame_ch), in,
                                            layers::statistics_view(in, ch),
-                                           frame_label(offset, frame) + " and the frame denoised");
+                                           "it and the frame denoised");
             }
             const std::array<ConstPlane, 2> motion = layers::motion_planes(frame);
             frames.push_back({layers::statistics_view(frame, frame_ch), motion[0], motion[1]});
