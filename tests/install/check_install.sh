@@ -46,13 +46,15 @@ check_import='import sys, statmc
 image = statmc.denoise(sys.argv[1])
 assert image["beauty"].shape == (48, 48, 3), image["beauty"].shape
 print(statmc.__version__)'
-PYTHONPATH=$site "$python" -c "$check_import" "$prefix/frame.exr" >/dev/null ||
+# A sanitized build's module needs its runtimes preloaded into the interpreter.
+preload=${STATMC_PYTHON_PRELOAD:-}
+PYTHONPATH=$site LD_PRELOAD=$preload "$python" -c "$check_import" "$prefix/frame.exr" >/dev/null ||
   fail "import statmc from $site"
 "$python" -m venv --system-site-packages "$prefix/venv"
-PYTHONPATH=$site "$prefix/venv/bin/python" -c "$check_import" "$prefix/frame.exr" >/dev/null ||
-  fail "import statmc from a venv with --system-site-packages"
+PYTHONPATH=$site LD_PRELOAD=$preload "$prefix/venv/bin/python" -c "$check_import" \
+  "$prefix/frame.exr" >/dev/null || fail "import statmc from a venv with --system-site-packages"
 "$python" -m venv --without-pip "$prefix/bare"
-if out=$(PYTHONPATH=$site "$prefix/bare/bin/python" -c 'import statmc' 2>&1); then
+if out=$(PYTHONPATH=$site LD_PRELOAD=$preload "$prefix/bare/bin/python" -c 'import statmc' 2>&1); then
   fail "a venv without numpy imported statmc"
 fi
 grep -q "statmc needs numpy" <<<"$out" || fail "a venv without numpy: $out"
