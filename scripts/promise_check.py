@@ -7,7 +7,7 @@ around emitters and highlights, beside the noisy input's.
 Not part of CI: renders are cached in OUT and reused.
 
     python3 scripts/promise_check.py                       # this build's default and classic
-    python3 scripts/promise_check.py --method before=/tmp/old/statmc   # another build too
+    python3 scripts/promise_check.py --method before=OTHER_BUILD/oiiotool_ext/statmc   # another build too
 
 A method is NAME=STATMC[:MODIFIERS]; the default list is default=build's statmc,
 classic=build's statmc with method=classic.

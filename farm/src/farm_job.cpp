@@ -54,14 +54,14 @@ std::string script_header(const std::string& what, const std::string& name,
            "\n" + slurm_lines(job.slurm);
 }
 
-std::string number(double value)
+}  // namespace
+
+std::string number_text(double value)
 {
     char text[32];
     std::snprintf(text, sizeof text, "%g", value);
     return text;
 }
-
-}  // namespace
 
 std::string shell_quote(const std::string& text)
 {
@@ -117,7 +117,7 @@ std::string render_script(const FarmJob& job)
          "     \"task $task/" + n + " of ${scenes[$frame]}, attempt $attempt\"\n";
     s += shell_quote(job.render_exe) + " \"${scenes[$frame]}\" -o \"${outputs[$k]}\" --task \"$task/" +
          n + "\"" + (job.spp > 0 ? " --spp " + std::to_string(job.spp) : std::string()) +
-         " --seed \"${seeds[$frame]}\" --checkpoint " + number(job.checkpoint_seconds) +
+         " --seed \"${seeds[$frame]}\" --checkpoint " + number_text(job.checkpoint_seconds) +
          " --resume --threads \"${SLURM_CPUS_PER_TASK:-0}\" -q" + extra + "\n";
     s += "status=$?\n";
     // Killed (SIGKILL, the OOM killer) or stopped (SIGTERM: the render saved its film and

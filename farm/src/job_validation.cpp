@@ -1,6 +1,5 @@
 #include "statmc/farm/job_validation.h"
 
-#include <cstdio>
 #include <stdexcept>
 
 #include "statmc/farm/slurm.h"
@@ -8,14 +7,6 @@
 namespace statmc::farm {
 
 namespace {
-
-// As the render script writes it (farm_job.cpp): "%g".
-std::string number(double value)
-{
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", value);
-    return text;
-}
 
 std::string trimmed(const std::string& text)
 {
@@ -32,7 +23,7 @@ std::vector<std::string> render_validation(const FarmJob& job, const Frame& fram
     if (job.spp > 0)
         argv.insert(argv.end(), {"--spp", std::to_string(job.spp)});
     argv.insert(argv.end(), {"--seed", std::to_string(frame_seed(job, frame)), "--checkpoint",
-                             number(job.checkpoint_seconds), "--resume", "-q"});
+                             number_text(job.checkpoint_seconds), "--resume", "-q"});
     argv.insert(argv.end(), job.render_args.begin(), job.render_args.end());
     argv.push_back("--validate");
     return argv;

@@ -53,6 +53,9 @@ std::string render_script(const FarmJob& job);
 /// statmc merges the frame's task outputs in task order (and denoises the merge).
 std::string merge_script(const FarmJob& job);
 
+/// A number as the batch scripts write it ("%g": 60, 0.5).
+std::string number_text(double value);
+
 /// Single-quoted for a POSIX shell.
 std::string shell_quote(const std::string& text);
 
