@@ -246,7 +246,9 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
     L.radius = options.radius;
     L.pixels = std::size_t(view.width) * view.height;
     L.z2 = z * z;
-    if (options.prior_alpha > 0) {
+    // The prior's test on the means only exists with the moderation: without it the mean
+    // planes are not filled, and the kernels must not read them.
+    if (moderate && options.prior_alpha > 0) {
         const double z_prior = normal_critical_value(options.prior_alpha);
         L.prior_z2 = z_prior * z_prior;
     }

@@ -315,7 +315,8 @@ TEST(VarianceFilter, EverySimdLevelGivesTheScalarLoopsBits)
     for (const Guides& g : {Guides{}, guides})
         for (const bool borrow : {false, true})
             for (const auto& [prior_dof, prior_alpha] :
-                 {std::pair{0.0, 0.0}, std::pair{16.0, 0.0}, std::pair{16.0, 0.05}})
+                 {std::pair{0.0, 0.0}, std::pair{0.0, 0.05}, std::pair{16.0, 0.0},
+                  std::pair{16.0, 0.05}})
                 for (const bool interval_test : {true, false}) {
                     VarianceFilterOptions o;
                     o.interval_test = interval_test;
@@ -331,6 +332,14 @@ TEST(VarianceFilter, EverySimdLevelGivesTheScalarLoopsBits)
                             << simd_level_name(level) << " guides " << g.has_albedo() << " borrow "
                             << borrow << " d0 " << prior_dof << " prior alpha " << prior_alpha
                             << " interval test " << interval_test;
+                    // The prior's test on the means belongs to the moderation: without it
+                    // (d0 = 0) its level changes nothing (it once read planes never filled).
+                    if (prior_dof == 0 && prior_alpha > 0) {
+                        o.prior_alpha = 0;
+                        EXPECT_TRUE(same_bits(scalar, denoise_variances(stats.view(),
+                                                                        TestDomain::Untransformed,
+                                                                        g, o, 2, SimdLevel::Scalar)));
+                    }
                 }
 }
 
