@@ -30,6 +30,8 @@ inline constexpr const char* kDenoised = "statmc:denoised";  // int 1
 inline constexpr const char* kDenoiseSkipped = "statmc:denoiseSkipped";
 // string: the layers denoise replaced, comma-separated ("beauty" for R,G,B)
 inline constexpr const char* kDenoisedLayers = "statmc:denoisedLayers";
+// float: the share of the verified pixels whose candidate was rejected (--verify)
+inline constexpr const char* kVerifyRejected = "statmc:verifyRejected";
 inline constexpr const char* kRenderTime = "statmc:renderTime";  // float seconds (statmc-render)
 inline constexpr const char* kScene = "statmc:scene";  // string: the scene file (statmc-render)
 inline constexpr const char* kFrame =
@@ -93,6 +95,8 @@ inline constexpr const char* kMotionLayer = "motion";
 inline constexpr const char* kDiagnosticsLayer = "diagnostics";
 inline constexpr const char* kMembersChannel = "members";
 inline constexpr const char* kEffectiveSamplesChannel = "effectiveSamples";
+/// What --verify adds under `[<aov>.]diagnostics`: where the candidate was rejected.
+inline constexpr const char* kRejectedChannel = "rejected";
 
 /// "diagnostics.members", "diffuse.diagnostics.effectiveSamples", ...
 std::string diagnostics_channel(std::string_view aov, std::string_view quantity);

@@ -1,0 +1,259 @@
+#include "statmc/verify/verify.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/imagebufalgo.h>
+
+#include "statmc/core/radius_ladder.h"
+#include "statmc/core/variance_filter.h"
+#include "statmc/denoise/denoise.h"
+#include "statmc/layers/float_pixels.h"
+#include "statmc/layers/guide_layers.h"
+#include "statmc/layers/imagebufalgo_forms.h"
+#include "statmc/layers/layer_error.h"
+#include "statmc/layers/layer_lookup.h"
+#include "statmc/layers/layer_names.h"
+#include "statmc/layers/renderer_presets.h"
+#include "statmc/layers/statistics_layers.h"
+#include "statmc/layers/statistics_validation.h"
+
+namespace statmc {
+
+namespace {
+
+using layers::LayerError;
+using layers::Statistic;
+using layers::StatisticsChannels;
+
+// Channel `channel` of pixel (x, y) of `image` (local float pixels).
+float& at(OIIO::ImageBuf& image, int x, int y, int channel)
+{
+    return static_cast<float*>(image.pixeladdr(x, y))[channel];
+}
+
+std::string label(const OIIO::ImageBuf& image, const char* role)
+{
+    return image.name().empty() ? std::string(role) : std::string(role) + " (" +
+                                                          std::string(image.name()) + ")";
+}
+
+std::string window_text(const OIIO::ImageSpec& s)
+{
+    return std::to_string(s.width) + "x" + std::to_string(s.height) + "+" + std::to_string(s.x) +
+           "+" + std::to_string(s.y);
+}
+
+// The statistics under the contract's names: `in` itself, or what a renderer's preset maps.
+const OIIO::ImageBuf& contract_statistics(const OIIO::ImageBuf& in, const std::string& from,
+                                          layers::ImportedImage& scratch)
+{
+    const std::string preset = layers::resolve_renderer_preset(in.spec(), from);
+    if (preset.empty() || preset == "statmc")
+        return in;
+    scratch = layers::statistics_from_preset(in, preset);
+    return scratch.image;
+}
+
+// The candidate's three channels: `layer`'s, or R,G,B (a renderer's beauty by its preset).
+std::vector<ConstPlane> candidate_planes(const OIIO::ImageBuf& candidate, const std::string& layer,
+                                         layers::ImportedImage& imported, OIIO::ImageBuf& floats)
+{
+    const OIIO::ImageBuf& named =
+        layer.empty() ? layers::contract_beauty(candidate, imported) : candidate;
+    const OIIO::ImageBuf& pixels = layers::local_float_pixels(named, floats);
+    std::vector<int> indices;
+    if (layer.empty()) {
+        for (const char* c : {"R", "G", "B"})
+            indices.push_back(pixels.spec().channelindex(c));
+        if (std::count(indices.begin(), indices.end(), -1) > 0)
+            throw LayerError(label(candidate, "the candidate") +
+                             " has no R,G,B; name its layer with candidate=");
+    } else {
+        indices = layers::require_guide_layer(pixels.spec(), layer, true);
+    }
+    std::vector<ConstPlane> planes;
+    for (int index : indices)
+        planes.push_back(layers::channel_plane(pixels, index));
+    return planes;
+}
+
+void require_same_window(const OIIO::ImageBuf& src, const OIIO::ImageBuf& candidate)
+{
+    const OIIO::ImageSpec &a = src.spec(), &b = candidate.spec();
+    if (a.x != b.x || a.y != b.y || a.width != b.width || a.height != b.height)
+        throw LayerError(label(candidate, "the candidate") + " covers " + window_text(b) + " and " +
+                         label(src, "the statistics") + " " + window_text(a) +
+                         ": they must be one frame");
+}
+
+void require_finite(const std::vector<ConstPlane>& planes, const OIIO::ImageBuf& candidate,
+                    const OIIO::ROI& roi, int x0, int y0)
+{
+    for (int y = roi.ybegin; y < roi.yend; ++y)
+        for (int x = roi.xbegin; x < roi.xend; ++x)
+            for (std::size_t c = 0; c < planes.size(); ++c)
+                if (!std::isfinite(planes[c](x - x0, y - y0)))
+                    throw LayerError(label(candidate, "the candidate") + " holds NaN or Inf at " +
+                                     "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                     "), channel " + std::to_string(c));
+}
+
+// The moderated per-sample variances the test reads: those of the default's ladder.
+std::vector<float> moderated_variances(const StatisticsView& view, const DenoiseImageOptions& d,
+                                       int nthreads)
+{
+    VarianceFilterOptions v = RadiusLadderOptions{}.variance;
+    v.interval_test = false;
+    v.prior_dof = d.variance_prior_dof;
+    v.prior_alpha = d.variance_prior_alpha;
+    return denoise_variances(view, TestDomain::Untransformed, {}, v,
+                             layers::thread_count(nthreads));
+}
+
+// The smallest ROI (within `roi`) holding every rejected pixel; undefined when none is.
+OIIO::ROI rejected_box(const std::vector<std::uint8_t>& rejected, const OIIO::ROI& roi,
+                       const OIIO::ImageSpec& spec)
+{
+    OIIO::ROI box;
+    for (int y = roi.ybegin; y < roi.yend; ++y)
+        for (int x = roi.xbegin; x < roi.xend; ++x)
+            if (rejected[std::size_t(y - spec.y) * spec.width + (x - spec.x)]) {
+                if (!box.defined())
+                    box = OIIO::ROI(x, x + 1, y, y + 1);
+                box.xbegin = std::min(box.xbegin, x);
+                box.xend = std::max(box.xend, x + 1);
+                box.ybegin = std::min(box.ybegin, y);
+                box.yend = std::max(box.yend, y + 1);
+            }
+    return box;
+}
+
+// `dst` with the map of rejections in its diagnostics.rejected channel (added, or reused
+// when the image was verified before).
+void write_rejection_map(OIIO::ImageBuf& dst, const std::vector<std::uint8_t>& rejected,
+                         const OIIO::ROI& roi, const std::string& aov)
+{
+    const std::string name = layers::diagnostics_channel(aov, layers::kRejectedChannel);
+    if (dst.spec().channelindex(name) < 0) {
+        OIIO::ImageSpec spec = dst.spec();
+        spec.nchannels = 1;
+        spec.channelnames = {name};
+        spec.channelformats.clear();
+        spec.alpha_channel = spec.z_channel = -1;
+        spec.extra_attribs.clear();
+        OIIO::ImageBuf map(spec);
+        OIIO::ImageBufAlgo::zero(map);
+        OIIO::ImageBuf joined;
+        if (!OIIO::ImageBufAlgo::channel_append(joined, dst, map))
+            throw std::runtime_error("verify: " + joined.geterror());
+        joined.specmod().extra_attribs = dst.spec().extra_attribs;
+        dst = std::move(joined);
+    }
+    const int channel = dst.spec().channelindex(name);
+    const OIIO::ImageSpec& s = dst.spec();
+    for (int y = roi.ybegin; y < roi.yend; ++y)
+        for (int x = roi.xbegin; x < roi.xend; ++x)
+            at(dst, x, y, channel) = float(rejected[std::size_t(y - s.y) * s.width + (x - s.x)]);
+}
+
+bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in,
+                 const OIIO::ImageBuf& candidate, const VerifyOptions& opt, const OIIO::ROI& roi_in,
+                 int nthreads)
+{
+    if (const std::string problem = opt.denoise.validate(); !problem.empty())
+        throw std::invalid_argument("verify: " + problem);
+    // In place: the statistics must outlive the first write to dst.
+    OIIO::ImageBuf own_copy;
+    if (&dst == &src_in)
+        own_copy.copy(src_in, OIIO::TypeFloat);
+    const OIIO::ImageBuf& src = &dst == &src_in ? own_copy : src_in;
+    require_same_window(src, candidate);
+
+    OIIO::ImageBuf floats;
+    layers::ImportedImage imported;
+    const OIIO::ImageBuf& in =
+        contract_statistics(layers::local_float_pixels(src, floats), opt.denoise.from, imported);
+    const OIIO::ImageSpec& spec = in.spec();
+    const OIIO::ROI roi = roi_in.defined() ? OIIO::roi_intersection(roi_in, in.roi()) : in.roi();
+    if (roi.width() <= 0 || roi.height() <= 0)
+        throw std::invalid_argument("verify: the ROI does not overlap the data window");
+
+    const StatisticsChannels ch = layers::find_statistics(spec, opt.denoise.aov);
+    if (!ch.has(Statistic::Variance))
+        throw LayerError(layers::missing_layer_message(
+            spec, layers::statistic_layer(ch.aov, Statistic::Variance), ch.suffixes, "layer",
+            "verify tests the candidate against each pixel's variance"));
+    if (ch.channels() != 3)
+        throw LayerError("verify: " + layers::describe_layer(ch.aov, ch.suffixes) +
+                         " has " + std::to_string(ch.channels()) +
+                         " channels; a candidate has 3");
+    layers::ValidationOptions validation;
+    validation.roi = in.roi();
+    if (const auto problems = layers::validate_statistics(in, ch, validation); !problems.empty())
+        throw LayerError(layers::join_messages(problems));
+
+    layers::ImportedImage imported_candidate;
+    OIIO::ImageBuf candidate_floats;
+    const std::vector<ConstPlane> cand =
+        candidate_planes(candidate, opt.candidate_layer, imported_candidate, candidate_floats);
+    require_finite(cand, candidate, roi, spec.x, spec.y);
+
+    const StatisticsView view = layers::statistics_view(in, ch);
+    CandidateTestOptions test = opt.test;
+    test.prior_dof = opt.denoise.variance_prior_dof;
+    const std::vector<std::uint8_t> rejected =
+        test_candidate(view, moderated_variances(view, opt.denoise, nthreads), cand, test,
+                       layers::thread_count(nthreads));
+
+    // A renderer's file comes out under the contract's names, as --passes writes them.
+    const OIIO::ROI box = rejected_box(rejected, roi, spec);
+    if (box.defined() && opt.fallback == VerifyFallback::Denoise) {
+        DenoiseImageOptions contract = opt.denoise;
+        contract.from = "statmc";
+        if (!denoise(dst, in, contract, box, nthreads))
+            return false;
+    } else {
+        dst.copy(in, OIIO::TypeFloat);
+    }
+    int means[3];
+    for (int c = 0; c < 3; ++c)
+        means[c] = dst.spec().channelindex(ch.channel(Statistic::Mean, c));
+    std::size_t count = 0;
+    for (int y = roi.ybegin; y < roi.yend; ++y)
+        for (int x = roi.xbegin; x < roi.xend; ++x) {
+            if (rejected[std::size_t(y - spec.y) * spec.width + (x - spec.x)]) {
+                ++count;
+                continue;
+            }
+            for (int c = 0; c < 3; ++c)
+                at(dst, x, y, means[c]) = cand[c](x - spec.x, y - spec.y);
+        }
+    write_rejection_map(dst, rejected, roi, ch.aov);
+    dst.specmod().attribute(layers::attr::kDenoised, 1);
+    dst.specmod().attribute(layers::attr::kVerifyRejected,
+                            float(double(count) / (double(roi.width()) * roi.height())));
+    return true;
+}
+
+}  // namespace
+
+bool verify(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const OIIO::ImageBuf& candidate,
+            const VerifyOptions& opt, OIIO::ROI roi, int nthreads)
+{
+    return layers::errors_on(dst, "verify", [&] {
+        return verify_impl(dst, src, candidate, opt, roi, nthreads);
+    });
+}
+
+OIIO::ImageBuf verify(const OIIO::ImageBuf& src, const OIIO::ImageBuf& candidate,
+                      const VerifyOptions& opt, OIIO::ROI roi, int nthreads)
+{
+    return layers::returned_image("verify", [&](OIIO::ImageBuf& dst) {
+        return verify(dst, src, candidate, opt, roi, nthreads);
+    });
+}
+
+}  // namespace statmc
