@@ -16,3 +16,9 @@ packages=(
 )
 export DEBIAN_FRONTEND=noninteractive
 apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null
+# OIDN for the --oidn tests (an optional run-time dependency of statmc, never of its build):
+# the library of the pyoidn wheel (PyPI), in a virtual environment of its own.
+if ! compgen -G "/opt/statmc-oidn/lib/python3*/site-packages/pyoidn/oidn/lib/libOpenImageDenoise.so.2" >/dev/null; then
+  /usr/bin/python3 -m venv /opt/statmc-oidn
+  /opt/statmc-oidn/bin/pip install -q pyoidn
+fi

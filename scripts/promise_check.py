@@ -10,7 +10,10 @@ Not part of CI: renders are cached in OUT and reused.
     python3 scripts/promise_check.py --method before=OTHER_BUILD/oiiotool_ext/statmc   # another build too
 
 A method is NAME=STATMC[:MODIFIERS]; the default list is default=build's statmc,
-classic=build's statmc with method=classic.
+classic=build's statmc with method=classic. A chain is NAME=COMMANDS, the build's statmc
+running them between the noisy frame and -o (e.g. oidn="--oidn:guides=0"); --oidn adds OIDN
+with guides, OIDN on the colour alone, and OIDN verified (--dup --oidn --verify), which need
+the OIDN library (STATMC_OIDN_LIBRARY, docs/method.md §15).
 """
 
 import argparse
@@ -82,17 +85,27 @@ def main():
     parser.add_argument("--seeds", default="11 12")
     parser.add_argument("--scenes", default=" ".join(SCENES))
     parser.add_argument("--method", action="append", default=[])
+    parser.add_argument("--chain", action="append", default=[])
+    parser.add_argument("--oidn", action="store_true")
     args = parser.parse_args()
     args.render = os.path.join(args.build, "renderer", "statmc-render")
     statmc_cli = os.path.join(args.build, "oiiotool_ext", "statmc")
     sys.path.insert(0, os.path.join(args.build, "python"))
     import statmc  # noqa: E402
 
-    methods = [("default", statmc_cli, ""), ("classic", statmc_cli, ":method=classic")]
+    # (name, statmc, the commands between the noisy frame and -o)
+    methods = [("default", statmc_cli, ["--denoise"]),
+               ("classic", statmc_cli, ["--denoise:method=classic"])]
     for text in args.method:
         name, rest = text.split("=", 1)
         exe, _, modifiers = rest.partition(":")
-        methods.append((name, exe, ":" + modifiers if modifiers else ""))
+        methods.append((name, exe, ["--denoise" + (":" + modifiers if modifiers else "")]))
+    chains = list(args.chain)
+    if args.oidn:
+        chains += ["oidn=--oidn", "oidn-colour=--oidn:guides=0", "verified=--dup --oidn --verify"]
+    for text in chains:
+        name, commands = text.split("=", 1)
+        methods.append((name, statmc_cli, commands.split()))
     os.makedirs(args.out, exist_ok=True)
     rows = []
     for scene in args.scenes.split():
@@ -111,9 +124,9 @@ def main():
                 noisy_path = render(args, scene, spp, seed,
                                     os.path.join(d, f"noisy-{args.resolution}-{spp}-{seed}.exr"))
                 outputs = [("noisy", noisy_path)]
-                for name, exe, modifiers in methods:
+                for name, exe, commands in methods:
                     out = os.path.join(d, f"{name}-{spp}-{seed}.exr")
-                    run([exe, noisy_path, "--denoise" + modifiers, "-o", out])
+                    run([exe, noisy_path] + commands + ["-o", out])
                     outputs.append((name, out))
                 for name, path in outputs:
                     x = layers(statmc, path)["beauty"][:, :, :3].astype(np.float64)

@@ -45,7 +45,7 @@ const std::vector<Command>& command_table()
         input_command(),        output_command(),        data_format_command(),
         compression_command(),  all_subimages_command(), ch_command(),
         chnames_command(),      chappend_command(),      subimage_command(),
-        siappend_command(),     add_command(),           sub_command(),
+        siappend_command(),     dup_command(),           add_command(),           sub_command(),
         mul_command(),          addc_command(),          mulc_command(),
         colorconfig_command(),  colorconvert_command(),  ociodisplay_command(),
         crop_command(),         resize_command(),        info_command(),

@@ -39,7 +39,7 @@ except ImportError as e:
         f" ({e})") from e
 
 __all__ = ["__version__", "Image", "read_statistics", "write_statistics", "denoise", "passes", "merge",
-           "compare", "FileError", "ToolError"]
+           "compare", "verify", "oidn", "FileError", "ToolError"]
 
 BEAUTY = "beauty"
 # The order of a layer's channels: colour, then vector, then whatever else in file order.
@@ -150,12 +150,16 @@ def _from_native(native):
     return image
 
 
-def _image(source):
+def _image(source, origin=(0, 0)):
     if isinstance(source, Image):
         return source
     if isinstance(source, (str, os.PathLike)):
         return read_statistics(source)
-    raise TypeError(f"expected a path or a statmc.Image, got {type(source).__name__}")
+    if isinstance(source, np.ndarray) and source.ndim == 3 and source.shape[2] == 3:
+        # An H x W x 3 array: a beauty (another denoiser's output, for verify).
+        return Image({BEAUTY: source}, origin=origin)
+    raise TypeError(f"expected a path, a statmc.Image or an H x W x 3 array, got "
+                    f"{type(source).__name__}")
 
 
 def _run(operator, sources, options, nthreads, previous=(), next=()):
@@ -203,6 +207,40 @@ def merge(sources, nthreads=0, **options):
     return _run("merge", list(sources), options, nthreads)
 
 
+def verify(source, candidate, nthreads=0, **options):
+    """The verify operator (statmc --help verify): `candidate`, another denoiser's output of
+    the frame `source` (a path, an Image, or an H x W x 3 array over its data window), kept
+    where the pixels' own statistics cannot reject it and statmc's estimate where they can;
+    the map of rejections is the result's "diagnostics" layer (1: the pixel's test, 2: its
+    box's, 3: both)."""
+    source = _image(source)
+    return _run("verify", [source, _image(candidate, source.origin)], options, nthreads)
+
+
+def oidn(source, nthreads=0, **options):
+    """The oidn operator (statmc --help oidn): Intel Open Image Denoise on the beauty, from
+    the library of the pyoidn wheel when it is importable and STATMC_OIDN_LIBRARY is unset.
+    Its output is a candidate for verify()."""
+    if not os.environ.get("STATMC_OIDN_LIBRARY") and "library" not in options:
+        library = _pyoidn_library()
+        if library:
+            options["library"] = library
+    return _run("oidn", [source], options, nthreads)
+
+
+def _pyoidn_library():
+    """The OIDN library inside the pyoidn package, or None where pyoidn is absent."""
+    import importlib.util
+    spec = importlib.util.find_spec("pyoidn")
+    if spec is None or not spec.submodule_search_locations:
+        return None
+    for location in spec.submodule_search_locations:
+        path = os.path.join(location, "oidn", "lib", "libOpenImageDenoise.so.2")
+        if os.path.exists(path):
+            return path
+    return None
+
+
 METRICS = ("RMSE", "MAE", "relMSE", "SSIM", "DSSIM")
 
 
@@ -216,6 +254,6 @@ def compare(image, reference, nthreads=0, **options):
 
 # Each operator's docstring ends with its parameter table, as `statmc --help OP` prints it.
 for _function, _operator in ((denoise, "denoise"), (passes, "passes"), (merge, "merge"),
-                             (compare, "compare")):
+                             (compare, "compare"), (verify, "verify"), (oidn, "oidn")):
     if _function.__doc__ is not None:  # None under python -OO
         _function.__doc__ += "\n\n" + _statmc.help(_operator)

@@ -1,5 +1,7 @@
 #include "cli_images.h"
 
+#include <gtest/gtest.h>
+
 #include "statmc/layers/statistics_layers.h"
 #include "test_images.h"
 
@@ -36,6 +38,21 @@ OIIO::ImageBuf cli_render(int k, int width, int height)
             img.setpixel(x, y, px);
         }
     return img;
+}
+
+void expect_same_channels(const OIIO::ImageBuf& got, const OIIO::ImageBuf& want)
+{
+    ASSERT_EQ(got.spec().width, want.spec().width);
+    ASSERT_EQ(got.spec().height, want.spec().height);
+    for (int c = 0; c < want.spec().nchannels; ++c) {
+        const std::string& name = want.spec().channelnames[c];
+        const int gc = got.spec().channelindex(name);
+        ASSERT_GE(gc, 0) << name;
+        for (int y = want.spec().y; y < want.spec().y + want.spec().height; ++y)
+            for (int x = want.spec().x; x < want.spec().x + want.spec().width; ++x)
+                ASSERT_TRUE(same_bits(got.getchannel(x, y, 0, gc), want.getchannel(x, y, 0, c)))
+                    << name << " at (" << x << ", " << y << ")";
+    }
 }
 
 }  // namespace statmc::test

@@ -16,4 +16,7 @@ OIIO::ImageBuf cli_variance_aov_image();
 /// Plain render k of a frame (R,G,B,A and albedo), different noise per k.
 OIIO::ImageBuf cli_render(int k, int width = kCliWidth, int height = kCliHeight);
 
+/// Every channel of `want` is in `got` under its name, bit for bit (gtest failures).
+void expect_same_channels(const OIIO::ImageBuf& got, const OIIO::ImageBuf& want);
+
 }  // namespace statmc::test

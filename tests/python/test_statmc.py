@@ -258,3 +258,27 @@ def test_temporal_denoise_equals_the_command_lines_sequence(tmp_path):
     assert not np.array_equal(alone["beauty"], expected["beauty"])
     with pytest.raises(ValueError, match="needs a frame sequence"):
         statmc.denoise(tmp_path / "shot.0002.exr", temporal=1)
+
+
+def test_verify_takes_the_candidate_as_an_array_and_equals_the_command_line(tmp_path):
+    assert CLI, "STATMC_CLI must name the statmc executable"
+    source = tmp_path / "stats.exr"
+    image = statistics_image()
+    statmc.write_statistics(source, image)
+    # Right on the right half; on the left 0.5 against a truth of 0.2, four standard errors
+    # of a pixel and twelve of its box: rejected there, and on the right at most at the
+    # rate alpha (about 4 of its 432 pixels at 0.01; a deterministic seed).
+    candidate = np.where(np.arange(40)[None, :, None] < 20, 0.5, 0.9).astype(np.float32)
+    candidate = np.broadcast_to(candidate, (24, 40, 3)).copy()
+    got = statmc.verify(source, candidate, alpha=0.01)
+    rejected = got["diagnostics"][:, :, 0]
+    assert rejected[:, :18].all() and rejected[:, 22:].mean() < 0.05
+    kept = rejected == 0
+    assert np.array_equal(got["beauty"][kept], candidate[kept])
+    statmc.write_statistics(tmp_path / "candidate.exr", statmc.Image({"beauty": candidate}))
+    subprocess.run([CLI, str(source), str(tmp_path / "candidate.exr"), "--verify:alpha=0.01",
+                    "-o", str(tmp_path / "cli.exr")], check=True, stdout=subprocess.DEVNULL)
+    assert np.array_equal(got["beauty"], statmc.read_statistics(tmp_path / "cli.exr")["beauty"])
+    assert "rejected" in got.report
+    with pytest.raises(ValueError, match="the candidate covers 20x24"):
+        statmc.verify(source, candidate[:, :20])

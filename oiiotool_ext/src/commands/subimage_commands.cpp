@@ -1,4 +1,4 @@
-// -a, --subimage, --siappend: the subimages (EXR parts) of stack images.
+// -a, --subimage, --siappend: the subimages (EXR parts) of stack images; --dup copies one.
 #include "statmc/tool/command_table.h"
 #include "statmc/tool/tool_error.h"
 #include "subimage_loop.h"
@@ -73,6 +73,33 @@ Command siappend_command()
         }
         joined.label += " (" + inv.name + ")";
         ctx.stack.push(std::move(joined));
+    };
+    return c;
+}
+
+}  // namespace statmc::tool
+
+namespace statmc::tool {
+
+Command dup_command()
+{
+    Command c;
+    c.name = "--dup";
+    c.summary = "Push a copy of the top image (every subimage): an operator that pops it "
+                "leaves the original below, e.g. f.exr --dup --oidn --verify";
+    c.run = [](ToolContext& ctx, const Invocation& inv) {
+        const StackImage& top = ctx.stack.top(inv.name);
+        StackImage copy;
+        for (const OIIO::ImageBuf& image : top.subimages) {
+            copy.subimages.emplace_back();
+            if (!copy.subimages.back().copy(image))
+                throw ToolError(inv.name + ": " + copy.subimages.back().geterror());
+        }
+        copy.mip_levels = top.mip_levels;
+        copy.label = top.label;
+        copy.sequence = top.sequence;
+        copy.frame = top.frame;
+        ctx.stack.push(std::move(copy));
     };
     return c;
 }

@@ -2,6 +2,7 @@
 // §15), as a statmc plugin. Pops the candidate (top) and the statistics image below it;
 // pushes the statistics image with the verified beauty and diagnostics.rejected. The
 // parameter table is `statmc --help verify`, generated from the specs below.
+#include <iomanip>
 #include <string>
 
 #include "statmc/layers/layer_names.h"
@@ -26,7 +27,7 @@ OIIO::ImageBuf run(const std::vector<const OIIO::ImageBuf*>& inputs,
         const float share =
             out.spec().get_float_attribute(statmc::layers::attr::kVerifyRejected, 0.f);
         *ctx.out << "verify: " << ctx.input_labels.at(1) << " rejected at "
-                 << statmc::number_text(100.0 * share) << "% of the pixels of "
+                 << std::setprecision(3) << 100.0 * share << "% of the pixels of "
                  << ctx.input_labels.at(0) << "\n";
     }
     return out;

@@ -37,6 +37,7 @@ Command chappend_command();
 Command all_subimages_command();
 Command subimage_command();
 Command siappend_command();
+Command dup_command();
 // arithmetic_commands.cpp
 Command add_command();
 Command sub_command();
