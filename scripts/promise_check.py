@@ -75,6 +75,31 @@ def scores(x, ref, ref_share, window):
     return mse, rel, energy
 
 
+def report(path):
+    """results.csv as markdown: per scene and metric, a row per (spp, seed), a column per
+    method; a method's figure is starred where it is above the noisy input's (energy: more
+    than 5% further from 1)."""
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    cells = {(r["scene"], int(r["spp"]), r["seed"], r["method"]): r for r in rows}
+    for scene in dict.fromkeys(r["scene"] for r in rows):
+        keys = sorted({(k[1], k[2]) for k in cells if k[0] == scene})
+        for metric in ("mse", "relmse", "dssim", "energy"):
+            print(f"\n{scene}, {metric}\n")
+            print("| spp | seed | " + " | ".join(methods) + " |")
+            print("|---" * (len(methods) + 2) + "|")
+            for spp, seed in keys:
+                noisy = float(cells[(scene, spp, seed, "noisy")][metric])
+                out = []
+                for m in methods:
+                    v = float(cells[(scene, spp, seed, m)][metric])
+                    worse = (abs(v - 1) > abs(noisy - 1) + 0.05 if metric == "energy"
+                             else v > noisy)
+                    out.append(f"{v:.4g}" + ("*" if worse and m != "noisy" else ""))
+                print(f"| {spp} | {seed} | " + " | ".join(out) + " |")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--out", default=os.path.join(ROOT, "build", "promise"))
@@ -87,7 +112,14 @@ def main():
     parser.add_argument("--method", action="append", default=[])
     parser.add_argument("--chain", action="append", default=[])
     parser.add_argument("--oidn", action="store_true")
+    parser.add_argument("--no-defaults", action="store_true",
+                        help="leave out the default and classic methods")
+    parser.add_argument("--report", action="store_true",
+                        help="print OUT/results.csv as markdown tables and stop")
     args = parser.parse_args()
+    if args.report:
+        report(os.path.join(args.out, "results.csv"))
+        return
     args.render = os.path.join(args.build, "renderer", "statmc-render")
     statmc_cli = os.path.join(args.build, "oiiotool_ext", "statmc")
     sys.path.insert(0, os.path.join(args.build, "python"))
@@ -96,6 +128,8 @@ def main():
     # (name, statmc, the commands between the noisy frame and -o)
     methods = [("default", statmc_cli, ["--denoise"]),
                ("classic", statmc_cli, ["--denoise:method=classic"])]
+    if args.no_defaults:
+        methods = []
     for text in args.method:
         name, rest = text.split("=", 1)
         exe, _, modifiers = rest.partition(":")

@@ -23,11 +23,11 @@ for program in statmc statmc-render statmc-farm; do
 done
 [[ -f "$prefix/usr/share/statmc/blender/statmc_cycles_passes.py" ]] ||
   fail "the Blender script is not installed in $prefix/usr/share/statmc/blender"
-for op in denoise passes merge compare display; do
+for op in denoise passes merge compare display verify oidn; do
   [[ -f "$prefix/usr/lib/statmc/plugins/$op.so" ]] || fail "$op.so is not installed in $prefix/usr/lib/statmc/plugins"
 done
 ops=$("$bin/statmc" --list-ops)
-for op in denoise passes merge compare display; do
+for op in denoise passes merge compare display verify oidn; do
   grep -q -- "--$op" <<<"$ops" || fail "the installed statmc does not list --$op: $ops"
 done
 

@@ -101,12 +101,16 @@ void require_finite(const std::vector<ConstPlane>& planes, const OIIO::ImageBuf&
                                      "), channel " + std::to_string(c));
 }
 
-// The moderated per-sample variances the test reads: those of the default's ladder.
+// The moderated per-sample variances the test reads: the default ladder's moderation, but
+// a pixel whose samples all agree does not borrow its neighbours' s² outright: at many
+// samples that agreement is evidence (the inside of a light), and at few the moderation's
+// prior already lifts it.
 std::vector<float> moderated_variances(const StatisticsView& view, const DenoiseImageOptions& d,
                                        int nthreads)
 {
     VarianceFilterOptions v = RadiusLadderOptions{}.variance;
     v.interval_test = false;
+    v.borrow_without_interval = false;
     v.prior_dof = d.variance_prior_dof;
     v.prior_alpha = d.variance_prior_alpha;
     return denoise_variances(view, TestDomain::Untransformed, {}, v,
