@@ -26,6 +26,28 @@ void expect_success(const CliResult& r)
     EXPECT_FALSE(r.timed_out);
 }
 
+TEST(CliRun, TheHeaderSaysHowTheImageWasDenoised)
+{
+    TempDir dir;
+    write_exr(cli_statistics_image(), dir.file("in.exr"));
+    expect_success(run_cli({dir.file("in.exr"), "--denoise:alpha=0.01:radius=6:guides=albedo", "-o",
+                            dir.file("out.exr")}));
+    const OIIO::ImageSpec spec = read_exr(dir.file("out.exr")).spec();
+    // Every parameter in force, in the parameter table's order, the method first.
+    const std::string settings = spec.get_string_attribute("statmc:denoise");
+    EXPECT_EQ(settings.rfind("method=default:radius=6:alpha=0.01:", 0), 0u) << settings;
+    EXPECT_NE(settings.find(":guides=albedo:"), std::string::npos) << settings;
+    const CliResult version = run_cli({"--version"});
+    EXPECT_EQ("statmc " + std::string(spec.get_string_attribute("statmc:version")) + "\n",
+              version.out);
+    const CliResult info = run_cli({"--info", "-v", dir.file("out.exr")});
+    EXPECT_NE(info.out.find(settings), std::string::npos) << info.out;
+    // The record is a modifier string: given back to --denoise it makes the same image.
+    expect_success(
+        run_cli({dir.file("in.exr"), "--denoise:" + settings, "-o", dir.file("again.exr")}));
+    expect_same_channels(read_exr(dir.file("again.exr")), read_exr(dir.file("out.exr")));
+}
+
 TEST(CliRun, DenoiseRoundTripEqualsTheOperator)
 {
     TempDir dir;

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <iostream>
 #include <string>
+#include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include <OpenImageIO/strutil.h>
@@ -366,6 +368,46 @@ statmc::FrameNeighbours neighbours_from(const statmc::RunContext& ctx, int reach
     return neighbours;
 }
 
+// A parameter's value as the command line spells it.
+std::string value_text(const statmc::ParameterValue& value)
+{
+    return std::visit(
+        [](const auto& v) -> std::string {
+            using T = std::decay_t<decltype(v)>;
+            if constexpr (std::is_same_v<T, bool>)
+                return v ? "1" : "0";
+            else if constexpr (std::is_same_v<T, int>)
+                return std::to_string(v);
+            else if constexpr (std::is_same_v<T, double>)
+                return statmc::number_text(v);
+            else if constexpr (std::is_same_v<T, std::string>)
+                return v;
+            else
+                return OIIO::Strutil::join(v, ",");
+        },
+        value);
+}
+
+// How the result was made, as the command line spells it: the method, then every
+// parameter given, in the table's order ("method=default:radius=8:guides=albedo").
+std::string settings_text(const ParameterValues& p)
+{
+    std::string text = "method=" + p.get_string("method", "default");
+    for (const statmc::ParameterSpec& spec : parameters())
+        if (spec.name != "method" && p.has(spec.name))
+            text += ":" + spec.name + "=" + value_text(p.at(spec.name));
+    return text;
+}
+
+// The header of a denoised image says how it was made and by which statmc.
+void record_settings(OIIO::ImageBuf& result, const ParameterValues& p)
+{
+    if (result.has_error())
+        return;
+    result.specmod().attribute(statmc::layers::attr::kDenoiseSettings, settings_text(p));
+    result.specmod().attribute(statmc::layers::attr::kVersion, STATMC_VERSION);
+}
+
 void register_denoise(statmc::PluginRegistry& registry)
 {
     statmc::OperatorSpec op;
@@ -394,6 +436,7 @@ void register_denoise(statmc::PluginRegistry& registry)
             result.errorfmt("denoise: {}", e.what());
         }
         note_skipped_stages(result, ctx);
+        record_settings(result, p);
         return result;
     };
     op.run_in_place = [](OIIO::ImageBuf& image, const ParameterValues& p,
@@ -408,8 +451,10 @@ void register_denoise(statmc::PluginRegistry& registry)
         } catch (const std::exception& e) {
             image.errorfmt("denoise: {}", e.what());
         }
-        if (ok)
+        if (ok) {
             note_skipped_stages(image, ctx);
+            record_settings(image, p);
+        }
         return ok;
     };
     registry.add(std::move(op));

@@ -30,6 +30,10 @@ inline constexpr const char* kDenoised = "statmc:denoised";  // int 1
 inline constexpr const char* kDenoiseSkipped = "statmc:denoiseSkipped";
 // string: the layers denoise replaced, comma-separated ("beauty" for R,G,B)
 inline constexpr const char* kDenoisedLayers = "statmc:denoisedLayers";
+// string: how --denoise made the image, as its modifiers ("method=default:radius=8")
+inline constexpr const char* kDenoiseSettings = "statmc:denoise";
+// string: the statmc version that denoised it
+inline constexpr const char* kVersion = "statmc:version";
 // float: the share of the verified pixels whose candidate was rejected (--verify)
 inline constexpr const char* kVerifyRejected = "statmc:verifyRejected";
 inline constexpr const char* kRenderTime = "statmc:renderTime";  // float seconds (statmc-render)
