@@ -117,17 +117,18 @@ TEST(CliRun, DisplayedPicturesGoToPngJpegAndTiff)
 {
     TempDir dir;
     write_exr(cli_statistics_image(), dir.file("frame.exr"));
-    expect_success(run_cli({dir.file("frame.exr"), "--denoise", "--display", "-o",
-                            dir.file("shown.exr")}));
+    expect_success(
+        run_cli({dir.file("frame.exr"), "--denoise", "--display", "-o", dir.file("shown.exr")}));
     const OIIO::ImageBuf exr = read_exr(dir.file("shown.exr"));
     for (const char* name : {"shown.png", "shown.tif", "shown.jpg"}) {
-        expect_success(run_cli({dir.file("frame.exr"), "--denoise", "--display", "-o",
-                                dir.file(name)}));
+        expect_success(
+            run_cli({dir.file("frame.exr"), "--denoise", "--display", "-o", dir.file(name)}));
         OIIO::ImageBuf picture(dir.file(name));
         ASSERT_TRUE(picture.read(0, 0, true, OIIO::TypeFloat)) << name;
         ASSERT_EQ(picture.spec().width, exr.spec().width) << name;
         // The same picture, as the format quantizes it (JPEG also compresses it).
-        const float tolerance = std::string(name).find(".jpg") != std::string::npos ? 0.08f : 0.003f;
+        const float tolerance =
+            std::string(name).find(".jpg") != std::string::npos ? 0.08f : 0.003f;
         for (int y = 0; y < exr.spec().height; y += 3)
             for (int x = 0; x < exr.spec().width; x += 3)
                 ASSERT_NEAR(picture.getchannel(x, y, 0, 1), exr.getchannel(x, y, 0, 1), tolerance)
@@ -139,8 +140,8 @@ TEST(CliRun, ValidateRunsNothing)
 {
     TempDir dir;
     write_exr(cli_statistics_image(), dir.file("in.exr"));
-    const CliResult r = run_cli({dir.file("in.exr"), "--denoise:radius=4", "-o",
-                                 dir.file("out.exr"), "--validate"});
+    const CliResult r = run_cli(
+        {dir.file("in.exr"), "--denoise:radius=4", "-o", dir.file("out.exr"), "--validate"});
     expect_success(r);
     EXPECT_EQ(r.out, "statmc: the command line is valid\n");
     EXPECT_EQ(dir.entries(), (std::vector<std::string>{"in.exr"}));
@@ -170,8 +171,8 @@ TEST(CliRun, DenoisingAnotherLayerOfADenoisedFileIsNotWarnedAbout)
                             "diffuse.variance.G=variance.G,diffuse.variance.B=variance.B",
                             "-o", dir.file("aovs.exr")}));
     // One AOV after the other, as README's recipe does: the second is as rendered.
-    expect_success(run_cli({dir.file("aovs.exr"), "--denoise", "--denoise:aov=diffuse", "-o",
-                            dir.file("both.exr")}));
+    expect_success(run_cli(
+        {dir.file("aovs.exr"), "--denoise", "--denoise:aov=diffuse", "-o", dir.file("both.exr")}));
     const CliResult again =
         run_cli({dir.file("both.exr"), "--denoise:aov=diffuse", "-o", dir.file("again.exr")});
     EXPECT_EQ(again.exit_code, 0) << again.err;

@@ -19,8 +19,8 @@ namespace {
 // is right on two thirds of the frame and wrong on one.
 OIIO::ImageBuf partly_wrong_candidate(const OIIO::ImageBuf& stats)
 {
-    OIIO::ImageBuf out(OIIO::ImageSpec(stats.spec().width, stats.spec().height, 3,
-                                       OIIO::TypeFloat));
+    OIIO::ImageBuf out(
+        OIIO::ImageSpec(stats.spec().width, stats.spec().height, 3, OIIO::TypeFloat));
     for (int y = 0; y < stats.spec().height; ++y)
         for (int x = 0; x < stats.spec().width; ++x)
             for (int c = 0; c < 3; ++c)

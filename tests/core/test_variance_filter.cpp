@@ -9,11 +9,11 @@
 
 #include <gtest/gtest.h>
 
+#include "same_bits.h"
 #include "statmc/core/box_cox.h"
 #include "statmc/core/moments.h"
 #include "statmc/core/statistics_image.h"
 #include "statmc/core/variance_filter.h"
-#include "same_bits.h"
 #include "variance_filter_layout.h"
 
 namespace statmc {
@@ -336,9 +336,9 @@ TEST(VarianceFilter, EverySimdLevelGivesTheScalarLoopsBits)
                     // (d0 = 0) its level changes nothing (it once read planes never filled).
                     if (prior_dof == 0 && prior_alpha > 0) {
                         o.prior_alpha = 0;
-                        EXPECT_TRUE(same_bits(scalar, denoise_variances(stats.view(),
-                                                                        TestDomain::Untransformed,
-                                                                        g, o, 2, SimdLevel::Scalar)));
+                        EXPECT_TRUE(same_bits(
+                            scalar, denoise_variances(stats.view(), TestDomain::Untransformed, g, o,
+                                                      2, SimdLevel::Scalar)));
                     }
                 }
 }

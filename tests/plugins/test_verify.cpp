@@ -6,9 +6,9 @@
 #include <random>
 #include <string>
 
+#include <OpenImageIO/imagebufalgo.h>
 #include <boost/math/distributions/binomial.hpp>
 #include <gtest/gtest.h>
-#include <OpenImageIO/imagebufalgo.h>
 
 #include "statmc/core/statistics_image.h"
 #include "statmc/denoise/denoise.h"
@@ -77,8 +77,8 @@ float rejected_at(const OIIO::ImageBuf& out, int x, int y)
 // 1 − 1e-6: the test's false-positive rate for this assertion.
 double binomial_bound(double alpha, double trials)
 {
-    return boost::math::quantile(boost::math::complement(
-        boost::math::binomial_distribution<double>(trials, alpha), 1e-6));
+    return boost::math::quantile(
+        boost::math::complement(boost::math::binomial_distribution<double>(trials, alpha), 1e-6));
 }
 
 TEST(Verify, ACorrectCandidateIsRejectedAtNoMoreThanTheStatedRate)
@@ -112,11 +112,9 @@ TEST(Verify, ABiasedRegionIsRejectedWithThePowerTheBoxPredicts)
     // channels share their samples here, so they add nothing).
     const int n = 64;
     auto inside = [](int x, int y) { return x >= 20 && x < 44 && y >= 20 && y < 44; };
-    const OIIO::ImageBuf out =
-        verify(statistics(n, Samples::Uniform, 7),
-               candidate(n, Samples::Uniform,
-                         [&](int x, int y) { return inside(x, y) ? 2.0 : 0.0; }),
-               {});
+    const OIIO::ImageBuf out = verify(
+        statistics(n, Samples::Uniform, 7),
+        candidate(n, Samples::Uniform, [&](int x, int y) { return inside(x, y) ? 2.0 : 0.0; }), {});
     ASSERT_FALSE(out.has_error()) << out.geterror();
     int interior = 0, caught = 0, outside = 0, false_alarms = 0;
     for (int y = 0; y < kH; ++y)
@@ -142,7 +140,9 @@ TEST(Verify, AnInventedEdgeIsRejected)
     const OIIO::ImageBuf out =
         verify(statistics(n, Samples::Exponential, 9),
                candidate(n, Samples::Exponential,
-                         [](int x, int) { return x >= 26 && x < 32 ? -3.0 : x >= 32 && x < 38 ? 3.0 : 0.0; }),
+                         [](int x, int) {
+                             return x >= 26 && x < 32 ? -3.0 : x >= 32 && x < 38 ? 3.0 : 0.0;
+                         }),
                {});
     ASSERT_FALSE(out.has_error()) << out.geterror();
     int band = 0, caught = 0;

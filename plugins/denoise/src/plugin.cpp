@@ -318,9 +318,9 @@ void warn_denoised_input(const OIIO::ImageBuf& input, const statmc::DenoiseImage
     for (const std::string& layer : asked)
         if (done.empty() || ("," + done + ",").find("," + layer + ",") != std::string::npos) {
             tell("warning", ctx,
-                 (done.empty() ? std::string("denoised already (statmc:denoised = 1)")
-                               : layer + " denoised already (statmc:denoisedLayers = " + done +
-                                     ")") +
+                 (done.empty()
+                      ? std::string("denoised already (statmc:denoised = 1)")
+                      : layer + " denoised already (statmc:denoisedLayers = " + done + ")") +
                      ": what was denoised is no longer its samples' mean; denoise the "
                      "statistics it came from");
             return;

@@ -42,10 +42,10 @@ void require_finite(const std::vector<float>& colour, const OIIO::ImageBuf& imag
     for (std::size_t i = 0; i < colour.size(); ++i)
         if (!std::isfinite(colour[i])) {
             const std::size_t pixel = i / 3;
-            throw std::invalid_argument(
-                "oidn: " + image_label(image) + " holds NaN or Inf in its beauty at pixel (" +
-                std::to_string(s.x + int(pixel % s.width)) + ", " +
-                std::to_string(s.y + int(pixel / s.width)) + ")");
+            throw std::invalid_argument("oidn: " + image_label(image) +
+                                        " holds NaN or Inf in its beauty at pixel (" +
+                                        std::to_string(s.x + int(pixel % s.width)) + ", " +
+                                        std::to_string(s.y + int(pixel / s.width)) + ")");
         }
 }
 
@@ -65,13 +65,12 @@ struct Session {
     {
         const char* message = nullptr;
         if (api.get_device_error(device, &message) != oidn_api::kErrorNone)
-            throw std::runtime_error(std::string("oidn: ") + stage + " failed: " +
-                                     (message ? message : "no message"));
+            throw std::runtime_error(std::string("oidn: ") + stage +
+                                     " failed: " + (message ? message : "no message"));
     }
 };
 
-bool oidn_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const OidnOptions& opt,
-               int nthreads)
+bool oidn_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const OidnOptions& opt, int nthreads)
 {
     const oidn_api::Functions& api = oidn_api::load(opt.library);
     layers::ImportedImage imported;
@@ -107,8 +106,8 @@ bool oidn_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const OidnOptions
     const std::size_t w = spec.width, h = spec.height;
     auto image = [&](const char* name, std::vector<float>& data) {
         if (!data.empty())
-            api.set_shared_filter_image(session.filter, name, data.data(),
-                                        oidn_api::kFormatFloat3, w, h, 0, 0, 0);
+            api.set_shared_filter_image(session.filter, name, data.data(), oidn_api::kFormatFloat3,
+                                        w, h, 0, 0, 0);
     };
     image("color", colour);
     image("albedo", albedo);

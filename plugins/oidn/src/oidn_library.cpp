@@ -106,7 +106,8 @@ const Functions& load(const std::string& path)
             "OIDN (Intel Open Image Denoise 2) is not installed where statmc looks (" +
             search_text() + "):" + failures +
             "\nInstall it with `python3 -m pip install pyoidn` (in a virtual environment) and "
-            "point STATMC_OIDN_LIBRARY at <site-packages>/pyoidn/oidn/lib/" + kSoname);
+            "point STATMC_OIDN_LIBRARY at <site-packages>/pyoidn/oidn/lib/" +
+            kSoname);
     // Kept open for the process's life: OIDN's worker threads may outlive a call.
     return loaded.emplace(key, functions_of(handle, where)).first->second;
 }

@@ -11,9 +11,9 @@ namespace statmc::oidn_api {
 using Device = struct DeviceImpl*;
 using Filter = struct FilterImpl*;
 
-inline constexpr int kDeviceTypeCpu = 1;   // OIDN_DEVICE_TYPE_CPU
-inline constexpr int kFormatFloat3 = 3;    // OIDN_FORMAT_FLOAT3
-inline constexpr int kErrorNone = 0;       // OIDN_ERROR_NONE
+inline constexpr int kDeviceTypeCpu = 1;  // OIDN_DEVICE_TYPE_CPU
+inline constexpr int kFormatFloat3 = 3;   // OIDN_FORMAT_FLOAT3
+inline constexpr int kErrorNone = 0;      // OIDN_ERROR_NONE
 
 struct Functions {
     Device (*new_device)(int type);
@@ -23,9 +23,8 @@ struct Functions {
     int (*get_device_error)(Device, const char** message);
     Filter (*new_filter)(Device, const char* type);
     void (*set_shared_filter_image)(Filter, const char* name, void* data, int format,
-                                    std::size_t width, std::size_t height,
-                                    std::size_t byte_offset, std::size_t pixel_byte_stride,
-                                    std::size_t row_byte_stride);
+                                    std::size_t width, std::size_t height, std::size_t byte_offset,
+                                    std::size_t pixel_byte_stride, std::size_t row_byte_stride);
     void (*set_filter_bool)(Filter, const char* name, bool value);
     void (*commit_filter)(Filter);
     void (*execute_filter)(Filter);

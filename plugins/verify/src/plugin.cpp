@@ -26,9 +26,8 @@ OIIO::ImageBuf run(const std::vector<const OIIO::ImageBuf*>& inputs,
     if (!out.has_error() && ctx.out) {
         const float share =
             out.spec().get_float_attribute(statmc::layers::attr::kVerifyRejected, 0.f);
-        *ctx.out << "verify: " << ctx.input_labels.at(1) << " rejected at "
-                 << std::setprecision(3) << 100.0 * share << "% of the pixels of "
-                 << ctx.input_labels.at(0) << "\n";
+        *ctx.out << "verify: " << ctx.input_labels.at(1) << " rejected at " << std::setprecision(3)
+                 << 100.0 * share << "% of the pixels of " << ctx.input_labels.at(0) << "\n";
     }
     return out;
 }

@@ -36,8 +36,8 @@ float& at(OIIO::ImageBuf& image, int x, int y, int channel)
 
 std::string label(const OIIO::ImageBuf& image, const char* role)
 {
-    return image.name().empty() ? std::string(role) : std::string(role) + " (" +
-                                                          std::string(image.name()) + ")";
+    return image.name().empty() ? std::string(role)
+                                : std::string(role) + " (" + std::string(image.name()) + ")";
 }
 
 std::string window_text(const OIIO::ImageSpec& s)
@@ -163,9 +163,8 @@ void write_rejection_map(OIIO::ImageBuf& dst, const std::vector<std::uint8_t>& r
             at(dst, x, y, channel) = float(rejected[std::size_t(y - s.y) * s.width + (x - s.x)]);
 }
 
-bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in,
-                 const OIIO::ImageBuf& candidate, const VerifyOptions& opt, const OIIO::ROI& roi_in,
-                 int nthreads)
+bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in, const OIIO::ImageBuf& candidate,
+                 const VerifyOptions& opt, const OIIO::ROI& roi_in, int nthreads)
 {
     if (const std::string problem = opt.denoise.validate(); !problem.empty())
         throw std::invalid_argument("verify: " + problem);
@@ -191,9 +190,8 @@ bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in,
             spec, layers::statistic_layer(ch.aov, Statistic::Variance), ch.suffixes, "layer",
             "verify tests the candidate against each pixel's variance"));
     if (ch.channels() != 3)
-        throw LayerError("verify: " + layers::describe_layer(ch.aov, ch.suffixes) +
-                         " has " + std::to_string(ch.channels()) +
-                         " channels; a candidate has 3");
+        throw LayerError("verify: " + layers::describe_layer(ch.aov, ch.suffixes) + " has " +
+                         std::to_string(ch.channels()) + " channels; a candidate has 3");
     layers::ValidationOptions validation;
     validation.roi = in.roi();
     if (const auto problems = layers::validate_statistics(in, ch, validation); !problems.empty())
@@ -247,9 +245,8 @@ bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in,
 bool verify(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const OIIO::ImageBuf& candidate,
             const VerifyOptions& opt, OIIO::ROI roi, int nthreads)
 {
-    return layers::errors_on(dst, "verify", [&] {
-        return verify_impl(dst, src, candidate, opt, roi, nthreads);
-    });
+    return layers::errors_on(dst, "verify",
+                             [&] { return verify_impl(dst, src, candidate, opt, roi, nthreads); });
 }
 
 OIIO::ImageBuf verify(const OIIO::ImageBuf& src, const OIIO::ImageBuf& candidate,
