@@ -1,5 +1,9 @@
 // The plugin interface on its own: parameter ranges, loading a module, refusing one
 // built against another interface version.
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imagebufalgo.h>
@@ -155,6 +159,49 @@ TEST(PluginApi, ListsModulesOfADirectory)
     EXPECT_EQ(plugin_files(std::string(STATMC_TEST_MODULE_DIR) + "/good"),
               std::vector<std::string>{kGood});
     EXPECT_TRUE(plugin_files(std::string(STATMC_TEST_MODULE_DIR) + "/absent").empty());
+}
+
+}  // namespace
+}  // namespace statmc
+
+namespace statmc {
+namespace {
+
+TEST(PluginApi, EveryShippedOperatorAcceptsTheBoundsItsTableStates)
+{
+    // A parameter's range in the table (what --help prints and the host enforces) and the
+    // operator's own validation must agree: a value at an inclusive bound, or just inside
+    // an exclusive one, passes both.
+    PluginRegistry registry;
+    for (const std::string& file : plugin_files(STATMC_PLUGIN_DIR))
+        load_plugin(file, registry);
+    ASSERT_GE(registry.operators().size(), 7u);
+    int checked = 0;
+    for (const OperatorSpec& op : registry.operators()) {
+        for (const ParameterSpec& spec : op.parameters) {
+            if (spec.type != ParameterType::Int && spec.type != ParameterType::Float)
+                continue;
+            const ParameterRange& r = spec.range;
+            for (const auto& [bound, exclusive, inward] :
+                 {std::tuple{r.min, r.min_exclusive, 1.0},
+                  std::tuple{r.max, r.max_exclusive, -1.0}}) {
+                if (!bound)
+                    continue;
+                const bool whole = spec.type == ParameterType::Int;
+                const double step = whole ? 1.0 : 1e-6 * std::max(1.0, std::abs(*bound));
+                const double value = exclusive ? *bound + inward * step : *bound;
+                EXPECT_EQ(r.violation(spec.name, value), "") << op.name << ":" << spec.name;
+                ParameterValues p;
+                p.set(spec.name, whole ? ParameterValue(int(value)) : ParameterValue(value));
+                if (op.check) {
+                    EXPECT_EQ(op.check(p), "") << "--" << op.name << ":" << spec.name << "="
+                                               << value << " is inside " << r.text();
+                }
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(checked, 20);
 }
 
 }  // namespace

@@ -42,16 +42,16 @@ std::string DenoiseImageOptions::validate() const
         return "the normal guide needs a layer name";
     if (variance_radius < 0 || variance_radius > 100)
         return "variance_radius must be in [0, 100], got " + std::to_string(variance_radius);
-    if (!(harm_alpha >= 0 && harm_alpha < 1))
-        return "do_no_harm must be 0 (off) or in (0, 1), got " + std::to_string(harm_alpha);
-    if (!(ici_alpha >= 0 && ici_alpha < 1))
-        return "ici must be 0 (off) or in (0, 1), got " + std::to_string(ici_alpha);
+    // Each bound as the parameter table states it (plugin.cpp): [0, 0.5].
+    if (!(harm_alpha >= 0 && harm_alpha <= 0.5))
+        return "do_no_harm must be in [0, 0.5], got " + std::to_string(harm_alpha);
+    if (!(ici_alpha >= 0 && ici_alpha <= 0.5))
+        return "ici must be in [0, 0.5], got " + std::to_string(ici_alpha);
     for (std::size_t k = 0; k < ici_radii.size(); ++k)
         if (ici_radii[k] < 1 || ici_radii[k] > 100 || (k > 0 && ici_radii[k] <= ici_radii[k - 1]))
             return "ici_radii must ascend, each in [1, 100], got " + radii_text(ici_radii);
-    if (!(explained_alpha >= 0 && explained_alpha < 1))
-        return "explained_variance must be 0 (off) or in (0, 1), got " +
-               std::to_string(explained_alpha);
+    if (!(explained_alpha >= 0 && explained_alpha <= 0.5))
+        return "explained_variance must be in [0, 0.5], got " + std::to_string(explained_alpha);
     if (!(variance_prior_dof >= 0 && variance_prior_dof <= 1000))
         return "variance_dof must be in [0, 1000], got " + std::to_string(variance_prior_dof);
     if (context_radius < 0 || context_radius > 5)

@@ -225,7 +225,7 @@ std::vector<statmc::ParameterSpec> parameters()
         float_parameter("ici", std::nullopt,
                         "each pixel takes its own radius from 0 and the rungs of ici_radii "
                         "by intersecting confidence intervals at this significance (needs the "
-                        "M3/M4 layers); 0 = off." +
+                        "variance layer, and M4 with variance_test=1); 0 = off." +
                             only_in_the_default(kDefaults.ici_alpha))
             .between(0, 0.5),
         bool_parameter("ici_neighbours", kDefaults.ici_neighbours,
