@@ -135,32 +135,24 @@ OIIO::ROI rejected_box(const std::vector<std::uint8_t>& rejected, const OIIO::RO
     return box;
 }
 
-// `dst` with the map of rejections in its diagnostics.rejected channel (added, or reused
-// when the image was verified before).
-void write_rejection_map(OIIO::ImageBuf& dst, const std::vector<std::uint8_t>& rejected,
-                         const OIIO::ROI& roi, const std::string& aov)
+// `in` copied into `dst` as float, with the channel `name` after its own (zero), unless it
+// has one already (an image verified before): one copy of the image, not two.
+void copy_with_map_channel(OIIO::ImageBuf& dst, const OIIO::ImageBuf& in, const std::string& name)
 {
-    const std::string name = layers::diagnostics_channel(aov, layers::kRejectedChannel);
-    if (dst.spec().channelindex(name) < 0) {
-        OIIO::ImageSpec spec = dst.spec();
-        spec.nchannels = 1;
-        spec.channelnames = {name};
-        spec.channelformats.clear();
-        spec.alpha_channel = spec.z_channel = -1;
-        spec.extra_attribs.clear();
-        OIIO::ImageBuf map(spec);
-        OIIO::ImageBufAlgo::zero(map);
-        OIIO::ImageBuf joined;
-        if (!OIIO::ImageBufAlgo::channel_append(joined, dst, map))
-            throw std::runtime_error("verify: " + joined.geterror());
-        joined.specmod().extra_attribs = dst.spec().extra_attribs;
-        dst = std::move(joined);
+    const int n = in.nchannels();
+    const bool has_map = in.spec().channelindex(name) >= 0;
+    std::vector<int> order(n);
+    std::vector<float> values(n, 0.f);
+    std::vector<std::string> names = in.spec().channelnames;
+    for (int c = 0; c < n; ++c)
+        order[c] = c;
+    if (!has_map) {
+        order.push_back(-1);
+        values.push_back(0.f);
+        names.push_back(name);
     }
-    const int channel = dst.spec().channelindex(name);
-    const OIIO::ImageSpec& s = dst.spec();
-    for (int y = roi.ybegin; y < roi.yend; ++y)
-        for (int x = roi.xbegin; x < roi.xend; ++x)
-            at(dst, x, y, channel) = float(rejected[std::size_t(y - s.y) * s.width + (x - s.x)]);
+    if (!OIIO::ImageBufAlgo::channels(dst, in, int(order.size()), order, values, names))
+        throw std::runtime_error("verify: " + dst.geterror());
 }
 
 bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in, const OIIO::ImageBuf& candidate,
@@ -210,15 +202,16 @@ bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in, const OIIO::
         test_candidate(view, moderated_variances(view, opt.denoise, nthreads), cand, test,
                        layers::thread_count(nthreads));
 
-    // A renderer's file comes out under the contract's names, as --passes writes them.
+    // A renderer's file comes out under the contract's names, as --passes writes them. The
+    // fallback's denoise runs in place on the copy, which already holds the map's channel.
+    const std::string map_name = layers::diagnostics_channel(ch.aov, layers::kRejectedChannel);
+    copy_with_map_channel(dst, in, map_name);
     const OIIO::ROI box = rejected_box(rejected, roi, spec);
     if (box.defined() && opt.fallback == VerifyFallback::Denoise) {
         DenoiseImageOptions contract = opt.denoise;
         contract.from = "statmc";
-        if (!denoise(dst, in, contract, box, nthreads))
+        if (!denoise(dst, dst, contract, box, nthreads))
             return false;
-    } else {
-        dst.copy(in, OIIO::TypeFloat);
     }
     int means[3];
     for (int c = 0; c < 3; ++c)
@@ -233,7 +226,11 @@ bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in, const OIIO::
             for (int c = 0; c < 3; ++c)
                 at(dst, x, y, means[c]) = cand[c](x - spec.x, y - spec.y);
         }
-    write_rejection_map(dst, rejected, roi, ch.aov);
+    const int map = dst.spec().channelindex(map_name);
+    for (int y = roi.ybegin; y < roi.yend; ++y)
+        for (int x = roi.xbegin; x < roi.xend; ++x)
+            at(dst, x, y, map) =
+                float(rejected[std::size_t(y - spec.y) * spec.width + (x - spec.x)]);
     dst.specmod().attribute(layers::attr::kDenoised, 1);
     dst.specmod().attribute(layers::attr::kVerifyRejected,
                             float(double(count) / (double(roi.width()) * roi.height())));
