@@ -3,8 +3,9 @@
 # packages (as root): a single-node Slurm cluster (slurmctld, slurmd, munge) for the farm
 # test, clang and its sanitizer runtimes for the fuzz targets, pytest and
 # OpenImageIO's Python bindings for the Python tests, Blender for the Cycles route's tests
-# (about 30 s to install), and matplotlib for the evaluation's charts. A workstation that
-# only denoises needs none of them.
+# (about 30 s to install), matplotlib for the evaluation's charts, and OIDN (the pyoidn
+# wheel from PyPI, in /opt/statmc-oidn) for the --oidn tests. A workstation that only
+# denoises needs none of them.
 set -euo pipefail
 cd "$(dirname "$0")"
 bash install-deps.sh
