@@ -280,5 +280,5 @@ def test_verify_takes_the_candidate_as_an_array_and_equals_the_command_line(tmp_
                     "-o", str(tmp_path / "cli.exr")], check=True, stdout=subprocess.DEVNULL)
     assert np.array_equal(got["beauty"], statmc.read_statistics(tmp_path / "cli.exr")["beauty"])
     assert "rejected" in got.report
-    with pytest.raises(ValueError, match="the candidate covers 20x24"):
+    with pytest.raises(ValueError, match="the candidate.* differ in resolution: 20x24 vs 40x24"):
         statmc.verify(source, candidate[:, :20])

@@ -5,9 +5,7 @@
 #include <algorithm>
 #include <iostream>
 #include <string>
-#include <type_traits>
 #include <utility>
-#include <variant>
 #include <vector>
 
 #include <OpenImageIO/strutil.h>
@@ -368,26 +366,6 @@ statmc::FrameNeighbours neighbours_from(const statmc::RunContext& ctx, int reach
     return neighbours;
 }
 
-// A parameter's value as the command line spells it.
-std::string value_text(const statmc::ParameterValue& value)
-{
-    return std::visit(
-        [](const auto& v) -> std::string {
-            using T = std::decay_t<decltype(v)>;
-            if constexpr (std::is_same_v<T, bool>)
-                return v ? "1" : "0";
-            else if constexpr (std::is_same_v<T, int>)
-                return std::to_string(v);
-            else if constexpr (std::is_same_v<T, double>)
-                return statmc::number_text(v);
-            else if constexpr (std::is_same_v<T, std::string>)
-                return v;
-            else
-                return OIIO::Strutil::join(v, ",");
-        },
-        value);
-}
-
 // How the result was made, as the command line spells it: the method, then every
 // parameter given, in the table's order ("method=default:radius=8:guides=albedo").
 std::string settings_text(const ParameterValues& p)
@@ -395,7 +373,7 @@ std::string settings_text(const ParameterValues& p)
     std::string text = "method=" + p.get_string("method", "default");
     for (const statmc::ParameterSpec& spec : parameters())
         if (spec.name != "method" && p.has(spec.name))
-            text += ":" + spec.name + "=" + value_text(p.at(spec.name));
+            text += ":" + spec.name + "=" + p.text(spec.name);
     return text;
 }
 

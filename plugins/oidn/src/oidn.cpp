@@ -120,12 +120,12 @@ bool oidn_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const OidnOptions
     session.check("denoising");
 
     dst.copy(in, OIIO::TypeFloat);
-    for (int y = 0; y < spec.height; ++y)
-        for (int x = 0; x < spec.width; ++x) {
-            float* pixel = static_cast<float*>(dst.pixeladdr(spec.x + x, spec.y + y));
-            for (int c = 0; c < 3; ++c)
-                pixel[beauty[c]] = output[(std::size_t(y) * w + x) * 3 + c];
-        }
+    for (int c = 0; c < 3; ++c) {
+        const Plane plane = layers::channel_plane(dst, beauty[c]);
+        for (int y = 0; y < spec.height; ++y)
+            for (int x = 0; x < spec.width; ++x)
+                plane(x, y) = output[(std::size_t(y) * w + x) * 3 + c];
+    }
     dst.specmod().attribute(layers::attr::kDenoised, 1);
     return true;
 }

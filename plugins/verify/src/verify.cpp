@@ -11,6 +11,7 @@
 #include "statmc/core/variance_filter.h"
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/float_pixels.h"
+#include "statmc/layers/frame_match.h"
 #include "statmc/layers/guide_layers.h"
 #include "statmc/layers/imagebufalgo_forms.h"
 #include "statmc/layers/layer_error.h"
@@ -28,22 +29,10 @@ using layers::LayerError;
 using layers::Statistic;
 using layers::StatisticsChannels;
 
-// Channel `channel` of pixel (x, y) of `image` (local float pixels).
-float& at(OIIO::ImageBuf& image, int x, int y, int channel)
-{
-    return static_cast<float*>(image.pixeladdr(x, y))[channel];
-}
-
 std::string label(const OIIO::ImageBuf& image, const char* role)
 {
     return image.name().empty() ? std::string(role)
                                 : std::string(role) + " (" + std::string(image.name()) + ")";
-}
-
-std::string window_text(const OIIO::ImageSpec& s)
-{
-    return std::to_string(s.width) + "x" + std::to_string(s.height) + "+" + std::to_string(s.x) +
-           "+" + std::to_string(s.y);
 }
 
 // The statistics under the contract's names: `in` itself, or what a renderer's preset maps.
@@ -78,15 +67,6 @@ std::vector<ConstPlane> candidate_planes(const OIIO::ImageBuf& candidate, const 
     for (int index : indices)
         planes.push_back(layers::channel_plane(pixels, index));
     return planes;
-}
-
-void require_same_window(const OIIO::ImageBuf& src, const OIIO::ImageBuf& candidate)
-{
-    const OIIO::ImageSpec &a = src.spec(), &b = candidate.spec();
-    if (a.x != b.x || a.y != b.y || a.width != b.width || a.height != b.height)
-        throw LayerError(label(candidate, "the candidate") + " covers " + window_text(b) + " and " +
-                         label(src, "the statistics") + " " + window_text(a) +
-                         ": they must be one frame");
 }
 
 void require_finite(const std::vector<ConstPlane>& planes, const OIIO::ImageBuf& candidate,
@@ -165,7 +145,9 @@ bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in, const OIIO::
     if (&dst == &src_in)
         own_copy.copy(src_in, OIIO::TypeFloat);
     const OIIO::ImageBuf& src = &dst == &src_in ? own_copy : src_in;
-    require_same_window(src, candidate);
+    layers::require_same_frame(candidate.spec(), src.spec(),
+                               label(candidate, "the candidate") + " and " +
+                                   label(src, "the statistics"));
 
     OIIO::ImageBuf floats;
     layers::ImportedImage imported;
@@ -213,24 +195,22 @@ bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in, const OIIO::
         if (!denoise(dst, dst, contract, box, nthreads))
             return false;
     }
-    int means[3];
+    // Planes of dst over its data window, as cand's are: (0, 0) is (spec.x, spec.y).
+    Plane means[3];
     for (int c = 0; c < 3; ++c)
-        means[c] = dst.spec().channelindex(ch.channel(Statistic::Mean, c));
+        means[c] =
+            layers::channel_plane(dst, dst.spec().channelindex(ch.channel(Statistic::Mean, c)));
+    const Plane map = layers::channel_plane(dst, dst.spec().channelindex(map_name));
     std::size_t count = 0;
-    for (int y = roi.ybegin; y < roi.yend; ++y)
-        for (int x = roi.xbegin; x < roi.xend; ++x) {
-            if (rejected[std::size_t(y - spec.y) * spec.width + (x - spec.x)]) {
-                ++count;
-                continue;
-            }
-            for (int c = 0; c < 3; ++c)
-                at(dst, x, y, means[c]) = cand[c](x - spec.x, y - spec.y);
+    for (int y = roi.ybegin - spec.y; y < roi.yend - spec.y; ++y)
+        for (int x = roi.xbegin - spec.x; x < roi.xend - spec.x; ++x) {
+            const std::uint8_t bits = rejected[std::size_t(y) * spec.width + x];
+            map(x, y) = float(bits);
+            count += bits != 0;
+            if (!bits)
+                for (int c = 0; c < 3; ++c)
+                    means[c](x, y) = cand[c](x, y);
         }
-    const int map = dst.spec().channelindex(map_name);
-    for (int y = roi.ybegin; y < roi.yend; ++y)
-        for (int x = roi.xbegin; x < roi.xend; ++x)
-            at(dst, x, y, map) =
-                float(rejected[std::size_t(y - spec.y) * spec.width + (x - spec.x)]);
     dst.specmod().attribute(layers::attr::kDenoised, 1);
     dst.specmod().attribute(layers::attr::kVerifyRejected,
                             float(double(count) / (double(roi.width()) * roi.height())));

@@ -25,6 +25,10 @@ public:
     std::vector<std::string> get_list(const std::string& name,
                                       const std::vector<std::string>& fallback = {}) const;
 
+    /// The value of `name` as a command line spells it (bools 1/0, lists comma-separated,
+    /// numbers in their shortest exact form); throws std::out_of_range when absent.
+    std::string text(const std::string& name) const;
+
     /// The stored value itself; throws std::out_of_range when absent.
     const ParameterValue& at(const std::string& name) const { return values_.at(name); }
 
