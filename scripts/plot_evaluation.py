@@ -19,8 +19,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 METHODS = ["noisy", "statmc", "statmc-noguides", "statmc-classic", "statmc-paper", "classic+ici",
-           "classic+variance", "classic+guard", "classic+explained", "classic+guide-noise",
-           "classic+context",
+           "classic+guide-noise", "classic+context",
            "moon-ci", "nlm",
            "cross-bilateral", "oidn", "oidn-guides"]
 LABELS = {
@@ -29,12 +28,9 @@ LABELS = {
     "statmc-noguides": "statmc default (no guides)",
     "statmc-classic": "statmc classic: the default before the ladder (albedo + normal)",
     "statmc-paper": "statmc, paper's filter (method=paper, no guides)",
-    "classic+ici": "classic + ICI ladder alone (ici=0.005, no moderation)",
-    "classic+variance": "classic + variance denoising alone (variance_radius=3)",
-    "classic+guard": "classic + do-no-harm clamp alone (do_no_harm=0.005)",
-    "classic+explained": "classic + explained-variance correction alone (explained_variance=0.05)",
-    "classic+guide-noise": "classic + guide-noise correction alone (guide_noise=1)",
-    "classic+context": "classic + context test alone (context=1)",
+    "classic+ici": "classic + the default's ICI ladder alone",
+    "classic+guide-noise": "classic + the default's guide-noise correction alone",
+    "classic+context": "classic + the default's context test alone",
     "moon-ci": "Moon-CI style (plain test, α = 0.002)",
     "nlm": "NL-means, per-pixel variance (Rousselle 2012)",
     "cross-bilateral": "cross-bilateral on albedo + normal",

@@ -84,7 +84,7 @@ struct BaselineInputs {
     }
 };
 
-struct Method {
+struct Denoiser {
     std::string name;
     int radius;  ///< the method's own filter radius (NL-means: its search radius; 0: none)
     /// Empty for "noisy": the input itself, untimed.
@@ -105,17 +105,16 @@ OIIO::ImageBuf run_statmc(const OIIO::ImageBuf& in, const DenoiseImageOptions& o
     return out;
 }
 
-// The classic filter (the default before the radius ladder) with one stage added, as
-// `--denoise:method=classic:<stage>` runs it: each option's effect alone.
+// The classic filter with one of the default method's stages added, as the default runs
+// it: each stage's effect alone.
 DenoiseImageOptions classic_with(void (*add)(DenoiseImageOptions&))
 {
     DenoiseImageOptions o = statmc_options(true, DenoiseImageOptions::classic());
     add(o);
-    o.optional_stages = false;
     return o;
 }
 
-std::vector<Method> methods()
+std::vector<Denoiser> methods()
 {
     const DenoiseImageOptions statmc = statmc_options(true), unguided = statmc_options(false),
                               classic = statmc_options(true, DenoiseImageOptions::classic()),
@@ -126,7 +125,7 @@ std::vector<Method> methods()
     const baselines::NlmOptions nlm;
     const baselines::CrossBilateralOptions bilateral;
     auto statmc_method = [](const char* name, const DenoiseImageOptions& o) {
-        return Method{name, o.filter.radius,
+        return Denoiser{name, o.filter.radius,
                       [o](const OIIO::ImageBuf& in) { return run_statmc(in, o); }};
     };
     return {
@@ -135,18 +134,15 @@ std::vector<Method> methods()
         statmc_method("statmc-noguides", unguided),
         statmc_method("statmc-classic", classic),
         statmc_method("statmc-paper", paper),
-        statmc_method("classic+ici",
-                      classic_with([](DenoiseImageOptions& o) { o.ici_alpha = 0.005; })),
-        statmc_method("classic+variance",
-                      classic_with([](DenoiseImageOptions& o) { o.variance_radius = 3; })),
-        statmc_method("classic+guard",
-                      classic_with([](DenoiseImageOptions& o) { o.harm_alpha = 0.005; })),
-        statmc_method("classic+explained",
-                      classic_with([](DenoiseImageOptions& o) { o.explained_alpha = 0.05; })),
+        statmc_method("classic+ici", classic_with([](DenoiseImageOptions& o) {
+                          o.stages.radius_ladder = true;
+                          o.stages.ladder = DenoiseImageOptions{}.stages.ladder;
+                      })),
         statmc_method("classic+guide-noise",
                       classic_with([](DenoiseImageOptions& o) { o.filter.guide_noise = true; })),
-        statmc_method("classic+context",
-                      classic_with([](DenoiseImageOptions& o) { o.context_radius = 1; })),
+        statmc_method("classic+context", classic_with([](DenoiseImageOptions& o) {
+                          o.stages.context_radius = DenoiseImageOptions{}.stages.context_radius;
+                      })),
         statmc_method("moon-ci", moon),
         {"nlm", nlm.search_radius,
          [nlm](const OIIO::ImageBuf& in) {
@@ -273,7 +269,7 @@ int main(int argc, char** argv)
                     << attribute(in, "statmc:spp") << ',' << attribute(in, "statmc:seed")
                     << ",reference-noise,0," << render_seconds << ",0," << std::sqrt(noise->mse)
                     << ",nan," << noise->relmse << ",nan\n";
-            for (const Method& method : methods()) {
+            for (const Denoiser& method : methods()) {
                 if (!method.run) {
                     row(method.name, method.radius, 0.0, in);
                     continue;

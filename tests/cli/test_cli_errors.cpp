@@ -363,10 +363,6 @@ TEST_F(CliError, MalformedParameters)
                    "--denoise: test: expected one of auto, boxcox, untransformed, got 'fast'");
     expect_failure({in, "--denoise:guides=albedo,depth", "-o", out()},
                    "--denoise: guides: unknown item 'depth'");
-    expect_failure({in, "--denoise:ici_radii=3,x", "-o", out()},
-                   "--denoise: ici_radii must be whole numbers separated by commas, got '3,x'");
-    expect_failure({in, "--denoise:ici_radii=8,3", "-o", out()},
-                   "--denoise: ici_radii must ascend, each in [1, 100], got 8,3");
     expect_failure({in, "--denoise:radius", "-o", out()},
                    "--denoise: modifier 'radius' is not of the form name=value");
     expect_failure({in, "--denoise:radius=3:radius=4", "-o", out()},

@@ -90,17 +90,6 @@ TEST(CliRun, DefaultsAndExplicitInputCommand)
     const OIIO::ImageBuf out = read_exr(dir.file("out.exr"));
     expect_same_channels(out, expected);
     EXPECT_EQ(out.spec().get_string_attribute("statmc:denoiseSkipped"), "");
-    // With the interval test it cannot run, and the user is told once.
-    const CliResult tested = run_cli(
-        {"-i", dir.file("aov.exr"), "--denoise:variance_test=1", "-o", dir.file("tested.exr")});
-    ASSERT_EQ(tested.exit_code, 0) << tested.err;
-    EXPECT_EQ(tested.err, "--denoise: note: " + dir.file("aov.exr") +
-                              ": left out ici (with variance_test=1 it needs the M4 layers of "
-                              "format version 2, as statmc-render or --passes write them)\n");
-    DenoiseImageOptions classic_with_context = DenoiseImageOptions::classic();
-    classic_with_context.context_radius = DenoiseImageOptions{}.context_radius;
-    expect_same_channels(read_exr(dir.file("tested.exr")),
-                         denoise(read_exr(dir.file("aov.exr")), classic_with_context));
 }
 
 TEST(CliRun, OutputMayReplaceTheInput)
@@ -415,7 +404,7 @@ TEST(CliRun, HelpListsEveryCommandAndModifier)
           ":sigma_albedo=0.02 ", ":sigma_normal=0.1 ", ":guides=auto ", "(albedo,normal|auto|none)",
           ":albedo_layer=albedo ", ":normal_layer=normal ", ":test=auto ",
           "(auto|boxcox|untransformed)", ":nonfinite=error ", "(error|zero)", ":n=int ",
-          ":diagnostics=0 ", ":aov=name ", ":aovs=name,name,... ", "(int,int,...) with ici",
+          ":diagnostics=0 ", ":aov=name ", ":aovs=name,name,... ",
           // the oiiotool commands, from the same table
           "-d TYPE", "--compression NAME", "-a ", "--ch[:mod=val...] CHANLIST",
           "--chnames[:mod=val...] NAMELIST", "--chappend", "--subimage[:mod=val...] N|NAME",

@@ -8,8 +8,6 @@
 #include <gtest/gtest.h>
 
 #include "statmc/core/context_channel.h"
-#include "statmc/core/explained_variance.h"
-#include "statmc/core/harm_guard.h"
 #include "statmc/core/radius_ladder.h"
 #include "statmc/core/variance_filter.h"
 #include "statmc/denoise/denoise.h"
@@ -215,116 +213,23 @@ void expect_roi_matches_full(const OIIO::ImageBuf& in, const DenoiseImageOptions
                     << c << " at (" << x << ", " << y << ")";
 }
 
-// The core pipeline of variance denoising: Box-Cox variances filtered first, then the
-// mean filter on the view that holds them.
-std::vector<float> core_variance_filtered(const StatisticsPlanes& stats, int variance_radius)
-{
-    VarianceFilterOptions vf;
-    vf.radius = variance_radius;
-    const std::vector<float> variances =
-        denoise_variances(stats.view(), TestDomain::BoxCox, {}, vf);
-    StatisticsView view = stats.view();
-    for (int c = 0; c < view.channels; ++c)
-        view.bc_variance[c] = dense_plane(variances.data() + std::size_t(c) * kW * kH, kW);
-    return test::core_filtered(view, TestDomain::BoxCox, {}, small_filter());
-}
-
-TEST(DenoiseOperator, VarianceDenoisingIsCoresPipelineAndRoiSafe)
-{
-    Frame f;
-    DenoiseImageOptions o = options();
-    o.variance_radius = 3;
-    OIIO::ImageBuf out;
-    ASSERT_TRUE(denoise(out, f.image, o)) << out.geterror();
-    const std::vector<float> expected = core_variance_filtered(f.stats, 3);
-    expect_rgb_equals(out, expected);
-    EXPECT_NE(expected, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter()))
-        << "the variances made no difference";
-    expect_roi_matches_full(f.image, o, out);
-}
-
-TEST(DenoiseOperator, VarianceDenoisingNeedsTheFourthMoment)
-{
-    Frame f;
-    DenoiseImageOptions o = options();
-    o.variance_radius = 3;
-    const OIIO::ImageBuf v1 =
-        test::without_channels(f.image, {"boxcoxM4.R", "boxcoxM4.G", "boxcoxM4.B"});
-    const OIIO::ImageBuf out = denoise(v1, o);
-    EXPECT_EQ(out.geterror().rfind("missing layer boxcoxM4 (channels boxcoxM4.R, boxcoxM4.G, "
-                                   "boxcoxM4.B); variance_radius with variance_test=1 needs it",
-                                   0),
-              0u)
-        << out.geterror();
-    // Without the interval test (the moderation alone) the fourth moment is not read.
-    o.variance_test = false;
-    o.variance_prior_dof = 16;
-    const OIIO::ImageBuf moderated = denoise(v1, o);
-    EXPECT_FALSE(moderated.has_error()) << moderated.geterror();
-    o.variance_test = true;
-    o.test = TestDomainChoice::Untransformed;
-    EXPECT_NE(denoise(f.image, o).geterror().find("variance_radius needs the Box-Cox test"),
-              std::string::npos);
-    o.variance_radius = 101;
-    EXPECT_NE(denoise(f.image, o).geterror().find("variance_radius must be in [0, 100]"),
-              std::string::npos);
-}
-
-TEST(DenoiseOperator, DoNoHarmIsCoresGuardAfterTheFilterAndRoiSafe)
-{
-    Frame f;
-    DenoiseImageOptions o = options();
-    o.harm_alpha = 0.05;
-    OIIO::ImageBuf out;
-    ASSERT_TRUE(denoise(out, f.image, o)) << out.geterror();
-    std::vector<float> expected =
-        test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter());
-    HarmGuardOptions guard;
-    guard.alpha = 0.05;
-    const std::vector<Plane> planes = rgb_planes(expected);
-    EXPECT_GT(keep_within_own_interval(f.stats.view(), {}, planes, guard), 0u)
-        << "the guard did nothing";
-    expect_rgb_equals(out, expected);
-    expect_roi_matches_full(f.image, o, out);
-    const OIIO::ImageBuf v1 =
-        test::without_channels(f.image, {"M3.R", "M3.G", "M3.B", "M4.R", "M4.G", "M4.B"});
-    EXPECT_EQ(denoise(v1, o).geterror().rfind("missing layer M4 (channels M4.R, M4.G, M4.B); "
-                                              "do_no_harm with variance_test=1 needs it",
-                                              0),
-              0u);
-    o.variance_test = false;
-    EXPECT_FALSE(denoise(v1, o).has_error());
-}
-
 TEST(DenoiseOperator, IciIsCoresRadiusLadderAndRoiSafe)
 {
     Frame f;
     DenoiseImageOptions o = options();
-    o.ici_alpha = 0.05;
+    o.stages.radius_ladder = true;
+    o.stages.ladder = DenoiseImageOptions{}.stages.ladder;
+    o.stages.ladder.alpha = 0.05;
     OIIO::ImageBuf out;
     ASSERT_TRUE(denoise(out, f.image, o)) << out.geterror();
     const EstimatorImage est = estimators_from_statistics(f.stats.view(), TestDomain::BoxCox);
     std::vector<float> expected(est.value.size());
     const std::vector<Plane> planes = rgb_planes(expected);
-    RadiusLadderOptions ladder;
-    ladder.alpha = 0.05;
-    filter_with_radius_ladder(f.stats.view(), est, {}, small_filter(), planes, ladder);
+    filter_with_radius_ladder(f.stats.view(), est, {}, small_filter(), planes, o.stages.ladder);
     expect_rgb_equals(out, expected);
     EXPECT_NE(expected, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, small_filter()))
         << "no pixel took a smaller radius";
     expect_roi_matches_full(f.image, o, out);
-    // Asked for by name (optional_stages off), the ladder refuses what it cannot do.
-    o.optional_stages = false;
-    o.diagnostics = true;
-    EXPECT_NE(denoise(f.image, o).geterror().find("ici and diagnostics cannot be combined"),
-              std::string::npos);
-    o.diagnostics = false;
-    const OIIO::ImageBuf v1 =
-        test::without_channels(f.image, {"M3.R", "M3.G", "M3.B", "M4.R", "M4.G", "M4.B"});
-    EXPECT_EQ(
-        denoise(v1, o).geterror().rfind(
-            "missing layer M4 (channels M4.R, M4.G, M4.B); ici with variance_test=1 needs it", 0),
-        0u);
 }
 
 // The default method in core's terms, on `f` without guides: the classic filter with the
@@ -358,28 +263,19 @@ TEST(DenoiseOperator, TheDefaultIsTheClassicFilterWithTheModeratedLadderAndTheCo
     expect_rgb_equals(out, default_in_core(f, {1, 2, 3, 5, 8, 12, 20}));
 }
 
-TEST(DenoiseOperator, IciRadiiAreTheLaddersRungs)
+TEST(DenoiseOperator, TheLaddersRungsAreTheMethods)
 {
     Frame f;
     DenoiseImageOptions o;
     o.filter = small_filter();
     o.guides.albedo = o.guides.normal = GuideUse::Off;
-    o.ici_radii = {2};  // with radius 5: rungs 2 and 5
+    o.stages.ladder.radii = {2};  // with radius 5: rungs 2 and 5
     const OIIO::ImageBuf out = denoise(f.image, o);
     ASSERT_FALSE(out.has_error()) << out.geterror();
     const std::vector<float> expected = default_in_core(f, {2});
     expect_rgb_equals(out, expected);
     EXPECT_NE(expected, default_in_core(f, {1, 2, 3}))
         << "the rungs made no difference on this frame: the test would not see them";
-    o.ici_radii = {3, 2};
-    EXPECT_NE(denoise(f.image, o).geterror().find("ici_radii must ascend, each in [1, 100], got 3,2"),
-              std::string::npos);
-    o.ici_radii = {0, 4};
-    EXPECT_NE(denoise(f.image, o).geterror().find("got 0,4"), std::string::npos);
-    EXPECT_EQ(radii_from_text("1,2,30"), std::vector<int>({1, 2, 30}));
-    EXPECT_EQ(radii_from_text(""), std::vector<int>{});
-    for (const char* bad : {"1,,2", "1,2,", "3.5", "x", "1, 2"})
-        EXPECT_FALSE(radii_from_text(bad)) << bad;
 }
 
 TEST(DenoiseOperator, TheDefaultsLadderNeedsNoFourthMomentAndSaysWhatItLeavesOut)
@@ -405,14 +301,14 @@ TEST(DenoiseOperator, TheDefaultsLadderNeedsNoFourthMomentAndSaysWhatItLeavesOut
                 ASSERT_TRUE(same_bits(channel_value(out, channel, x, y),
                                       channel_value(with_moments, channel, x, y)))
                     << channel << " at (" << x << ", " << y << ")";
-    // With the interval test the ladder needs M4: it is left out, and the note says why.
-    o.variance_test = true;
-    const OIIO::ImageBuf tested = denoise(v1, o);
-    ASSERT_FALSE(tested.has_error()) << tested.geterror();
-    const std::string skipped = tested.spec().get_string_attribute("statmc:denoiseSkipped");
-    EXPECT_EQ(skipped.rfind("ici (with variance_test=1 it needs the M4", 0), 0u) << skipped;
-    expect_rgb_equals(tested, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {},
-                                                  classic.filter, o.context_radius));
+    // Without the variance layer the ladder is left out, and the note says why.
+    const OIIO::ImageBuf no_variance = denoise(
+        test::without_channels(f.image, {"variance.R", "variance.G", "variance.B"}), o);
+    ASSERT_FALSE(no_variance.has_error()) << no_variance.geterror();
+    EXPECT_EQ(no_variance.spec().get_string_attribute("statmc:denoiseSkipped"),
+              "ici (needs the variance layer)");
+    expect_rgb_equals(no_variance, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {},
+                                                       classic.filter, o.stages.context_radius));
     // Diagnostics describe one radius per pixel, so the ladder steps aside for them too.
     o.diagnostics = true;
     const OIIO::ImageBuf with_diagnostics = denoise(f.image, o);
@@ -431,33 +327,6 @@ TEST(DenoiseOperator, MethodPaperIsThePapersFilterBitForBit)
     ASSERT_FALSE(out.has_error()) << out.geterror();
     expect_rgb_equals(
         out, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, DenoiseOptions::paper()));
-}
-
-TEST(DenoiseOperator, ExplainedVarianceCorrectsTheStatisticsTheFilterReads)
-{
-    const StatisticsPlanes stats = test::noisy_statistics(kW, kH, 8, 42, true);
-    const OIIO::ImageBuf image = layers::make_statistics_image(stats);
-    DenoiseImageOptions o = options();
-    o.explained_alpha = 0.2;
-    OIIO::ImageBuf out;
-    ASSERT_TRUE(denoise(out, image, o)) << out.geterror();
-    const ExplainedVariance corrected = remove_explained_variance(stats.view(), {0.2});
-    ASSERT_GT(corrected.corrected_pixels, 0u);
-    const StatisticsView view = corrected.applied_to(stats.view());
-    const auto expected = test::core_filtered(view, TestDomain::BoxCox, {}, small_filter());
-    expect_rgb_equals(out, expected);
-    EXPECT_NE(expected, test::core_filtered(stats.view(), TestDomain::BoxCox, {}, small_filter()));
-    expect_roi_matches_full(image, o, out);
-    // K passes and version-1 files have no positions: a clear error, not a silent no-op.
-    const OIIO::ImageBuf without =
-        layers::make_statistics_image(test::noisy_statistics(kW, kH, 8, 42));
-    EXPECT_EQ(denoise(without, o)
-                  .geterror()
-                  .rfind("missing layer subpixel (channels subpixel.U, subpixel.V, subpixel.UU, "
-                         "subpixel.VV, subpixel.UV); explained_variance needs it",
-                         0),
-              0u)
-        << denoise(without, o).geterror();
 }
 
 TEST(DenoiseOperator, RoiAtTheCornerAndDataWindowOffset)

@@ -51,7 +51,7 @@ DenoiseImageOptions diagnostic_options(float sigma_s)
     o.filter.sigma_spatial = sigma_s;
     o.guides.albedo = o.guides.normal = GuideUse::Off;
     o.diagnostics = true;
-    o.context_radius = 0;  // the members counted here are those of the pixels' own test
+    o.stages.context_radius = 0;  // the members counted here are those of the pixels' own test
     return o;
 }
 

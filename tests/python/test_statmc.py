@@ -113,8 +113,9 @@ def test_an_edit_of_a_layer_read_as_a_copy_is_passed_on():
     ({"sigma_s": "wide"}, "sigma_s=wide"),
     ({"no_such": 1}, "no_such=1"),
     ({"device": "gpu"}, "device=gpu"),
-    ({"joint_test": "any"}, "joint_test=any"),
-    ({"guide_noise": "maybe"}, "guide_noise=maybe"),
+    ({"joint": "maybe"}, "joint=maybe"),
+    ({"nonfinite": "skip"}, "nonfinite=skip"),
+    ({"ici": 0.01}, "ici=0.01"),
 ])
 def test_options_are_checked_with_the_command_lines_messages(tmp_path, options, modifier):
     source = tmp_path / "stats.exr"

@@ -9,9 +9,7 @@
 
 #include "statmc/core/context_channel.h"
 #include "statmc/core/estimator_image.h"
-#include "statmc/core/explained_variance.h"
 #include "statmc/core/filter.h"
-#include "statmc/core/harm_guard.h"
 #include "statmc/core/radius_ladder.h"
 #include "statmc/core/sample_independence.h"
 #include "statmc/core/temporal_merge.h"
@@ -93,25 +91,14 @@ TestDomain choose_domain(const OIIO::ImageSpec& spec, const StatisticsChannels& 
     throw std::invalid_argument("unknown test domain");
 }
 
-// Only the statistics the stages read are checked and viewed: boxcoxM4 for variance
-// denoising with the interval test (`box_cox_moment4`), the untransformed variance for the
-// guard and the ladder (`variance`), and its M3 and M4 for their interval test (`moments`).
-StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool box_cox_moment4,
-                                 bool variance, bool moments, bool explained)
+// Only the statistics the stages read are checked and viewed: the test's, and the
+// untransformed variance for the radius ladder (`variance`).
+StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool variance)
 {
-    if (!explained) {
-        ch.subpixel.clear();
-        for (auto* v : {&ch.cov_u, &ch.cov_v, &ch.bc_cov_u, &ch.bc_cov_v})
-            v->clear();
-    }
-    if (domain != TestDomain::BoxCox)
-        ch.bc_cov_u.clear(), ch.bc_cov_v.clear();
-    if (!moments) {
-        ch.moment3.clear();
-        ch.moment4.clear();
-    }
-    if (!box_cox_moment4)
-        ch.bc_moment4.clear();
+    ch.subpixel.clear();
+    for (auto* v : {&ch.cov_u, &ch.cov_v, &ch.bc_cov_u, &ch.bc_cov_v, &ch.moment3, &ch.moment4,
+                    &ch.bc_moment4})
+        v->clear();
     if (domain == TestDomain::BoxCox) {
         if (!variance)
             ch.variance.clear();
@@ -121,72 +108,6 @@ StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool 
         ch.bc_moment3.clear();
     }
     return ch;
-}
-
-void require_variance_filter_input(const OIIO::ImageSpec& spec, const StatisticsChannels& ch,
-                                   TestDomain domain, const DenoiseImageOptions& opt)
-{
-    if (domain != TestDomain::BoxCox)
-        throw std::invalid_argument(
-            "variance_radius needs the Box-Cox test (the image's Box-Cox layers, test=auto or "
-            "boxcox)");
-    if (opt.variance_test && !ch.has(Statistic::BoxCoxMoment4))
-        throw LayerError(layers::missing_layer_message(
-            spec, layers::statistic_layer(ch.aov, Statistic::BoxCoxMoment4), ch.suffixes, "layer",
-            "variance_radius with variance_test=1 needs it (statistics of format version 2, "
-            "as statmc-render writes them)"));
-}
-
-// Every variance filter weighs the guides as the mean filter does and moderates as asked.
-VarianceFilterOptions variance_filter_options(VarianceFilterOptions variance,
-                                              const DenoiseImageOptions& opt)
-{
-    variance.sigma_albedo = opt.filter.sigma_albedo;
-    variance.sigma_normal = opt.filter.sigma_normal;
-    variance.prior_dof = opt.variance_prior_dof;
-    variance.prior_alpha = opt.variance_prior_alpha;
-    variance.interval_test = opt.variance_test;
-    return variance;
-}
-
-// The co-moments with the sub-pixel position of the variances the stages read.
-void require_position_moments(const OIIO::ImageSpec& spec, const StatisticsChannels& ch,
-                              TestDomain domain)
-{
-    const std::string why = "explained_variance needs it (statmc-render writes it; K passes "
-                            "and other renderers do not)";
-    if (ch.subpixel.empty())
-        throw LayerError(layers::missing_layer_message(spec, layers::kSubpixelLayer,
-                                                       layers::subpixel_suffixes(), "layer", why));
-    const Statistic needed =
-        domain == TestDomain::BoxCox ? Statistic::BoxCoxCovarianceU : Statistic::CovarianceU;
-    if (!ch.has(needed))
-        throw LayerError(layers::missing_layer_message(
-            spec, layers::statistic_layer(ch.aov, needed), ch.suffixes, "layer", why));
-}
-
-// The untransformed layers a variance filter of the guard or the ladder reads: the variance,
-// and M4 for its interval test (variance_test).
-std::vector<Statistic> variance_filter_statistics(const DenoiseImageOptions& opt)
-{
-    if (opt.variance_test)
-        return {Statistic::Variance, Statistic::Moment4};
-    return {Statistic::Variance};
-}
-
-// Those layers, for `option` (do_no_harm or ici) asked for by name: a missing one is an error.
-void require_moments(const OIIO::ImageSpec& spec, const StatisticsChannels& ch, const char* option,
-                     const DenoiseImageOptions& opt)
-{
-    for (Statistic stat : variance_filter_statistics(opt))
-        if (!ch.has(stat))
-            throw LayerError(layers::missing_layer_message(
-                spec, layers::statistic_layer(ch.aov, stat), ch.suffixes, "layer",
-                std::string(option) +
-                    (stat == Statistic::Variance
-                         ? " needs it"
-                         : " with variance_test=1 needs it (statistics of format version 2, as "
-                           "statmc-render or --passes write them)")));
 }
 
 void check_statistics(const OIIO::ImageBuf& in, const StatisticsChannels& ch,
@@ -308,25 +229,17 @@ bool has_test_statistics(const StatisticsChannels& ch, TestDomain domain)
     return domain == TestDomain::BoxCox ? ch.has_box_cox() : ch.has(Statistic::Variance);
 }
 
-// joint_test resolved for this image: All when asked, or when auto and every listed AOV has
-// the test's statistics; `note` then says why auto fell back to the lead's test.
+// Whether joint AOVs share a membership that all their tests decide: where every listed
+// AOV has the test's statistics. Else the lead's test decides, and `note` says why.
 bool joint_test_all(const OIIO::ImageSpec& spec, TestDomain domain, const DenoiseImageOptions& opt,
                     std::string& note)
 {
-    if (!opt.joint || opt.joint_test == JointTest::Lead)
+    if (!opt.joint)
         return false;
     for (const std::string& aov : opt.aovs) {
-        const StatisticsChannels ch = layers::find_statistics(spec, aov);
-        if (has_test_statistics(ch, domain))
+        if (has_test_statistics(layers::find_statistics(spec, aov), domain))
             continue;
-        if (opt.joint_test == JointTest::All)
-            throw LayerError(layers::missing_layer_message(
-                spec,
-                layers::statistic_layer(aov, domain == TestDomain::BoxCox ? Statistic::BoxCoxMean
-                                                                          : Statistic::Variance),
-                ch.suffixes, "layer",
-                "joint_test=all tests every listed AOV (or take joint_test=aov)"));
-        note = "joint_test all (AOV " + aov + " has no " +
+        note = "the joint AOVs' own tests (AOV " + aov + " has no " +
                (domain == TestDomain::BoxCox ? "Box-Cox layers" : "variance") +
                " of its own; the AOVs share " +
                (opt.aov.empty() ? std::string("the beauty") : opt.aov) + "'s test)";
@@ -341,7 +254,7 @@ StatisticsChannels joint_aov_statistics(const OIIO::ImageBuf& in, const std::str
                                         const DenoiseImageOptions& opt, const OIIO::ROI& region)
 {
     const StatisticsChannels ch =
-        used_channels(joint_aov_channels(in.spec(), aov, lead), domain, false, false, false, false);
+        used_channels(joint_aov_channels(in.spec(), aov, lead), domain, false);
     check_statistics(in, ch, opt, region);
     return ch;
 }
@@ -466,22 +379,18 @@ OIIO::ImageBuf with_diagnostics_channels(const OIIO::ImageBuf& result, const std
     return extended;
 }
 
-// The experimental stages around the mean filter (variance denoising, the guard, the
-// radius ladder): which run, with what options, and the halo they read.
+// The method's stages around the mean filter (the radius ladder, the context test) that
+// run on this image, and the halo they read.
 struct Stages {
-    bool explained_variance = false, variance_filter = false, harm_guard = false,
-         radius_ladder = false, context = false;
-    ExplainedVarianceOptions explained;
-    HarmGuardOptions guard;
+    bool radius_ladder = false;
+    int context_radius = 0;  ///< 0: no context test
     RadiusLadderOptions ladder;
-    std::string skipped;  ///< the optional stages left out, and why ("" when none)
+    std::string skipped;  ///< the stages left out, and why ("" when none)
 
-    // The variance filters read their own halo around the mean filter's.
-    int halo(const DenoiseImageOptions& opt) const
+    // The ladder's variance filter and the context boxes read beyond the mean filter's halo.
+    int halo() const
     {
-        return std::max({opt.variance_radius, harm_guard ? guard.variance.radius : 0,
-                         radius_ladder ? ladder.variance.radius : 0,
-                         context ? opt.context_radius : 0});
+        return std::max(radius_ladder ? ladder.variance.radius : 0, context_radius);
     }
 };
 
@@ -489,43 +398,30 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
                   const DenoiseImageOptions& opt)
 {
     Stages s;
-    s.explained_variance = opt.explained_alpha > 0;
-    if (s.explained_variance) {
-        s.explained.alpha = opt.explained_alpha;
-        require_position_moments(spec, all, domain);
-    }
-    s.variance_filter = opt.variance_radius > 0;
-    if (s.variance_filter)
-        require_variance_filter_input(spec, all, domain, opt);
-    s.harm_guard = opt.harm_alpha > 0;
-    if (s.harm_guard) {
-        s.guard.alpha = opt.harm_alpha;
-        s.guard.variance = variance_filter_options(s.guard.variance, opt);
-        require_moments(spec, all, "do_no_harm", opt);
-    }
-    s.radius_ladder = opt.ici_alpha > 0;
-    if (s.radius_ladder && opt.optional_stages && opt.joint) {
-        s.radius_ladder = false;
-        s.skipped = "ici (joint AOVs share one membership; the ladder's radii would differ "
-                    "per AOV)";
-    }
-    if (s.radius_ladder && opt.optional_stages) {
-        const std::vector<Statistic> needed = variance_filter_statistics(opt);
-        const bool has_inputs = std::all_of(needed.begin(), needed.end(),
-                                            [&](Statistic stat) { return all.has(stat); });
-        if (!has_inputs || opt.diagnostics) {
+    auto skip = [&s](const std::string& why) {
+        s.skipped += (s.skipped.empty() ? "" : "; ") + why;
+    };
+    s.radius_ladder = opt.stages.radius_ladder;
+    if (s.radius_ladder) {
+        const char* why = opt.joint ? "joint AOVs share one membership; the ladder's radii "
+                                      "would differ per AOV"
+                          : !all.has(Statistic::Variance) ? "needs the variance layer"
+                          : opt.diagnostics ? "the radius differs per pixel, so diagnostics "
+                                              "cannot describe it"
+                                            : nullptr;
+        if (why) {
             s.radius_ladder = false;
-            if (!all.has(Statistic::Variance))
-                s.skipped = "ici (needs the variance layer)";
-            else if (!has_inputs)
-                s.skipped = "ici (with variance_test=1 it needs the M4 layers of format version "
-                            "2, as statmc-render or --passes write them)";
-            else
-                s.skipped = "ici (the radius differs per pixel, so diagnostics cannot describe it)";
+            skip(std::string("ici (") + why + ")");
         }
     }
-    s.context = opt.context_radius > 0;
-    if (s.context) {
+    if (s.radius_ladder) {
+        s.ladder = opt.stages.ladder;
+        // Its variance filter weighs the guides as the mean filter does.
+        s.ladder.variance.sigma_albedo = opt.filter.sigma_albedo;
+        s.ladder.variance.sigma_normal = opt.filter.sigma_normal;
+    }
+    s.context_radius = opt.stages.context_radius;
+    if (s.context_radius > 0) {
         // The lead's membership alone would change: joint AOVs would no longer add up.
         std::string unused_note;
         const char* why = joint_test_all(spec, domain, opt, unused_note)
@@ -534,31 +430,12 @@ Stages stages_for(const OIIO::ImageSpec& spec, const StatisticsChannels& all, Te
                           : all.channels() >= 4 ? "the filter takes at most four channels, "
                                                   "and the layer has four without it"
                                                 : nullptr;
-        if (why && !opt.optional_stages)
-            throw std::invalid_argument(std::string("context cannot be used here: ") + why);
         if (why) {
-            s.context = false;
-            s.skipped += (s.skipped.empty() ? "" : "; ") + std::string("context (") + why + ")";
+            s.context_radius = 0;
+            skip(std::string("context (") + why + ")");
         }
     }
-    if (s.radius_ladder) {
-        s.ladder.alpha = opt.ici_alpha;
-        s.ladder.overrule_lone_stops = opt.ici_neighbours;
-        s.ladder.radii = opt.ici_radii;
-        s.ladder.variance = variance_filter_options(s.ladder.variance, opt);
-        require_moments(spec, all, "ici", opt);
-    }
     return s;
-}
-
-// Dense channel-major planes over `view`'s window, one per channel.
-std::vector<Plane> dense_planes(std::vector<float>& data, const StatisticsView& view)
-{
-    const std::size_t pixels = std::size_t(view.width) * view.height;
-    std::vector<Plane> planes;
-    for (int c = 0; c < view.channels; ++c)
-        planes.push_back(dense_plane(data.data() + c * pixels, view.width));
-    return planes;
 }
 
 // "frame t−2 (shot.0003.exr)": a neighbour as messages name it.
@@ -839,11 +716,8 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
     const StatisticsChannels all = layers::find_statistics(spec, opt.aov);
     const TestDomain domain = choose_domain(spec, all, opt.test);
     const Stages stages = stages_for(spec, all, domain, opt);
-    const bool reads_variance = stages.harm_guard || stages.radius_ladder;
-    const StatisticsChannels ch =
-        used_channels(all, domain, stages.variance_filter && opt.variance_test, reads_variance,
-                      reads_variance && opt.variance_test, stages.explained_variance);
-    const int halo = stages.halo(opt);
+    const StatisticsChannels ch = used_channels(all, domain, stages.radius_ladder);
+    const int halo = stages.halo();
     const Regions regions = regions_for(in, roi, opt.filter.radius + halo);
     check_statistics(in, ch, opt, regions.input);
 
@@ -863,27 +737,12 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
     }
     const int x0 = regions.input.xbegin - spec.x;
     const int y0 = regions.input.ybegin - spec.y;
-    StatisticsView window =
+    const StatisticsView window =
         layers::view_window(full, x0, y0, regions.input.width(), regions.input.height());
     const Guides window_guides{layers::shifted(guides.albedo, x0, y0),
                                layers::shifted(guides.normal, x0, y0),
                                layers::shifted(guides.albedo_variance, x0, y0),
                                layers::shifted(guides.normal_variance, x0, y0)};
-    ExplainedVariance explained;
-    if (stages.explained_variance) {
-        explained =
-            remove_explained_variance(window, stages.explained, layers::thread_count(nthreads));
-        window = explained.applied_to(window);
-    }
-    std::vector<float> denoised_variances;
-    if (stages.variance_filter) {
-        VarianceFilterOptions vf = variance_filter_options({}, opt);
-        vf.radius = opt.variance_radius;
-        denoised_variances = denoise_variances(window, TestDomain::BoxCox, window_guides, vf,
-                                               layers::thread_count(nthreads));
-        const auto planes = dense_planes(denoised_variances, window);
-        std::copy(planes.begin(), planes.end(), window.bc_variance.begin());
-    }
     std::string joint_note;
     const bool test_all = joint_test_all(spec, domain, opt, joint_note);
     auto aov_window = [&](const StatisticsChannels& aov_ch) {
@@ -908,7 +767,7 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
     } else {
         // Built once: the joint AOVs below reuse the lead's estimators, their values swapped.
         EstimatorImage lead = lead_estimators(window, domain, opt.filter,
-                                              stages.context ? opt.context_radius : 0, nthreads);
+                                              stages.context_radius, nthreads);
         filtered = filter_region(window, lead, window_guides, opt.filter, opt.diagnostics,
                                  stages.radius_ladder ? &stages.ladder : nullptr, nthreads);
         for (const std::string& aov : opt.joint ? opt.aovs : std::vector<std::string>{}) {
@@ -918,9 +777,6 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
             joint.emplace_back(std::move(aov_ch), std::move(f));
         }
     }
-    if (stages.harm_guard)
-        keep_within_own_interval(window, window_guides, dense_planes(filtered.means, window),
-                                 stages.guard, layers::thread_count(nthreads));
 
     OIIO::ImageBuf result;
     if (&dst == &src) {

@@ -19,7 +19,12 @@ namespace {
 
 using statmc::ParameterValues;
 
-const statmc::DenoiseImageOptions kDefaults{};
+// The default method's options, built on first use (not at load time).
+const statmc::DenoiseImageOptions& defaults()
+{
+    static const statmc::DenoiseImageOptions options;
+    return options;
+}
 
 // Each choice's spelling beside its value, so that parsing, the choice list and the
 // default's name are one table.
@@ -29,20 +34,15 @@ const std::vector<std::pair<std::string, statmc::TestDomainChoice>> kTests = {
     {"untransformed", statmc::TestDomainChoice::Untransformed},
 };
 // The presets a `method` names; their explicit parameters override them.
-const std::vector<std::pair<std::string, statmc::DenoiseImageOptions (*)()>> kMethods = {
-    {"default", [] { return statmc::DenoiseImageOptions{}; }},
-    {"classic", &statmc::DenoiseImageOptions::classic},
-    {"paper", &statmc::DenoiseImageOptions::paper},
+const std::vector<std::pair<std::string, statmc::Method>> kMethods = {
+    {"default", statmc::Method::Default},
+    {"classic", statmc::Method::Classic},
+    {"paper", statmc::Method::Paper},
 };
 const std::vector<std::pair<std::string, statmc::Device>> kDevices = {
     {"cpu", statmc::Device::Cpu},
     {"cuda", statmc::Device::Cuda},
     {"auto", statmc::Device::Auto},
-};
-const std::vector<std::pair<std::string, statmc::JointTest>> kJointTests = {
-    {"auto", statmc::JointTest::Auto},
-    {"all", statmc::JointTest::All},
-    {"aov", statmc::JointTest::Lead},
 };
 const std::vector<std::pair<std::string, statmc::NonfinitePolicy>> kNonfinite = {
     {"error", statmc::NonfinitePolicy::Error},
@@ -86,15 +86,14 @@ statmc::GuideUse guide_use(const std::vector<std::string>& guides, const char* g
 
 statmc::DenoiseImageOptions options_from(const ParameterValues& p)
 {
-    statmc::DenoiseImageOptions opt =
-        chosen(kMethods, p.get_string("method", "default"), kMethods.front().second)();
+    statmc::DenoiseImageOptions opt = statmc::DenoiseImageOptions::of(
+        chosen(kMethods, p.get_string("method", "default"), statmc::Method::Default));
     opt.filter.radius = p.get_int("radius", opt.filter.radius);
     opt.filter.alpha = p.get_float("alpha", opt.filter.alpha);
     opt.filter.sigma_spatial = float(p.get_float("sigma_s", opt.filter.sigma_spatial));
     opt.filter.sigma_albedo = float(p.get_float("sigma_albedo", opt.filter.sigma_albedo));
     opt.filter.sigma_normal = float(p.get_float("sigma_normal", opt.filter.sigma_normal));
     opt.filter.firefly_ratio = float(p.get_float("fireflies", opt.filter.firefly_ratio));
-    opt.filter.guide_noise = p.get_bool("guide_noise", opt.filter.guide_noise);
     const std::vector<std::string> guides = p.get_list("guides", {"auto"});
     opt.guides.albedo = guide_use(guides, "albedo");
     opt.guides.normal = guide_use(guides, "normal");
@@ -110,48 +109,23 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
     if (const std::string aovs = p.get_string("aovs", ""); !aovs.empty())
         opt.aovs = OIIO::Strutil::splits(aovs, ",");
     opt.joint = p.get_bool("joint", opt.joint);
-    opt.joint_test =
-        chosen(kJointTests, p.get_string("joint_test", spelling(kJointTests, opt.joint_test)),
-               opt.joint_test);
     opt.diagnostics = p.get_bool("diagnostics", opt.diagnostics);
-    opt.variance_radius = p.get_int("variance_radius", opt.variance_radius);
-    opt.harm_alpha = p.get_float("do_no_harm", opt.harm_alpha);
-    opt.ici_alpha = p.get_float("ici", opt.ici_alpha);
-    opt.ici_neighbours = p.get_bool("ici_neighbours", opt.ici_neighbours);
-    if (const auto radii = statmc::radii_from_text(p.get_string("ici_radii", "")); radii)
-        opt.ici_radii = *radii;
-    // The ladder asked for by name must run: its missing layers are then an error.
-    if (p.has("ici"))
-        opt.optional_stages = false;
-    opt.explained_alpha = p.get_float("explained_variance", opt.explained_alpha);
-    opt.variance_prior_dof = p.get_float("variance_dof", opt.variance_prior_dof);
-    opt.variance_prior_alpha = p.get_float("variance_prior_alpha", opt.variance_prior_alpha);
-    opt.variance_test = p.get_bool("variance_test", opt.variance_test);
-    opt.context_radius = p.get_int("context", opt.context_radius);
-    if (p.has("context") && opt.context_radius > 0)
-        opt.optional_stages = false;
     opt.temporal.frames = p.get_int("temporal", opt.temporal.frames);
     opt.temporal.radius = p.get_int("temporal_radius", opt.temporal.radius);
     return opt;
 }
 
-// The help of a stage that the default method turns on and the others leave off.
-std::string only_in_the_default(double value)
-{
-    return " Default " + statmc::number_text(value) + ", classic and paper 0";
-}
-
 std::vector<statmc::ParameterSpec> parameters()
 {
     using namespace statmc;
-    const DenoiseOptions& f = kDefaults.filter;
+    const DenoiseOptions& f = defaults().filter;
     return {
         choice_parameter("method", spellings(kMethods), "default",
-                         "default: the classic filter with each pixel at its own radius by the "
-                         "ICI ladder (docs/method.md §11; on a file without M4 the ladder is "
-                         "left out, with a note); classic: the default before it (paper + "
-                         "firefly guard); paper: Sakai et al. 2024 bit for bit. Parameters "
-                         "given override the method's"),
+                         "default: the classic filter with each pixel at its own radius (the "
+                         "ICI ladder, left out with a note on a file without the variance "
+                         "layer) and the context test (docs/method.md §11); classic: the 2024 "
+                         "filter with the firefly guard; paper: Sakai et al. 2024 bit for bit. "
+                         "The parameters below apply over any method"),
         int_parameter("radius", f.radius, "filter disk radius in pixels").between(0, 1000),
         float_parameter("alpha", f.alpha, "significance level of the t-test").open_between(0, 1),
         float_parameter("sigma_s", f.sigma_spatial, "spatial Gaussian falloff in pixels").above(0),
@@ -161,124 +135,58 @@ std::vector<statmc::ParameterSpec> parameters()
                         "firefly guard: no pixel averages a neighbour whose noise level (the "
                         "Box-Cox sample variance, or s^2/mean for the untransformed test) "
                         "exceeds this many times its own "
-                        "(halos of highlights, fireflies); 0 = off. Default and classic " +
+                        "(halos of highlights, fireflies); 0 = off, else at least 1. Default and "
+                        "classic " +
                             number_text(f.firefly_ratio) + ", paper 0")
             .at_least(0),
-        bool_parameter("guide_noise", std::nullopt,
-                       "take the part of a guide distance that the guides' own sampling noise "
-                       "explains out of their weight (the albedoVariance/normalVariance layers; "
-                       "docs/method.md §5); no effect without them. Default 1, classic and "
-                       "paper 0"),
         list_parameter("guides", {"albedo", "normal"}, {"auto", "none"}, "auto",
                        "guide layers: a list is required to be present, auto uses those "
                        "present, none none"),
-        string_parameter("albedo_layer", kDefaults.guides.albedo_layer,
+        string_parameter("albedo_layer", defaults().guides.albedo_layer,
                          "layer of the albedo guide (.R,.G,.B)"),
-        string_parameter("normal_layer", kDefaults.guides.normal_layer,
+        string_parameter("normal_layer", defaults().guides.normal_layer,
                          "layer of the normal guide (.X,.Y,.Z)"),
-        choice_parameter("test", spellings(kTests), spelling(kTests, kDefaults.test),
+        choice_parameter("test", spellings(kTests), spelling(kTests, defaults().test),
                          "test domain: auto = boxcox when the Box-Cox layers are present, "
                          "else untransformed"),
-        choice_parameter("device", spellings(kDevices), spelling(kDevices, kDefaults.filter.device),
+        choice_parameter("device", spellings(kDevices), spelling(kDevices, defaults().filter.device),
                          "where the filter kernel runs: cpu (the reference bits), cuda (a CUDA "
                          "GPU: the same members, values within float summation order; an error "
                          "where none is present), auto (a GPU when present and the image has at "
                          "least 512x512 pixels) (docs/gpu.md)"),
         choice_parameter("nonfinite", spellings(kNonfinite),
-                         spelling(kNonfinite, kDefaults.nonfinite),
+                         spelling(kNonfinite, defaults().nonfinite),
                          "NaN/Inf in the statistics: error refuses the image, zero counts "
                          "them as 0"),
-        choice_parameter("from", layers::renderer_preset_choices(), kDefaults.from,
+        choice_parameter("from", layers::renderer_preset_choices(), defaults().from,
                          "whose channel names the image has: auto recognises statmc's own, "
                          "RenderMan's (mse, sampleCount), pbrt-v4's gbuffer (Variance, "
                          "samplesPerPixel) and Blender Cycles' (ViewLayer.Combined; passes "
                          "only) and refuses an ambiguous image; or name one "
                          "(docs/renderers.md)"),
-        string_parameter("aov", kDefaults.aov,
+        string_parameter("aov", defaults().aov,
                          "the AOV whose mean is denoised (docs/exr-layers.md), e.g. diffuse or "
                          "bounce1L; empty: the beauty R,G,B"),
         string_parameter("aovs", "",
                          "more AOVs denoised beside aov, comma-separated (e.g. "
                          "diffuse,specular); each by its own test unless joint")
             .written_as("name,name,..."),
-        bool_parameter("joint", kDefaults.joint,
-                       "with aovs: average every listed AOV with aov's members and weights "
-                       "(the beauty's test), so that AOVs summing to the beauty still sum to "
-                       "the denoised beauty (docs/method.md §14); leaves the ici ladder out"),
-        choice_parameter("joint_test", spellings(kJointTests),
-                         spelling(kJointTests, kDefaults.joint_test),
-                         "with joint: all = a neighbour joins only where the test of aov and of "
-                         "every listed AOV accepts it (each needs its own statistics); aov = "
-                         "aov's test alone (the AOVs need only their means); auto = all when "
-                         "every listed AOV has its statistics, else aov, with a note"),
-        int_parameter("variance_radius", kDefaults.variance_radius,
-                      "experimental: denoise the Box-Cox variances over this radius first "
-                      "(StatER; needs the boxcoxM4 layer); 0 = off")
-            .between(0, 100),
-        float_parameter("do_no_harm", kDefaults.harm_alpha,
-                        "experimental: the do-no-harm guard's significance (e.g. 0.005): each "
-                        "output is pulled back into its own pixel's confidence interval "
-                        "(needs the M3/M4 layers); 0 = off")
-            .between(0, 0.5),
-        float_parameter("ici", std::nullopt,
-                        "each pixel takes its own radius from 0 and the rungs of ici_radii "
-                        "by intersecting confidence intervals at this significance (needs the "
-                        "variance layer, and M4 with variance_test=1); 0 = off." +
-                            only_in_the_default(kDefaults.ici_alpha))
-            .between(0, 0.5),
-        bool_parameter("ici_neighbours", kDefaults.ici_neighbours,
-                       "with ici: a pixel goes on up the ladder where all of its 8-neighbours "
-                       "do, even when its own intervals would stop it (a lone stop is more "
-                       "often the intervals' false alarm; docs/method.md §11); 0 = each pixel "
-                       "by its own intervals"),
-        string_parameter("ici_radii", statmc::radii_text(kDefaults.ici_radii),
-                         "with ici: the ladder's rungs, ascending, each in [1, 100]; those at "
-                         "or above radius are dropped and radius is always the last. Each "
-                         "rung is a pass over the image: fewer rungs cost less "
-                         "(docs/filter-design.md)")
-            .written_as("int,int,..."),
-        float_parameter("explained_variance", kDefaults.explained_alpha,
-                        "experimental: first remove the part of each pixel's variance that a "
-                        "gradient across the pixel explains, where significant at this level "
-                        "(e.g. 0.05; StatER; needs the subpixel and covU/covV layers); 0 = off")
-            .between(0, 0.5),
-        float_parameter("variance_dof", std::nullopt,
-                        "prior degrees of freedom with which the variance filters "
-                        "(variance_radius, do_no_harm, ici) pull a pixel's variance towards its "
-                        "neighbourhood's (docs/method.md §10); 0 = off." +
-                            only_in_the_default(kDefaults.variance_prior_dof))
-            .between(0, 1000),
-        bool_parameter("variance_test", std::nullopt,
-                       "the variance filters (variance_radius, do_no_harm, ici) first average "
-                       "the variances of the neighbours whose intervals on ln s2 agree "
-                       "(StatER's variance denoising; docs/method.md §10); 0 = each pixel "
-                       "keeps its own, which variance_dof alone moderates. Default 0, classic "
-                       "and paper 1"),
-        int_parameter("context", std::nullopt,
-                      "a neighbour joins only where the means over the (2k+1)x(2k+1) boxes "
-                      "around both pixels pass the t-test too, as NL-means compares patches: a "
-                      "pixel on a light's edge is not averaged with the surface beside it "
-                      "(docs/method.md §5); 0 = off." +
-                          only_in_the_default(kDefaults.context_radius))
-            .between(0, 5),
-        float_parameter("variance_prior_alpha", std::nullopt,
-                        "with variance_dof: only neighbours whose mean the t-test at this "
-                        "significance cannot tell from the pixel's lend it their variance (a "
-                        "caustic next to a dark corner lends it none; docs/method.md §10); 0 = "
-                        "every neighbour." +
-                            only_in_the_default(kDefaults.variance_prior_alpha))
-            .between(0, 0.5),
-        int_parameter("temporal", kDefaults.temporal.frames,
+        bool_parameter("joint", defaults().joint,
+                       "with aovs: average every listed AOV with aov's members and weights, so "
+                       "that AOVs summing to the beauty still sum to the denoised beauty; the "
+                       "membership is every AOV's test where each has its statistics, else "
+                       "aov's (docs/method.md §14). Leaves the ICI ladder out"),
+        int_parameter("temporal", defaults().temporal.frames,
                       "frame sequences: merge the members that the K frames before and after "
                       "offer (a pixel of another frame joins when the t-test cannot tell it "
                       "from this one, following motion.X/Y when every frame has it; "
                       "docs/method.md §13). Cut at the sequence's ends; 0 = off")
             .between(0, 16),
-        int_parameter("temporal_radius", kDefaults.temporal.radius,
+        int_parameter("temporal_radius", defaults().temporal.radius,
                       "with temporal: also offer the pixels within this radius of the "
                       "corresponding pixel in each other frame; 0 = that pixel only")
             .between(0, 8),
-        bool_parameter("diagnostics", kDefaults.diagnostics,
+        bool_parameter("diagnostics", defaults().diagnostics,
                        "add [<aov>.]diagnostics.members and .effectiveSamples: per pixel, the "
                        "pixels averaged and the effective sample count (Σw)²/Σ(w²/n)"),
     };
@@ -395,12 +303,7 @@ void register_denoise(statmc::PluginRegistry& registry)
               "cannot tell apart (Sakai et al. 2024). Reads the mean, sampleCount and "
               "variance or Box-Cox layers (docs/exr-layers.md); sets statmc:denoised=1.";
     op.parameters = parameters();
-    op.check = [](const ParameterValues& p) -> std::string {
-        const std::string radii = p.get_string("ici_radii", "");
-        if (!statmc::radii_from_text(radii))
-            return "ici_radii must be whole numbers separated by commas, got '" + radii + "'";
-        return options_from(p).validate();
-    };
+    op.check = [](const ParameterValues& p) -> std::string { return options_from(p).validate(); };
     op.run = [](const std::vector<const OIIO::ImageBuf*>& inputs, const ParameterValues& p,
                 const statmc::RunContext& ctx) {
         note_lossy_storage(*inputs[0], ctx);

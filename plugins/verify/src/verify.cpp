@@ -7,7 +7,7 @@
 
 #include <OpenImageIO/imagebufalgo.h>
 
-#include "statmc/core/radius_ladder.h"
+#include "statmc/core/method.h"
 #include "statmc/core/variance_filter.h"
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/float_pixels.h"
@@ -85,14 +85,10 @@ void require_finite(const std::vector<ConstPlane>& planes, const OIIO::ImageBuf&
 // a pixel whose samples all agree does not borrow its neighbours' s² outright: at many
 // samples that agreement is evidence (the inside of a light), and at few the moderation's
 // prior already lifts it.
-std::vector<float> moderated_variances(const StatisticsView& view, const DenoiseImageOptions& d,
-                                       int nthreads)
+std::vector<float> moderated_variances(const StatisticsView& view, int nthreads)
 {
-    VarianceFilterOptions v = RadiusLadderOptions{}.variance;
-    v.interval_test = false;
+    VarianceFilterOptions v = method_settings(Method::Default).stages.ladder.variance;
     v.borrow_without_interval = false;
-    v.prior_dof = d.variance_prior_dof;
-    v.prior_alpha = d.variance_prior_alpha;
     return denoise_variances(view, TestDomain::Untransformed, {}, v,
                              layers::thread_count(nthreads));
 }
@@ -179,9 +175,9 @@ bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in, const OIIO::
 
     const StatisticsView view = layers::statistics_view(in, ch);
     CandidateTestOptions test = opt.test;
-    test.prior_dof = opt.denoise.variance_prior_dof;
+    test.prior_dof = method_settings(Method::Default).stages.ladder.variance.prior_dof;
     const std::vector<std::uint8_t> rejected =
-        test_candidate(view, moderated_variances(view, opt.denoise, nthreads), cand, test,
+        test_candidate(view, moderated_variances(view, nthreads), cand, test,
                        layers::thread_count(nthreads));
 
     // A renderer's file comes out under the contract's names, as --passes writes them. The

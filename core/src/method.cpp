@@ -1,0 +1,29 @@
+#include "statmc/core/method.h"
+
+namespace statmc {
+
+MethodSettings method_settings(Method method)
+{
+    MethodSettings s;
+    switch (method) {
+    case Method::Default:
+        s.stages.radius_ladder = true;
+        s.stages.ladder.alpha = 0.005;
+        // Moderated (d0 = 16, docs/method.md §10) towards the neighbours whose means agree,
+        // without the interval test on ln s² (measured the same, and cheaper).
+        s.stages.ladder.variance.prior_dof = 16;
+        s.stages.ladder.variance.prior_alpha = 0.05;
+        s.stages.ladder.variance.interval_test = false;
+        s.stages.context_radius = 1;
+        break;
+    case Method::Classic:
+        s.filter.guide_noise = false;
+        break;
+    case Method::Paper:
+        s.filter = DenoiseOptions::paper();
+        break;
+    }
+    return s;
+}
+
+}  // namespace statmc
