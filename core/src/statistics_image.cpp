@@ -29,16 +29,7 @@ StatisticsView StatisticsPlanes::view() const
         v.moment3[c] = plane(moment3, c);
         v.moment4[c] = plane(moment4, c);
         v.bc_moment4[c] = plane(bc_moment4, c);
-        v.cov_u[c] = plane(cov_u, c);
-        v.cov_v[c] = plane(cov_v, c);
-        v.bc_cov_u[c] = plane(bc_cov_u, c);
-        v.bc_cov_v[c] = plane(bc_cov_v, c);
     }
-    v.subpixel_u = plane(subpixel_u, 0);
-    v.subpixel_v = plane(subpixel_v, 0);
-    v.subpixel_uu = plane(subpixel_uu, 0);
-    v.subpixel_vv = plane(subpixel_vv, 0);
-    v.subpixel_uv = plane(subpixel_uv, 0);
     return v;
 }
 
@@ -72,36 +63,7 @@ StatisticsPlanes StatisticsImage<C>::planes() const
             p.bc_moment4[k] = float(px.box_cox[c].m4 * per_sample);
         }
     }
-    if (tracks_positions())
-        position_planes(p);
     return p;
-}
-
-template <int C>
-void StatisticsImage<C>::position_planes(StatisticsPlanes& p) const
-{
-    const std::size_t n = pixels_.size();
-    for (auto* plane :
-         {&p.subpixel_u, &p.subpixel_v, &p.subpixel_uu, &p.subpixel_vv, &p.subpixel_uv})
-        plane->resize(n);
-    for (auto* plane : {&p.cov_u, &p.cov_v, &p.bc_cov_u, &p.bc_cov_v})
-        plane->resize(n * C);
-    for (std::size_t i = 0; i < n; ++i) {
-        const Position& q = positions_[i];
-        const double per_sample = pixels_[i].n > 0 ? 1.0 / pixels_[i].n : 0.0;
-        p.subpixel_u[i] = float(q.mean_u);
-        p.subpixel_v[i] = float(q.mean_v);
-        p.subpixel_uu[i] = float(q.m2_uu * per_sample);
-        p.subpixel_vv[i] = float(q.m2_vv * per_sample);
-        p.subpixel_uv[i] = float(q.m2_uv * per_sample);
-        for (int c = 0; c < C; ++c) {
-            const std::size_t k = c * n + i;
-            p.cov_u[k] = float(q.raw_u[c] * per_sample);
-            p.cov_v[k] = float(q.raw_v[c] * per_sample);
-            p.bc_cov_u[k] = float(q.bc_u[c] * per_sample);
-            p.bc_cov_v[k] = float(q.bc_v[c] * per_sample);
-        }
-    }
 }
 
 namespace {
@@ -138,25 +100,6 @@ PixelMoments<C, double> stored_pixel(const StatisticsView& view, int x, int y)
     return px;
 }
 
-template <int C>
-PositionMoments<C, double> stored_position(const StatisticsView& view, int x, int y)
-{
-    PositionMoments<C, double> q;
-    const double n = view.count(x, y);
-    q.mean_u = view.subpixel_u(x, y);
-    q.mean_v = view.subpixel_v(x, y);
-    q.m2_uu = view.subpixel_uu(x, y) * n;
-    q.m2_vv = view.subpixel_vv(x, y) * n;
-    q.m2_uv = view.subpixel_uv(x, y) * n;
-    for (int c = 0; c < C; ++c) {
-        q.raw_u[c] = view.cov_u[c](x, y) * n;
-        q.raw_v[c] = view.cov_v[c](x, y) * n;
-        q.bc_u[c] = view.bc_cov_u[c](x, y) * n;
-        q.bc_v[c] = view.bc_cov_v[c](x, y) * n;
-    }
-    return q;
-}
-
 StatisticsView with_stand_in_box_cox(StatisticsView view, const ConstPlane& zero)
 {
     for (int c = 0; c < view.channels; ++c)
@@ -172,13 +115,10 @@ template <int C>
 StatisticsImage<C> StatisticsImage<C>::from_view(const StatisticsView& view)
 {
     require_mergeable<C>(view, "StatisticsImage::from_view");
-    StatisticsImage img(view.width, view.height, view.has_box_cox_positions());
+    StatisticsImage img(view.width, view.height);
     for (int y = 0; y < view.height; ++y)
-        for (int x = 0; x < view.width; ++x) {
+        for (int x = 0; x < view.width; ++x)
             img.at(x, y) = stored_pixel<C>(view, x, y);
-            if (img.tracks_positions())
-                img.positions_[std::size_t(y) * img.width_ + x] = stored_position<C>(view, x, y);
-        }
     return img;
 }
 
@@ -193,34 +133,22 @@ StatisticsImage<C> StatisticsImage<C>::merged(const std::vector<StatisticsView>&
         if (v.width != views[0].width || v.height != views[0].height)
             throw std::invalid_argument("StatisticsImage::merged: resolutions differ");
     }
-    bool positions = true;
-    for (const StatisticsView& v : views)
-        positions = positions && v.has_box_cox_positions();
-    StatisticsImage img(views[0].width, views[0].height, positions);
+    StatisticsImage img(views[0].width, views[0].height);
     run_with_threads(nthreads, [&] {
         tbb::parallel_for(0, img.height_, [&](int y) {
             for (int x = 0; x < img.width_; ++x) {
                 Pixel px = stored_pixel<C>(views[0], x, y);
-                if (!positions) {
-                    for (std::size_t k = 1; k < views.size(); ++k)
-                        px.merge(stored_pixel<C>(views[k], x, y));
-                    img.at(x, y) = px;
-                    continue;
-                }
-                Position q = stored_position<C>(views[0], x, y);
                 for (std::size_t k = 1; k < views.size(); ++k)
-                    px.merge(stored_pixel<C>(views[k], x, y), q, stored_position<C>(views[k], x, y));
+                    px.merge(stored_pixel<C>(views[k], x, y));
                 img.at(x, y) = px;
-                img.positions_[std::size_t(y) * img.width_ + x] = q;
             }
         });
     });
     return img;
 }
 
-#define STATMC_STORED(C)                                                                   \
-    template PixelMoments<C, double> stored_pixel<C>(const StatisticsView&, int, int);     \
-    template PositionMoments<C, double> stored_position<C>(const StatisticsView&, int, int); \
+#define STATMC_STORED(C)                                                               \
+    template PixelMoments<C, double> stored_pixel<C>(const StatisticsView&, int, int); \
     template class StatisticsImage<C>;
 STATMC_STORED(1)
 STATMC_STORED(3)

@@ -98,8 +98,7 @@ void check_frames(const std::vector<TemporalFrame>& frames, int centre, TestDoma
                                         " lacks the variance the test reads");
         // A moment one frame lacks would be merged as 0 into the others'.
         if (v.has_box_cox() != c.has_box_cox() || v.has_moments() != c.has_moments() ||
-            v.has_box_cox_moment4() != c.has_box_cox_moment4() ||
-            v.has_positions() != c.has_positions())
+            v.has_box_cox_moment4() != c.has_box_cox_moment4())
             throw std::invalid_argument("temporal merge: frame " + std::to_string(k) +
                                         " has other statistics than the centre");
     }
@@ -135,12 +134,9 @@ StatisticsPlanes merge_members(const std::vector<TemporalFrame>& frames, int cen
     const std::vector<float> zeros(std::size_t(w) * h, 0.f);
     const bool box_cox = cv.has_box_cox();
     std::vector<StatisticsView> views;
-    bool positions = true;
-    for (const TemporalFrame& f : frames) {
+    for (const TemporalFrame& f : frames)
         views.push_back(box_cox ? f.stats
                                 : with_stand_in_box_cox(f.stats, dense_plane(zeros.data(), w)));
-        positions = positions && views.back().has_box_cox_positions();
-    }
 
     std::vector<FrameTests> tests(frames.size());
     float max_count = 2;
@@ -162,14 +158,11 @@ StatisticsPlanes merge_members(const std::vector<TemporalFrame>& frames, int cen
     };
     const int r = temporal.radius;
 
-    StatisticsImage<C> out(w, h, positions);
+    StatisticsImage<C> out(w, h);
     run_with_threads(nthreads, [&] {
         tbb::parallel_for(0, h, [&](int y) {
             for (int x = 0; x < w; ++x) {
                 PixelMoments<C, double> px = stored_pixel<C>(views[centre], x, y);
-                PositionMoments<C, double> q;
-                if (positions)
-                    q = stored_position<C>(views[centre], x, y);
                 int joined = 0;
                 const bool testable = ce.testable(x, y);
                 const double gi = testable ? gamma2(ce, x, y) : 0.0;
@@ -198,17 +191,11 @@ StatisticsPlanes merge_members(const std::vector<TemporalFrame>& frames, int cen
                             }
                             if (!member)
                                 continue;
-                            if (positions)
-                                px.merge(stored_pixel<C>(views[k], u, v), q,
-                                         stored_position<C>(views[k], u, v));
-                            else
-                                px.merge(stored_pixel<C>(views[k], u, v));
+                            px.merge(stored_pixel<C>(views[k], u, v));
                             ++joined;
                         }
                 }
                 out.at(x, y) = px;
-                if (positions)
-                    out.position_accumulators()[std::size_t(y) * w + x] = q;
                 if (members)
                     members(x, y) = float(joined);
             }

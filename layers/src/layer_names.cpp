@@ -9,8 +9,7 @@ const std::vector<Statistic>& all_statistics()
     static const std::vector<Statistic> all = {
         Statistic::Mean,           Statistic::Variance,          Statistic::BoxCoxMean,
         Statistic::BoxCoxVariance, Statistic::BoxCoxMoment3,     Statistic::Moment3,
-        Statistic::Moment4,        Statistic::BoxCoxMoment4,     Statistic::CovarianceU,
-        Statistic::CovarianceV,    Statistic::BoxCoxCovarianceU, Statistic::BoxCoxCovarianceV};
+        Statistic::Moment4,        Statistic::BoxCoxMoment4};
     return all;
 }
 
@@ -33,14 +32,6 @@ const char* statistic_name(Statistic stat)
         return "M4";
     case Statistic::BoxCoxMoment4:
         return "boxcoxM4";
-    case Statistic::CovarianceU:
-        return "covU";
-    case Statistic::CovarianceV:
-        return "covV";
-    case Statistic::BoxCoxCovarianceU:
-        return "boxcoxCovU";
-    case Statistic::BoxCoxCovarianceV:
-        return "boxcoxCovV";
     }
     return "?";
 }
@@ -57,9 +48,6 @@ bool is_statistics_channel(std::string_view channel, std::string_view aov)
 {
     if (channel == kSampleCountChannel)
         return true;
-    for (const std::string& suffix : subpixel_suffixes())
-        if (channel == channel_name(kSubpixelLayer, suffix))
-            return true;
     const std::size_t dot = channel.rfind('.');
     if (dot == std::string_view::npos)
         return false;
@@ -136,12 +124,6 @@ const std::vector<std::string>& scalar_suffixes()
 const std::vector<std::string>& vector_suffixes()
 {
     static const std::vector<std::string> s = {"X", "Y", "Z"};
-    return s;
-}
-
-const std::vector<std::string>& subpixel_suffixes()
-{
-    static const std::vector<std::string> s = {"U", "V", "UU", "VV", "UV"};
     return s;
 }
 

@@ -97,24 +97,6 @@ void find_higher_moments(const OIIO::ImageSpec& spec, StatisticsChannels& ch)
     }
 }
 
-// The position co-moments come in pairs (u and v) and need the subpixel layer's moments.
-void find_position_moments(const OIIO::ImageSpec& spec, StatisticsChannels& ch)
-{
-    ch.subpixel = optional_layer(spec, kSubpixelLayer, subpixel_suffixes());
-    for (auto [u, v] : {std::pair{Statistic::CovarianceU, Statistic::CovarianceV},
-                        std::pair{Statistic::BoxCoxCovarianceU, Statistic::BoxCoxCovarianceV}}) {
-        ch.indices(u) = optional_layer(spec, statistic_layer(ch.aov, u), ch.suffixes);
-        ch.indices(v) = optional_layer(spec, statistic_layer(ch.aov, v), ch.suffixes);
-        if (ch.has(u) != ch.has(v))
-            throw LayerError("incomplete position co-moments: " +
-                             missing_layer_message(spec, statistic_layer(ch.aov, ch.has(u) ? v : u),
-                                                   ch.suffixes));
-        if (ch.has(u) && ch.subpixel.empty())
-            throw LayerError("position co-moments without their positions: " +
-                             missing_layer_message(spec, kSubpixelLayer, subpixel_suffixes()));
-    }
-}
-
 ConstPlane plane_or_null(const OIIO::ImageBuf& buf, const std::vector<int>& indices, int c)
 {
     return indices.empty() ? ConstPlane{} : channel_plane(buf, indices[c]);
@@ -154,22 +136,6 @@ void layout_statistics(Channels& out, const StatisticsView& stats, const std::st
     }
     if (stats.has_box_cox_moment4())
         add(Statistic::BoxCoxMoment4, stats.bc_moment4);
-    if (stats.has_positions()) {
-        add(Statistic::CovarianceU, stats.cov_u);
-        add(Statistic::CovarianceV, stats.cov_v);
-    }
-    if (stats.has_box_cox_positions()) {
-        add(Statistic::BoxCoxCovarianceU, stats.bc_cov_u);
-        add(Statistic::BoxCoxCovarianceV, stats.bc_cov_v);
-    }
-}
-
-void layout_subpixel(Channels& out, const StatisticsView& stats)
-{
-    const ConstPlane planes[] = {stats.subpixel_u, stats.subpixel_v, stats.subpixel_uu,
-                                 stats.subpixel_vv, stats.subpixel_uv};
-    for (std::size_t i = 0; i < subpixel_suffixes().size(); ++i)
-        out.emplace_back(channel_name(kSubpixelLayer, subpixel_suffixes()[i]), planes[i]);
 }
 
 // An extra AOV must be nameable, distinct, of the frame and share the beauty's counts.
@@ -200,11 +166,8 @@ Channels layout_channels(const StatisticsView& stats, const StatisticsMetadata& 
                          const GuidePlanes& guides, const std::vector<AovStatistics>& aovs)
 {
     Channels out;
-    layout_statistics(out, stats, metadata.aov, [&] {
-        out.emplace_back(kSampleCountChannel, stats.count);
-        if (stats.has_positions())
-            layout_subpixel(out, stats);
-    });
+    layout_statistics(out, stats, metadata.aov,
+                      [&] { out.emplace_back(kSampleCountChannel, stats.count); });
     for (const AovStatistics& extra : aovs) {
         check_aov(stats, metadata.aov, extra, aovs);
         layout_statistics(out, extra.stats, extra.aov, {});
@@ -275,14 +238,6 @@ const std::vector<int>& StatisticsChannels::indices(Statistic stat) const
         return moment4;
     case Statistic::BoxCoxMoment4:
         return bc_moment4;
-    case Statistic::CovarianceU:
-        return cov_u;
-    case Statistic::CovarianceV:
-        return cov_v;
-    case Statistic::BoxCoxCovarianceU:
-        return bc_cov_u;
-    case Statistic::BoxCoxCovarianceV:
-        return bc_cov_v;
     }
     return mean;
 }
@@ -335,7 +290,6 @@ StatisticsChannels find_statistics(const OIIO::ImageSpec& spec, std::string_view
     ch.variance = optional_layer(spec, statistic_layer(aov, Statistic::Variance), ch.suffixes);
     find_box_cox(spec, ch);
     find_higher_moments(spec, ch);
-    find_position_moments(spec, ch);
     ch.variance_of_mean = read_variance_of_mean(spec);
     return ch;
 }
@@ -365,17 +319,6 @@ StatisticsView statistics_view(const OIIO::ImageBuf& buf, const StatisticsChanne
         view.moment3[c] = plane_or_null(buf, ch.moment3, c);
         view.moment4[c] = plane_or_null(buf, ch.moment4, c);
         view.bc_moment4[c] = plane_or_null(buf, ch.bc_moment4, c);
-        view.cov_u[c] = plane_or_null(buf, ch.cov_u, c);
-        view.cov_v[c] = plane_or_null(buf, ch.cov_v, c);
-        view.bc_cov_u[c] = plane_or_null(buf, ch.bc_cov_u, c);
-        view.bc_cov_v[c] = plane_or_null(buf, ch.bc_cov_v, c);
-    }
-    if (!ch.subpixel.empty()) {
-        view.subpixel_u = channel_plane(buf, ch.subpixel[0]);
-        view.subpixel_v = channel_plane(buf, ch.subpixel[1]);
-        view.subpixel_uu = channel_plane(buf, ch.subpixel[2]);
-        view.subpixel_vv = channel_plane(buf, ch.subpixel[3]);
-        view.subpixel_uv = channel_plane(buf, ch.subpixel[4]);
     }
     return view;
 }

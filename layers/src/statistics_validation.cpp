@@ -143,32 +143,22 @@ double second_moment(const ConstPlane& count, const ConstPlane& variance, bool o
 bool sound(double v) { return std::isfinite(v) && v >= 0; }
 
 // A relation between stored statistics that any set of samples satisfies, checked per
-// pixel: bad() says where it fails, what() describes the failure at that pixel. A plain
-// type rather than a std::function: the check runs for every pixel, and an indirect call
-// there was most of validation's time.
+// pixel: M4/n ≥ (M2/n)² holds for any set of values (the mean of the squared squares is at
+// least the square of their mean), so a stored fourth moment below it cannot come from
+// samples; the slack absorbs float rounding of the two stored values. bad() says where it
+// fails, what() describes the failure at that pixel. A plain type rather than a
+// std::function: the check runs for every pixel, and an indirect call there was most of
+// validation's time.
 struct Relation {
-    enum class Kind {
-        // M4/n ≥ (M2/n)² holds for any set of values (the mean of the squared squares is
-        // at least the square of their mean), so a stored fourth moment below it cannot
-        // come from samples. The slack absorbs float rounding of the two stored values.
-        FourthMoment,
-        // Cauchy–Schwarz: a co-moment per sample is at most sqrt(m2_f · m2_u) in size.
-        CoMoment,
-    };
-    Kind kind;
     std::string channel;  ///< the channel named in the message
     ConstPlane count, variance;
-    ConstPlane moment;       ///< M4, or the co-moment
-    ConstPlane position_m2;  ///< the co-moment's position variance
-    bool of_mean = false;    ///< the variance is of the mean (fourth moment only)
+    ConstPlane moment;     ///< M4/n
+    bool of_mean = false;  ///< the variance is of the mean
 
     double limit(int x, int y) const
     {
-        if (kind == Kind::FourthMoment) {
-            const double m2 = second_moment(count, variance, of_mean, x, y);
-            return m2 * m2;
-        }
-        return std::sqrt(second_moment(count, variance, false, x, y) * double(position_m2(x, y)));
+        const double m2 = second_moment(count, variance, of_mean, x, y);
+        return m2 * m2;
     }
     // True only where bad() is false, in double multiplications alone: bad() divides (and
     // takes a root) per pixel, which was most of validation's time. Each inequality is the
@@ -178,33 +168,21 @@ struct Relation {
     bool surely_good(int x, int y) const
     {
         const double n = count(x, y), m = moment(x, y);
-        if (kind == Kind::FourthMoment) {
-            // M4/n ≥ m2², m2 = s²(n − 1)/n, times n²: the stored moment meets the bound.
-            const double m2n = double(variance(x, y)) * (of_mean ? n : 1.0) * (n - 1);
-            return (n >= 1) & (m * n * n >= m2n * m2n);
-        }
-        // m² ≤ 1.0001 · m2 · m2_u, times n: inside the Cauchy–Schwarz bound with half of
-        // bad()'s 1e-4 to spare.
-        return (n >= 1) &
-               (m * m * n <= 1.0001 * double(variance(x, y)) * double(position_m2(x, y)) * (n - 1));
+        // M4/n ≥ m2², m2 = s²(n − 1)/n, times n²: the stored moment meets the bound.
+        const double m2n = double(variance(x, y)) * (of_mean ? n : 1.0) * (n - 1);
+        return (n >= 1) & (m * n * n >= m2n * m2n);
     }
     // A variance or moment that is itself wrong (negative, NaN) is reported by its own check.
     bool bad(int x, int y) const
     {
         const double m = moment(x, y);
-        if (kind == Kind::FourthMoment)
-            return sound(m) && sound(variance(x, y)) && m < (1 - 1e-5) * limit(x, y) - 1e-30;
-        return std::isfinite(m) && sound(variance(x, y)) && sound(position_m2(x, y)) &&
-               std::abs(m) > (1 + 1e-4) * limit(x, y) + 1e-30;
+        return sound(m) && sound(variance(x, y)) && m < (1 - 1e-5) * limit(x, y) - 1e-30;
     }
     std::string what(int x, int y) const
     {
-        return OIIO::Strutil::fmt::format(kind == Kind::FourthMoment
-                                              ? "fourth moment {} below the square of the "
-                                                "second, {}: inconsistent moments"
-                                              : "co-moment {} larger than the variances allow, "
-                                                "{}: inconsistent moments",
-                                          moment(x, y), limit(x, y));
+        return OIIO::Strutil::fmt::format(
+            "fourth moment {} below the square of the second, {}: inconsistent moments",
+            moment(x, y), limit(x, y));
     }
 };
 
@@ -370,11 +348,6 @@ std::vector<StatisticsProblem> validate_statistics(const OIIO::ImageBuf& buf,
     for (Statistic stat : all_statistics())
         for (std::size_t c = 0; c < channels.indices(stat).size(); ++c)
             check(channels.indices(stat)[c], channels.channel(stat, int(c)), checks_for(stat));
-    const bool positions = channels.subpixel.size() == subpixel_suffixes().size();
-    if (positions)
-        for (int i = 0; i < int(subpixel_suffixes().size()); ++i)
-            check(channels.subpixel[i], channel_name(kSubpixelLayer, subpixel_suffixes()[i]),
-                  i == 2 || i == 3 ? std::vector<Check>{Check::Negative} : std::vector<Check>{});
     std::vector<Relation> relations;
     const ConstPlane count = channel_plane(buf, channels.count);
     auto plane = [&](const std::vector<int>& indices, int c) {
@@ -383,37 +356,13 @@ std::vector<StatisticsProblem> validate_statistics(const OIIO::ImageBuf& buf,
     for (int c = 0; c < channels.channels(); ++c) {
         // A fourth moment without its variance is not read (StatisticsView::has_moments).
         if (channels.has(Statistic::Moment4) && channels.has(Statistic::Variance))
-            relations.push_back({Relation::Kind::FourthMoment,
-                                 channels.channel(Statistic::Moment4, c),
-                                 count,
-                                 plane(channels.variance, c),
-                                 plane(channels.moment4, c),
-                                 {},
+            relations.push_back({channels.channel(Statistic::Moment4, c), count,
+                                 plane(channels.variance, c), plane(channels.moment4, c),
                                  channels.variance_of_mean});
         if (channels.has(Statistic::BoxCoxMoment4) && channels.has_box_cox())
-            relations.push_back({Relation::Kind::FourthMoment,
-                                 channels.channel(Statistic::BoxCoxMoment4, c),
-                                 count,
-                                 plane(channels.bc_variance, c),
-                                 plane(channels.bc_moment4, c),
-                                 {},
+            relations.push_back({channels.channel(Statistic::BoxCoxMoment4, c), count,
+                                 plane(channels.bc_variance, c), plane(channels.bc_moment4, c),
                                  false});
-        if (!positions || channels.variance_of_mean)
-            continue;
-        const struct {
-            Statistic co_moment;
-            const std::vector<int>& variance;
-            int position;
-        } pairs[] = {{Statistic::CovarianceU, channels.variance, 2},
-                     {Statistic::CovarianceV, channels.variance, 3},
-                     {Statistic::BoxCoxCovarianceU, channels.bc_variance, 2},
-                     {Statistic::BoxCoxCovarianceV, channels.bc_variance, 3}};
-        for (const auto& pair : pairs)
-            if (channels.has(pair.co_moment) && !pair.variance.empty())
-                relations.push_back({Relation::Kind::CoMoment, channels.channel(pair.co_moment, c),
-                                     count, plane(pair.variance, c),
-                                     plane(channels.indices(pair.co_moment), c),
-                                     plane(channels.subpixel, pair.position)});
     }
     std::vector<StatisticsProblem> problems;
     check_rows(tasks, relations, region, problems);

@@ -36,14 +36,7 @@ StatisticsView view_window(const StatisticsView& view, int x0, int y0, int width
         w.moment3[c] = shifted(view.moment3[c], x0, y0);
         w.moment4[c] = shifted(view.moment4[c], x0, y0);
         w.bc_moment4[c] = shifted(view.bc_moment4[c], x0, y0);
-        w.cov_u[c] = shifted(view.cov_u[c], x0, y0);
-        w.cov_v[c] = shifted(view.cov_v[c], x0, y0);
-        w.bc_cov_u[c] = shifted(view.bc_cov_u[c], x0, y0);
-        w.bc_cov_v[c] = shifted(view.bc_cov_v[c], x0, y0);
     }
-    for (ConstPlane* p :
-         {&w.subpixel_u, &w.subpixel_v, &w.subpixel_uu, &w.subpixel_vv, &w.subpixel_uv})
-        *p = shifted(*p, x0, y0);
     return w;
 }
 

@@ -19,12 +19,10 @@ namespace statmc::render {
 namespace {
 
 constexpr char kMagic[8] = {'S', 'T', 'A', 'T', 'M', 'C', 'C', 'K'};
-constexpr int kVersion = 2;  // 2: the guides' squares
+constexpr int kVersion = 3;  // 2: the guides' squares; 3: no position co-moments
 
 static_assert(std::is_trivially_copyable_v<StatisticsImage<3>::Pixel> &&
-                  std::is_trivially_copyable_v<StatisticsImage<3>::Position> &&
-                  std::is_trivially_copyable_v<StatisticsImage<BounceStatistics::kGroup>::Pixel> &&
-                  std::is_trivially_copyable_v<StatisticsImage<BounceStatistics::kGroup>::Position>,
+                  std::is_trivially_copyable_v<StatisticsImage<BounceStatistics::kGroup>::Pixel>,
               "checkpoints copy the accumulators as bytes");
 
 // Every buffer of the film, in the one order checkpoints store them. `FilmRef` is Film or
@@ -33,17 +31,14 @@ template <class FilmRef, class Visit>
 void for_each_buffer(FilmRef& film, Visit&& visit)
 {
     visit(film.stats.accumulators());
-    visit(film.stats.position_accumulators());
     visit(film.albedo_sum);
     visit(film.normal_sum);
     visit(film.depth_sum);
     visit(film.albedo_squares);
     visit(film.normal_squares);
     if (film.bounces)
-        for (auto& group : film.bounces->groups()) {
+        for (auto& group : film.bounces->groups())
             visit(group.accumulators());
-            visit(group.position_accumulators());
-        }
 }
 
 template <class Vector>
@@ -62,10 +57,9 @@ std::uint32_t crc_of(std::uint32_t crc, const void* data, std::size_t bytes)
 std::string memory_layout(const Film& film)
 {
     using Stats4 = StatisticsImage<BounceStatistics::kGroup>;
-    return "pixel " + std::to_string(sizeof(StatisticsImage<3>::Pixel)) + ", position " +
-           std::to_string(sizeof(StatisticsImage<3>::Position)) + ", bounce groups " +
+    return "pixel " + std::to_string(sizeof(StatisticsImage<3>::Pixel)) + ", bounce groups " +
            std::to_string(film.bounces ? film.bounces->groups().size() : 0) + " of " +
-           std::to_string(sizeof(Stats4::Pixel)) + "+" + std::to_string(sizeof(Stats4::Position));
+           std::to_string(sizeof(Stats4::Pixel));
 }
 
 // One line per field; a newline inside a value (a strange path) would split it.

@@ -10,7 +10,7 @@
 namespace statmc::render {
 
 Film::Film(int w, int h, BounceLayout bounce_layout)
-    : width(w), height(h), stats(w, h, /*track_positions=*/true),
+    : width(w), height(h), stats(w, h),
       albedo_sum(std::size_t(w) * h * 3), normal_sum(std::size_t(w) * h * 3),
       depth_sum(std::size_t(w) * h), albedo_squares(std::size_t(w) * h),
       normal_squares(std::size_t(w) * h)
@@ -100,7 +100,7 @@ double Film::bytes_needed(int width, int height, const BounceLayout& bounce_layo
         (bounce_layout.quantities() + BounceStatistics::kGroup - 1) / BounceStatistics::kGroup;
     // Every accumulated double, and the output's float planes (at most one of each per
     // statistic and channel, written once).
-    const double per_pixel = sizeof(Stats3::Pixel) + sizeof(Stats3::Position) + 9 * sizeof(double) +
+    const double per_pixel = sizeof(Stats3::Pixel) + 9 * sizeof(double) +
                              groups * (sizeof(Stats4::Pixel) + 16 * 4.0 * sizeof(float)) +
                              64 * sizeof(float);
     return double(width) * double(height) * per_pixel;

@@ -197,7 +197,7 @@ RenderStats render_in_arena(const Scene& scene, const Camera& camera,
                             integrator.radiance(ray, sampler, guide,
                                                 film.bounces ? &record : nullptr, &pixel_estimates);
                         const float value[3] = {L.r, L.g, L.b};
-                        film.stats.add(x, y, value, jx, jy);
+                        film.stats.add(x, y, value);
                         if (film.bounces) {
                             const std::uint64_t b0 = profiling ? __rdtsc() : 0;
                             bounce_sample(record, film.bounces->layout(), bounce_values.data());

@@ -329,6 +329,24 @@ TEST(DenoiseOperator, MethodPaperIsThePapersFilterBitForBit)
         out, test::core_filtered(f.stats.view(), TestDomain::BoxCox, {}, DenoiseOptions::paper()));
 }
 
+TEST(DenoiseOperator, AnOlderFilesPositionLayersAreKeptAndNotRead)
+{
+    Frame f;
+    const OIIO::ImageBuf older = test::with_retired_position_layers(f.image);
+    const OIIO::ImageBuf out = denoise(older, DenoiseImageOptions{});
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    const OIIO::ImageBuf current = denoise(f.image, DenoiseImageOptions{});
+    ASSERT_FALSE(current.has_error()) << current.geterror();
+    for (const char* channel : {"R", "G", "B"})
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                ASSERT_TRUE(same_bits(channel_value(out, channel, x, y),
+                                      channel_value(current, channel, x, y)))
+                    << channel << " at (" << x << ", " << y << ")";
+    EXPECT_EQ(out.spec().nchannels, older.spec().nchannels);
+    EXPECT_EQ(channel_value(out, "subpixel.UU", 3, 2), -0.25f);
+}
+
 TEST(DenoiseOperator, RoiAtTheCornerAndDataWindowOffset)
 {
     Frame f;

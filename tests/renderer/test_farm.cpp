@@ -16,6 +16,7 @@
 #include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <OpenImageIO/imagebuf.h>
 
@@ -250,6 +251,28 @@ std::string stopped_render(const FarmScene& f, const std::string& out)
     return checkpoint;
 }
 
+// `checkpoint` as a build that wrote checkpoint format `version` would have labelled it:
+// the header's version field replaced and its checksum made anew (magic, header length,
+// header, header CRC-32, film).
+std::string with_checkpoint_version(const std::string& checkpoint, const std::string& version)
+{
+    std::uint32_t length = 0;
+    std::memcpy(&length, checkpoint.data() + 8, sizeof length);
+    std::string header = checkpoint.substr(12, length);
+    const std::size_t at = header.find("\nversion=");
+    const std::size_t end = header.find('\n', at + 1);
+    header.replace(at, end - at, "\nversion=" + version);
+    const std::uint32_t new_length = std::uint32_t(header.size());
+    const std::uint32_t crc = std::uint32_t(
+        crc32_z(crc32_z(0, nullptr, 0), reinterpret_cast<const Bytef*>(header.data()), header.size()));
+    std::string out = checkpoint.substr(0, 8);
+    out.append(reinterpret_cast<const char*>(&new_length), sizeof new_length);
+    out += header;
+    out.append(reinterpret_cast<const char*>(&crc), sizeof crc);
+    out += checkpoint.substr(12 + length + 4);
+    return out;
+}
+
 TEST(Farm, CheckpointsOfOtherRendersAndDamagedOnesAreRefused)
 {
     const FarmScene f;
@@ -275,8 +298,18 @@ TEST(Farm, CheckpointsOfOtherRendersAndDamagedOnesAreRefused)
         EXPECT_EQ(file_bytes(checkpoint), good) << "a refused checkpoint is left as it was";
     }
     const std::string same = base + " --resolution 24x16 --seed 3";
-    std::ofstream(checkpoint, std::ios::binary | std::ios::trunc) << good.substr(0, good.size() / 2);
+    // One of format 2, whose film held the position co-moments: refused, and kept.
+    const std::string older = with_checkpoint_version(good, "2");
+    std::ofstream(checkpoint, std::ios::binary | std::ios::trunc) << older;
     ProgramRun r = render_cli(same, f.dir);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.output.find("checkpoint " + checkpoint +
+                            ": version 2, this statmc-render reads version 3"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(file_bytes(checkpoint), older);
+    std::ofstream(checkpoint, std::ios::binary | std::ios::trunc) << good.substr(0, good.size() / 2);
+    r = render_cli(same, f.dir);
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.output.find("checkpoint " + checkpoint + ": truncated"), std::string::npos)
         << r.output;

@@ -459,7 +459,7 @@ TEST(Render, GuideVarianceIsTheSamplesSummedVariance)
     }
     const float value[3] = {1, 1, 1};
     for (const auto& a : albedo) {
-        film.stats.add(0, 0, value, 0.5, 0.5);
+        film.stats.add(0, 0, value);
         for (int c = 0; c < 3; ++c) {
             film.albedo_sum[c] += a[c];
             film.albedo_squares[0] += double(a[c]) * a[c];

@@ -27,11 +27,10 @@ OIIO::ImageBuf with_channels(const OIIO::ImageBuf& buf, const std::vector<int>& 
 
 }  // namespace
 
-StatisticsPlanes noisy_statistics(int width, int height, int spp, std::uint32_t seed,
-                                  bool positions)
+StatisticsPlanes noisy_statistics(int width, int height, int spp, std::uint32_t seed)
 {
-    StatisticsImage<3> image(width, height, positions);
-    std::mt19937 rng(seed), position_rng(seed + 1);
+    StatisticsImage<3> image(width, height);
+    std::mt19937 rng(seed);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     const float tint[3] = {1.f, 0.7f, 0.4f};
     for (int y = 0; y < height; ++y)
@@ -42,8 +41,7 @@ StatisticsPlanes noisy_statistics(int width, int height, int spp, std::uint32_t 
                 float sample[3];
                 for (int c = 0; c < 3; ++c)
                     sample[c] = float(tint[c] * base * -std::log(1.0 - uniform(rng)));
-                const double u = uniform(position_rng), v = uniform(position_rng);
-                image.add(x, y, sample, u, v);
+                image.add(x, y, sample);
             }
         }
     return image.planes();
@@ -131,6 +129,30 @@ OIIO::ImageBuf without_channels(const OIIO::ImageBuf& buf, const std::vector<std
         }
     }
     return with_channels(buf, order, kept);
+}
+
+OIIO::ImageBuf with_retired_position_layers(const OIIO::ImageBuf& buf)
+{
+    std::vector<int> order;
+    std::vector<float> values;
+    std::vector<std::string> names;
+    for (int c = 0; c < buf.spec().nchannels; ++c) {
+        order.push_back(c);
+        values.push_back(0.f);
+        names.push_back(buf.spec().channelnames[c]);
+    }
+    for (const char* name : {"subpixel.U", "subpixel.V", "subpixel.UU", "subpixel.VV",
+                             "subpixel.UV", "covU.R", "covU.G", "covU.B", "covV.R", "covV.G",
+                             "covV.B", "boxcoxCovU.R", "boxcoxCovU.G", "boxcoxCovU.B",
+                             "boxcoxCovV.R", "boxcoxCovV.G", "boxcoxCovV.B"}) {
+        order.push_back(-1);
+        values.push_back(-0.25f);
+        names.push_back(name);
+    }
+    OIIO::ImageBuf out;
+    if (!OIIO::ImageBufAlgo::channels(out, buf, int(order.size()), order, values, names))
+        throw std::runtime_error("channels: " + out.geterror());
+    return out;
 }
 
 OIIO::ImageBuf renamed_channels(const OIIO::ImageBuf& buf, const std::string& from_layer,

@@ -20,11 +20,8 @@ namespace statmc::test {
 
 /// Statistics of a noisy frame: a dark left half and a bright right half (an edge the
 /// test must keep), exponentially distributed samples (skewed, as path tracing gives),
-/// and spp + (x + y) % 3 samples per pixel so that degrees of freedom differ. With
-/// `positions`, each sample gets a uniform sub-pixel offset of its own stream (the values
-/// stay the same) and the position co-moments are kept.
-StatisticsPlanes noisy_statistics(int width, int height, int spp, std::uint32_t seed,
-                                  bool positions = false);
+/// and spp + (x + y) % 3 samples per pixel so that degrees of freedom differ.
+StatisticsPlanes noisy_statistics(int width, int height, int spp, std::uint32_t seed);
 
 /// `stats` as another renderer's variance AOV holds it: mean, variance and count only (no
 /// Box-Cox set, no higher moments).
@@ -53,6 +50,10 @@ float channel_value(const OIIO::ImageBuf& buf, const std::string& name, int x, i
 OIIO::ImageBuf without_channels(const OIIO::ImageBuf& buf, const std::vector<std::string>& names);
 OIIO::ImageBuf renamed_channels(const OIIO::ImageBuf& buf, const std::string& from_layer,
                                 const std::string& to_layer);
+/// `buf` with the layers of sub-pixel position moments that statmc-render wrote before
+/// format version 3 (subpixel, covU, covV, boxcoxCovU, boxcoxCovV), holding values no
+/// statistic could (a negative subpixel.UU): what an older file carries.
+OIIO::ImageBuf with_retired_position_layers(const OIIO::ImageBuf& buf);
 /// `buf` with its channels in reverse order.
 OIIO::ImageBuf reversed_channels(const OIIO::ImageBuf& buf);
 

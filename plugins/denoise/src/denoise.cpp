@@ -95,9 +95,7 @@ TestDomain choose_domain(const OIIO::ImageSpec& spec, const StatisticsChannels& 
 // untransformed variance for the radius ladder (`variance`).
 StatisticsChannels used_channels(StatisticsChannels ch, TestDomain domain, bool variance)
 {
-    ch.subpixel.clear();
-    for (auto* v : {&ch.cov_u, &ch.cov_v, &ch.bc_cov_u, &ch.bc_cov_v, &ch.moment3, &ch.moment4,
-                    &ch.bc_moment4})
+    for (auto* v : {&ch.moment3, &ch.moment4, &ch.bc_moment4})
         v->clear();
     if (domain == TestDomain::BoxCox) {
         if (!variance)
@@ -218,7 +216,6 @@ StatisticsChannels joint_aov_means(const OIIO::ImageBuf& in, const std::string& 
     for (Statistic stat : layers::all_statistics())
         if (stat != Statistic::Mean)
             ch.indices(stat).clear();
-    ch.subpixel.clear();
     check_statistics(in, ch, opt, region);
     return ch;
 }
@@ -462,11 +459,6 @@ StatisticsChannels same_statistics(const OIIO::ImageSpec& spec, const Statistics
         else
             ch.indices(stat).clear();
     }
-    if (!centre.subpixel.empty() && ch.subpixel.empty())
-        throw LayerError(layers::missing_layer_message(spec, layers::kSubpixelLayer,
-                                                       layers::subpixel_suffixes()));
-    if (centre.subpixel.empty())
-        ch.subpixel.clear();
     return ch;
 }
 
@@ -607,14 +599,9 @@ StatisticsView with_planes_of(StatisticsView shape, const StatisticsView& values
         for (auto member :
              {&StatisticsView::mean, &StatisticsView::variance, &StatisticsView::bc_mean,
               &StatisticsView::bc_variance, &StatisticsView::bc_moment3, &StatisticsView::moment3,
-              &StatisticsView::moment4, &StatisticsView::bc_moment4, &StatisticsView::cov_u,
-              &StatisticsView::cov_v, &StatisticsView::bc_cov_u, &StatisticsView::bc_cov_v})
+              &StatisticsView::moment4, &StatisticsView::bc_moment4})
             take((shape.*member)[c], (values.*member)[c]);
     }
-    for (auto member :
-         {&StatisticsView::subpixel_u, &StatisticsView::subpixel_v, &StatisticsView::subpixel_uu,
-          &StatisticsView::subpixel_vv, &StatisticsView::subpixel_uv})
-        take(shape.*member, values.*member);
     shape.variance_of_mean = values.variance_of_mean;
     return shape;
 }

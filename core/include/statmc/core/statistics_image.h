@@ -12,10 +12,9 @@
 namespace statmc {
 
 /// Dense float planes of statistics (count, mean, variance, Box-Cox mean, variance, M3/n,
-/// and the higher moments M3/n, M4/n and Box-Cox M4/n; the position co-moments when the
-/// samples' sub-pixel offsets were tracked), the exported form of a StatisticsImage; view()
-/// exposes them to the rest of core. Planes a source does not provide (Box-Cox for K
-/// passes, positions unless tracked) are left empty.
+/// and the higher moments M3/n, M4/n and Box-Cox M4/n), the exported form of a
+/// StatisticsImage; view() exposes them to the rest of core. Planes a source does not
+/// provide (Box-Cox for K passes) are left empty.
 struct StatisticsPlanes {
     int width = 0;
     int height = 0;
@@ -23,8 +22,6 @@ struct StatisticsPlanes {
     std::vector<float> count;
     std::vector<float> mean, variance, bc_mean, bc_variance, bc_moment3;  // channel-major
     std::vector<float> moment3, moment4, bc_moment4;                      // channel-major
-    std::vector<float> subpixel_u, subpixel_v, subpixel_uu, subpixel_vv, subpixel_uv;
-    std::vector<float> cov_u, cov_v, bc_cov_u, bc_cov_v;  // channel-major
 
     StatisticsView view() const;
 };
@@ -34,10 +31,6 @@ struct StatisticsPlanes {
 /// merge of such pixels is exact only in the planes present.
 template <int C>
 PixelMoments<C, double> stored_pixel(const StatisticsView& view, int x, int y);
-/// The position co-moments a stored pixel stands for (sums = n · stored per-sample values);
-/// the view needs has_box_cox_positions().
-template <int C>
-PositionMoments<C, double> stored_position(const StatisticsView& view, int x, int y);
 
 /// `view` with the untransformed mean and variance standing in for absent Box-Cox planes
 /// (and `zero` for M3), so that exact merging runs on images without them; whoever merges
@@ -48,17 +41,12 @@ template <int C>
 class StatisticsImage {
 public:
     using Pixel = PixelMoments<C, double>;
-    using Position = typename Pixel::Position;
 
-    /// With `track_positions`, samples come with their sub-pixel offsets (add(x, y,
-    /// sample, u, v)) and their position co-moments are kept.
-    StatisticsImage(int width, int height, bool track_positions = false)
+    StatisticsImage(int width, int height)
         : width_(width), height_(height), pixels_(std::size_t(width) * height)
     {
         if (width <= 0 || height <= 0)
             throw std::invalid_argument("StatisticsImage: empty resolution");
-        if (track_positions)
-            positions_.resize(pixels_.size());
     }
 
     int width() const { return width_; }
@@ -66,64 +54,33 @@ public:
     Pixel& at(int x, int y) { return pixels_[std::size_t(y) * width_ + x]; }
     const Pixel& at(int x, int y) const { return pixels_[std::size_t(y) * width_ + x]; }
 
-    bool tracks_positions() const { return !positions_.empty(); }
-    const Position& position_at(int x, int y) const
-    {
-        return positions_[std::size_t(y) * width_ + x];
-    }
-
-    /// The accumulators as they are in memory, pixel by pixel in scanline order (positions
-    /// empty unless tracked): what a render checkpoint saves and restores bitwise.
+    /// The accumulators as they are in memory, pixel by pixel in scanline order: what a
+    /// render checkpoint saves and restores bitwise.
     std::vector<Pixel>& accumulators() { return pixels_; }
     const std::vector<Pixel>& accumulators() const { return pixels_; }
-    std::vector<Position>& position_accumulators() { return positions_; }
-    const std::vector<Position>& position_accumulators() const { return positions_; }
 
     void add(int x, int y, const float* sample) { at(x, y).add(sample); }
-    /// A sample taken at sub-pixel offset (u, v) ∈ [0, 1)²; the offset is dropped unless
-    /// positions are tracked.
-    void add(int x, int y, const float* sample, double u, double v)
-    {
-        const std::size_t i = std::size_t(y) * width_ + x;
-        if (positions_.empty())
-            pixels_[i].add(sample);
-        else
-            pixels_[i].add(sample, u, v, positions_[i]);
-    }
-
     /// Folds in the statistics of the same frame from another tile set, pass or machine.
-    /// Positions stay tracked only when both images track them.
     void merge(const StatisticsImage& other)
     {
         if (other.width_ != width_ || other.height_ != height_)
             throw std::invalid_argument("StatisticsImage::merge: resolutions differ");
-        if (!other.tracks_positions())
-            positions_.clear();
-        for (std::size_t i = 0; i < pixels_.size(); ++i) {
-            if (positions_.empty())
-                pixels_[i].merge(other.pixels_[i]);
-            else
-                pixels_[i].merge(other.pixels_[i], positions_[i], other.positions_[i]);
-        }
+        for (std::size_t i = 0; i < pixels_.size(); ++i)
+            pixels_[i].merge(other.pixels_[i]);
     }
 
     StatisticsPlanes planes() const;
     /// Rebuilds accumulators from stored planes (M2 = s²(n − 1), Mk = n·mk). Higher moments
-    /// the view lacks (a version-1 file) come back as 0; positions are tracked when the
-    /// view has all of them (has_box_cox_positions).
+    /// the view lacks (a version-1 file) come back as 0.
     static StatisticsImage from_view(const StatisticsView& view);
     /// The exact merge of views of one frame (same resolution, C channels, Box-Cox planes),
     /// each pixel folded in view order: the same result for any `nthreads` (0 = all cores).
-    /// Positions are tracked when every view has them.
     static StatisticsImage merged(const std::vector<StatisticsView>& views, int nthreads = 0);
 
 private:
-    void position_planes(StatisticsPlanes& p) const;
-
     int width_;
     int height_;
     std::vector<Pixel> pixels_;
-    std::vector<Position> positions_;  ///< empty unless tracked
 };
 
 extern template class StatisticsImage<1>;

@@ -56,8 +56,7 @@ inline constexpr const char* kVarianceOfMean = "mean";
 
 /// The statistics stored per AOV and colour channel. From Moment3 on (format version 2,
 /// optional): the higher central moments per sample, M3/n and M4/n of the untransformed
-/// samples and M4/n of the Box-Cox ones; then the co-moments per sample with the sub-pixel
-/// offsets, Σ(f − f̄)(u − ū)/n and Σ(f − f̄)(v − v̄)/n, untransformed and Box-Cox.
+/// samples and M4/n of the Box-Cox ones.
 enum class Statistic {
     Mean,
     Variance,
@@ -66,11 +65,7 @@ enum class Statistic {
     BoxCoxMoment3,
     Moment3,
     Moment4,
-    BoxCoxMoment4,
-    CovarianceU,
-    CovarianceV,
-    BoxCoxCovarianceU,
-    BoxCoxCovarianceV
+    BoxCoxMoment4
 };
 
 /// All statistics in storage order, for loops over layers.
@@ -79,11 +74,6 @@ const std::vector<Statistic>& all_statistics();
 /// The one sample count of a pixel, shared by every AOV of the image.
 inline constexpr const char* kSampleCountLayer = "sampleCount";
 inline constexpr const char* kSampleCountChannel = "sampleCount.Y";
-
-/// The per-pixel moments of the samples' sub-pixel offsets (u, v) ∈ [0, 1)², shared by
-/// every AOV like the count (format version 2, optional): subpixel.U and .V the means,
-/// .UU, .VV, .UV the central sums per sample Σ(u − ū)²/n, Σ(v − v̄)²/n, Σ(u − ū)(v − v̄)/n.
-inline constexpr const char* kSubpixelLayer = "subpixel";
 
 /// Default guide layers.
 inline constexpr const char* kAlbedoLayer = "albedo";  // albedo.R/G/B
@@ -149,8 +139,6 @@ std::string channel_name(std::string_view layer, std::string_view suffix);
 const std::vector<std::string>& colour_suffixes();
 const std::vector<std::string>& scalar_suffixes();
 const std::vector<std::string>& vector_suffixes();
-/// U, V, UU, VV, UV: the channels of kSubpixelLayer.
-const std::vector<std::string>& subpixel_suffixes();
 
 /// The suffixes a quantity of `channels` channels is stored under (1 → Y, 3 → R,G,B).
 /// Throws LayerError for other counts: the contract names no other layout.

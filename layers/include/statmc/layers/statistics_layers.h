@@ -23,9 +23,7 @@ struct StatisticsChannels {
     std::vector<std::string> suffixes;  ///< R,G,B or Y
     int count = -1;                     ///< sampleCount.Y
     std::vector<int> mean, variance, bc_mean, bc_variance, bc_moment3;
-    std::vector<int> moment3, moment4, bc_moment4;      ///< format version 2, optional
-    std::vector<int> cov_u, cov_v, bc_cov_u, bc_cov_v;  ///< position co-moments, optional
-    std::vector<int> subpixel;      ///< subpixel.U, V, UU, VV, UV (shared by all AOVs), optional
+    std::vector<int> moment3, moment4, bc_moment4;  ///< format version 2, optional
     bool variance_of_mean = false;  ///< statmc:variance = "mean"
 
     int channels() const { return int(suffixes.size()); }
@@ -39,9 +37,8 @@ struct StatisticsChannels {
 
 /// Finds the statistics of `aov` ("" = beauty) in `spec` by channel name. The mean and the
 /// sample count are required; variance, the Box-Cox set and the higher moments are
-/// optional, but a layer that is only partly present, an incomplete Box-Cox set, M3
-/// without M4 (or the reverse), covU without covV (or the reverse) or co-moments without
-/// the subpixel layer are errors.
+/// optional, but a layer that is only partly present, an incomplete Box-Cox set or M3
+/// without M4 (or the reverse) are errors.
 /// Checks statmc:formatVersion (≤ kFormatVersion), statmc:boxcoxLambda (0.5 when
 /// present) and statmc:variance ("sample" or "mean"). Throws LayerError naming the
 /// layer or attribute.

@@ -35,9 +35,8 @@ struct ValidationOptions {
 
 /// Checks every statistic `channels` locates in `buf` (local float pixels):
 /// sampleCount.Y ≥ 1; variances and fourth moments ≥ 0; Box-Cox means ≥ −2 (the
-/// transform's minimum); each fourth moment M4/n at least (M2/n)² of its domain; the
-/// subpixel layer's UU, VV ≥ 0 and each position co-moment within Cauchy–Schwarz's bound
-/// sqrt(m2_f·m2_u); and, unless disabled, no NaN or Inf anywhere. Empty when all is well.
+/// transform's minimum); each fourth moment M4/n at least (M2/n)² of its domain; and,
+/// unless disabled, no NaN or Inf anywhere. Empty when all is well.
 std::vector<StatisticsProblem> validate_statistics(const OIIO::ImageBuf& buf,
                                                    const StatisticsChannels& channels,
                                                    const ValidationOptions& options = {});
