@@ -1,0 +1,191 @@
+// The radius ladder (docs/method.md §11): each pixel at the largest radius whose interval
+// still agrees with those of the smaller ones. A firefly that the paper's filter spreads
+// into a disk leaves no halo, and a flat field is still denoised.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "statmc/core/estimator_image.h"
+#include "statmc/core/filter.h"
+#include "statmc/core/method.h"
+#include "statmc/core/radius_ladder.h"
+#include "statmc/core/statistics_image.h"
+#include "statmc/core/variance_filter.h"
+
+namespace statmc {
+namespace {
+
+constexpr int kSize = 48, kFx = 24, kFy = 24, kSpp = 16;
+constexpr float kTruth = 0.5f, kSigma = 0.1f;  // normal samples; a firefly of 2000× the truth
+
+// What pixel (kFx, kFy) holds as its sample s instead of a normal draw (none: the draw).
+using CentreSample = std::function<std::optional<float>(int s)>;
+
+// A flat field of `spp` normal samples per pixel, pixel (kFx, kFy)'s as `centre` says.
+StatisticsPlanes flat_field(std::uint64_t seed, int spp, const CentreSample& centre = {})
+{
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<float> noise(kTruth, kSigma);
+    StatisticsImage<1> img(kSize, kSize);
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            for (int s = 0; s < spp; ++s) {
+                const std::optional<float> own =
+                    centre && x == kFx && y == kFy ? centre(s) : std::nullopt;
+                const float v = own ? *own : noise(rng);
+                img.add(x, y, &v);
+            }
+    return img.planes();
+}
+
+// Pixel (kFx, kFy)'s first sample is 2000× the truth.
+StatisticsPlanes flat_field_with_firefly(std::uint64_t seed)
+{
+    return flat_field(seed, kSpp, [](int s) {
+        return s == 0 ? std::optional<float>(2000 * kTruth) : std::nullopt;
+    });
+}
+
+std::vector<float> papers_filter(const StatisticsPlanes& stats)
+{
+    const EstimatorImage est = estimators_from_statistics(stats.view(), TestDomain::BoxCox);
+    std::vector<float> out(est.value.size());
+    filter(est, {}, DenoiseOptions::paper(), {dense_plane(out.data(), kSize)});
+    return out;
+}
+
+// Pixels outside the firefly's 3×3 whose |out − x̄| exceeds `limit` true standard errors σ/√n.
+int departures_beyond(const std::vector<float>& out, const StatisticsPlanes& stats, double limit)
+{
+    const double se = kSigma / std::sqrt(double(kSpp));
+    int count = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            if (std::abs(x - kFx) > 1 || std::abs(y - kFy) > 1) {
+                const std::size_t i = std::size_t(y) * kSize + x;
+                count += std::abs(double(out[i]) - stats.mean[i]) > limit * se;
+            }
+    return count;
+}
+
+
+RadiusLadderOptions at_z3()
+{
+    RadiusLadderOptions ladder;
+    ladder.alpha = 0.0026997960632601866;  // z = 3
+    return ladder;
+}
+
+// The default method's ladder: α = 0.005 on variances moderated with d₀ = 16.
+RadiusLadderOptions the_defaults_ladder() { return method_settings(Method::Default).stages.ladder; }
+
+std::vector<float> laddered(const StatisticsPlanes& stats,
+                            const DenoiseOptions& filter_options = DenoiseOptions::paper(),
+                            const RadiusLadderOptions& ladder = at_z3())
+{
+    const EstimatorImage est = estimators_from_statistics(stats.view(), TestDomain::BoxCox);
+    std::vector<float> out(est.value.size());
+    filter_with_radius_ladder(stats.view(), est, {}, filter_options,
+                              {dense_plane(out.data(), kSize)}, ladder);
+    return out;
+}
+
+double squared_error(const std::vector<float>& values)
+{
+    double sum = 0;
+    for (float v : values)
+        sum += std::pow(v - kTruth, 2);
+    return sum;
+}
+
+TEST(RadiusLadder, DropsTheFireflysHaloInsteadOfClampingIt)
+{
+    const StatisticsPlanes stats = flat_field_with_firefly(1);
+    const std::vector<float> out = laddered(stats);
+    EXPECT_GT(departures_beyond(papers_filter(stats), stats, 3), 100);
+    // Even a perfect filter (out = μ) leaves |μ − x̄| > 3 standard errors at 0.27% of the
+    // 48² − 9 pixels: 6.2 on average; 17 is that plus 4.5 binomial standard deviations.
+    EXPECT_LE(departures_beyond(out, stats, 3), 17);
+}
+
+TEST(RadiusLadder, StillDenoisesAFlatField)
+{
+    // Without the firefly every rung agrees, so pixels climb to large radii: the error
+    // against the truth must fall far below the noisy input's.
+    const StatisticsPlanes stats = flat_field(3, kSpp);
+    const double noisy = squared_error(stats.mean), filtered = squared_error(laddered(stats));
+    // Radius 20 averages hundreds of pixels; a 10× lower squared error is a loose floor.
+    EXPECT_LT(filtered, noisy / 10) << "noisy " << noisy << " filtered " << filtered;
+}
+
+TEST(RadiusLadder, TheDefaultLeavesNoHaloAndStillDenoises)
+{
+    // Target 5 for the default itself (α = 0.005, z = 2.81, moderated variances, the
+    // firefly guard on): no pixel outside the firefly's 3×3 moves by more than 3 standard
+    // errors beyond what chance gives a perfect filter (the bound of the test above).
+    const StatisticsPlanes stats = flat_field_with_firefly(1);
+    EXPECT_LE(departures_beyond(laddered(stats, DenoiseOptions{}, the_defaults_ladder()), stats, 3),
+              17);
+    const StatisticsPlanes flat = flat_field(3, kSpp);
+    const double noisy = squared_error(flat.mean),
+                 filtered = squared_error(laddered(flat, DenoiseOptions{}, the_defaults_ladder()));
+    EXPECT_LT(filtered, noisy / 10) << "noisy " << noisy << " filtered " << filtered;
+}
+
+// A flat field in which pixel (kFx, kFy) holds samples of `value` ± 1e-4: a variance
+// thousands of times below its neighbours', which the variance filter (§10's test) does
+// not pool with theirs, so its own intervals are nearly points.
+StatisticsPlanes flat_field_with_steady_pixel(std::uint64_t seed, float value)
+{
+    return flat_field(seed, kSpp, [value](int s) {
+        return std::optional<float>(value + (s % 2 ? 1e-4f : -1e-4f));
+    });
+}
+
+RadiusLadderOptions unmoderated(bool overrule)
+{
+    RadiusLadderOptions ladder = at_z3();
+    ladder.variance.prior_dof = 0;  // the pixel's own zero variance stands
+    ladder.overrule_lone_stops = overrule;
+    return ladder;
+}
+
+TEST(RadiusLadder, ALoneStopWhereEveryNeighbourGoesOnIsOverruled)
+{
+    // The pixel is 0.3σ off the truth with a tiny variance estimate (its samples happened
+    // to agree): by its own intervals it stops at rung 0. Its
+    // neighbours in the flat field all go on, and so, overruled, does it: it takes their
+    // large radius and ends far nearer the truth.
+    const float off = kTruth + 0.3f * kSigma;
+    const StatisticsPlanes stats = flat_field_with_steady_pixel(5, off);
+    const std::size_t p = std::size_t(kFy) * kSize + kFx;
+    const std::vector<float> own = laddered(stats, DenoiseOptions::paper(), unmoderated(false));
+    const std::vector<float> overruled =
+        laddered(stats, DenoiseOptions::paper(), unmoderated(true));
+    EXPECT_EQ(own[p], stats.mean[p]);
+    EXPECT_LT(std::abs(overruled[p] - kTruth), 0.2 * std::abs(off - kTruth))
+        << "overruled " << overruled[p] << ", its own " << stats.mean[p];
+    // Everywhere else the field still denoises as before.
+    EXPECT_LT(squared_error(overruled), squared_error(stats.mean) / 10);
+}
+
+TEST(RadiusLadder, ALonePixelOfItsOwnIsNotAveragedAway)
+{
+    // A one-pixel feature (a glint of 5× the field) stops by its intervals too, and its
+    // neighbours go on; overruled, it climbs the ladder, but the membership test refuses
+    // it every neighbour, so every rung is its own value.
+    const StatisticsPlanes stats = flat_field_with_steady_pixel(5, 5 * kTruth);
+    const std::size_t p = std::size_t(kFy) * kSize + kFx;
+    EXPECT_EQ(laddered(stats, DenoiseOptions::paper(), unmoderated(true))[p], stats.mean[p]);
+    EXPECT_EQ(laddered(stats, DenoiseOptions{}, the_defaults_ladder())[p], stats.mean[p]);
+}
+
+
+
+}  // namespace
+}  // namespace statmc
