@@ -4,7 +4,7 @@
 # statmc-render, times statmc's whole denoise operator in memory (bench_denoise's
 # BM_DenoiseOperator on that frame, all cores, median of 5) and OIDN's CPU filter through
 # pyoidn (PyPI, in a virtual environment under the build directory; median of 5, colour
-# only and colour + albedo + normal), and prints the table README.md's Performance quotes.
+# only and colour + albedo + normal), and prints the table docs/performance.md (and README.md's summary) quotes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${BUILD:-build}

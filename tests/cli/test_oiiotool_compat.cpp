@@ -270,7 +270,7 @@ const Case kCases[] = {
 INSTANTIATE_TEST_SUITE_P(Commands, OiiotoolCompat, ::testing::ValuesIn(kCases),
                          [](const auto& info) { return info.param.name; });
 
-// The one deliberate difference (README, "oiiotool commands"): without -d, oiiotool
+// The one deliberate difference (docs/oiiotool.md): without -d, oiiotool
 // keeps a half input half, statmc writes float32 as the layer contract requires.
 TEST(OiiotoolDifference, HalfInputIsWrittenAsFloatUnlessAsked)
 {
