@@ -189,5 +189,41 @@ TEST(DenoiseJoint, AnAovWithoutStatisticsSharesTheLeadsTestAndSaysSo)
               std::string::npos);
 }
 
+TEST(DenoiseJoint, MoreAovsThanTheFilterTakesSideBySideShareTheLeadsTestAndSaySo)
+{
+    // Four RGB AOVs with their statistics and an RGB beauty: 15 channels side by side,
+    // beyond the filter's 12. The lead's test decides, and the sums still hold.
+    const StatisticsPlanes a = test::variance_aov(test::noisy_statistics(kW, kH, 8, 31));
+    const StatisticsPlanes b = test::variance_aov(test::noisy_statistics(kW, kH, 8, 32));
+    StatisticsPlanes beauty = a;
+    for (std::size_t i = 0; i < beauty.mean.size(); ++i) {
+        beauty.mean[i] = 2 * (a.mean[i] + b.mean[i]);
+        beauty.variance[i] = 2 * (a.variance[i] + b.variance[i]);
+    }
+    const OIIO::ImageBuf in = layers::make_statistics_image(
+        beauty.view(), {}, {},
+        {{"a1", a.view()}, {"b1", b.view()}, {"a2", a.view()}, {"b2", b.view()}});
+    DenoiseImageOptions opt;
+    opt.filter.radius = 5;
+    opt.aovs = {"a1", "b1", "a2", "b2"};
+    opt.joint = true;
+    const OIIO::ImageBuf out = denoise(in, opt);
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    EXPECT_NE(out.spec().get_string_attribute(layers::attr::kDenoiseSkipped).find(
+                  "15 channels side by side"),
+              std::string::npos)
+        << out.spec().get_string_attribute(layers::attr::kDenoiseSkipped);
+    double worst = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            double sum = 0;
+            for (const char* aov : {"a1.G", "b1.G", "a2.G", "b2.G"})
+                sum += channel_value(out, aov, x, y);
+            const double b = channel_value(out, "G", x, y);
+            worst = std::max(worst, std::abs(sum - b) / (std::abs(sum) + 1e-3));
+        }
+    EXPECT_LT(worst, 1e-5);
+}
+
 }  // namespace
 }  // namespace statmc
