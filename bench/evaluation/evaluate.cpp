@@ -126,7 +126,7 @@ std::vector<Denoiser> methods()
     const baselines::CrossBilateralOptions bilateral;
     auto statmc_method = [](const char* name, const DenoiseImageOptions& o) {
         return Denoiser{name, o.filter.radius,
-                      [o](const OIIO::ImageBuf& in) { return run_statmc(in, o); }};
+                        [o](const OIIO::ImageBuf& in) { return run_statmc(in, o); }};
     };
     return {
         {"noisy", 0, {}},

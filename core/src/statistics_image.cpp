@@ -147,13 +147,12 @@ StatisticsImage<C> StatisticsImage<C>::merged(const std::vector<StatisticsView>&
     return img;
 }
 
-#define STATMC_STORED(C)                                                               \
-    template PixelMoments<C, double> stored_pixel<C>(const StatisticsView&, int, int); \
+#define STATMC_STORED(C)                                                                           \
+    template PixelMoments<C, double> stored_pixel<C>(const StatisticsView&, int, int);             \
     template class StatisticsImage<C>;
 STATMC_STORED(1)
 STATMC_STORED(3)
 STATMC_STORED(4)
 #undef STATMC_STORED
-
 
 }  // namespace statmc

@@ -6,10 +6,10 @@ namespace statmc::layers {
 
 const std::vector<Statistic>& all_statistics()
 {
-    static const std::vector<Statistic> all = {
-        Statistic::Mean,           Statistic::Variance,          Statistic::BoxCoxMean,
-        Statistic::BoxCoxVariance, Statistic::BoxCoxMoment3,     Statistic::Moment3,
-        Statistic::Moment4,        Statistic::BoxCoxMoment4};
+    static const std::vector<Statistic> all = {Statistic::Mean,          Statistic::Variance,
+                                               Statistic::BoxCoxMean,    Statistic::BoxCoxVariance,
+                                               Statistic::BoxCoxMoment3, Statistic::Moment3,
+                                               Statistic::Moment4,       Statistic::BoxCoxMoment4};
     return all;
 }
 

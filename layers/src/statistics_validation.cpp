@@ -236,7 +236,8 @@ public:
             const float* hi = hi_.data();
             const int* unchecked = unchecked_.data();
             for (; x + kBlock < x1; x += kBlock) {
-                const float* v = base_ + std::ptrdiff_t(y) * ystride_ + std::ptrdiff_t(x) * xstride_;
+                const float* v =
+                    base_ + std::ptrdiff_t(y) * ystride_ + std::ptrdiff_t(x) * xstride_;
                 for (int j = 0; j < n; ++j)
                     inside &= (int(v[j] >= lo[j]) & int(v[j] <= hi[j])) | unchecked[j];
             }
@@ -281,8 +282,7 @@ void check_rows(const std::vector<Task>& tasks, const std::vector<Relation>& rel
                 if (n > 0 && !screen.passes(r.x0, r.x1, y))
                     for (int x = r.x0; x < r.x1; ++x)
                         for (int t = 0; t < n; ++t)
-                            if (is_bad(tasks[t].check, tasks[t].plane(x, y)) &&
-                                row[t].count++ == 0)
+                            if (is_bad(tasks[t].check, tasks[t].plane(x, y)) && row[t].count++ == 0)
                                 row[t].first_x = x;
                 for (int k = 0; k < m; ++k)
                     for (int x = r.x0; x < r.x1; ++x)
@@ -311,8 +311,7 @@ void check_rows(const std::vector<Task>& tasks, const std::vector<Relation>& rel
         report(t, tasks[t].channel,
                [&](int x, int y) { return describe(tasks[t].check, tasks[t].plane(x, y)); });
     for (int k = 0; k < m; ++k)
-        report(n + k, relations[k].channel,
-               [&](int x, int y) { return relations[k].what(x, y); });
+        report(n + k, relations[k].channel, [&](int x, int y) { return relations[k].what(x, y); });
 }
 
 Region region_of(const OIIO::ImageBuf& buf, OIIO::ROI roi)

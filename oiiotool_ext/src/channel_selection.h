@@ -17,7 +17,7 @@ struct ChannelSelection {
     std::vector<std::string> names;  ///< new names; "" keeps the source's
 };
 
-/// Parses `list` against the channels of `spec`. Throws ToolError "<what>: ..." for a
+/// Parses `list` against the channels of `spec`. Throws HostError "<what>: ..." for a
 /// channel the image lacks (naming the ones it has) and an index out of range, where
 /// oiiotool would warn and fill with zero.
 ChannelSelection parse_channel_selection(const std::string& list, const OIIO::ImageSpec& spec,

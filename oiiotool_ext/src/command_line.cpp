@@ -1,9 +1,9 @@
 #include "statmc/tool/command_line.h"
 
 #include "oiiotool_commands.h"
+#include "statmc/plugin_host/host_error.h"
+#include "statmc/plugin_host/text_split.h"
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/tool_error.h"
-#include "text_split.h"
 
 namespace statmc::tool {
 
@@ -34,9 +34,10 @@ const Command* find_either_spelling(std::string& name)
 [[noreturn]] void unknown_command(const std::string& name)
 {
     if (is_oiiotool_command(name) || is_oiiotool_command(two_dash(name)))
-        throw ToolError(name + " is an oiiotool command that statmc does not support (run that "
-                               "step with oiiotool; statmc --help lists the supported ones)");
-    throw ToolError("unknown command '" + name + "' (see statmc --help)");
+        throw host::HostError(name +
+                              " is an oiiotool command that statmc does not support (run that "
+                              "step with oiiotool; statmc --help lists the supported ones)");
+    throw host::HostError("unknown command '" + name + "' (see statmc --help)");
 }
 
 // oiiotool would evaluate {expressions}; passing them on literally would differ silently.
@@ -44,7 +45,7 @@ void refuse_expression(const std::string& word)
 {
     const std::size_t open = word.find('{');
     if (open != std::string::npos && word.find('}', open) != std::string::npos)
-        throw ToolError("'" + word + "': statmc does not evaluate oiiotool's {expressions}");
+        throw host::HostError("'" + word + "': statmc does not evaluate oiiotool's {expressions}");
 }
 
 }  // namespace
@@ -52,15 +53,16 @@ void refuse_expression(const std::string& word)
 std::pair<std::string, std::vector<std::pair<std::string, std::string>>>
 split_command(const std::string& word)
 {
-    std::vector<std::string> parts = split_text(word, ':');
+    std::vector<std::string> parts = host::split_text(word, ':');
     std::vector<std::pair<std::string, std::string>> modifiers;
     for (std::size_t i = 1; i < parts.size(); ++i) {
         const std::string& part = parts[i];
         const std::size_t eq = part.find('=');
         if (part.empty())
-            throw ToolError(parts[0] + ": empty modifier in '" + word + "'");
+            throw host::HostError(parts[0] + ": empty modifier in '" + word + "'");
         if (eq == std::string::npos || eq == 0)
-            throw ToolError(parts[0] + ": modifier '" + part + "' is not of the form name=value");
+            throw host::HostError(parts[0] + ": modifier '" + part +
+                                  "' is not of the form name=value");
         modifiers.emplace_back(part.substr(0, eq), part.substr(eq + 1));
     }
     return {parts[0], modifiers};
@@ -71,7 +73,7 @@ Invocation parse_invocation(const std::vector<std::string>& args, std::size_t& i
     const std::string& word = args[i++];
     refuse_expression(word);
     if (word == "-")
-        throw ToolError("'-': statmc cannot read images from standard input");
+        throw host::HostError("'-': statmc cannot read images from standard input");
     Invocation inv;
     if (!is_command_word(word)) {
         // oiiotool's rule: a bare argument is an input file.
@@ -85,10 +87,10 @@ Invocation parse_invocation(const std::vector<std::string>& args, std::size_t& i
     if (!inv.command)
         unknown_command(name);
     inv.name = name;
-    inv.modifiers = Modifiers::parse(name, given, inv.command->modifiers);
+    inv.modifiers = host::Modifiers::parse(name, given, inv.command->modifiers);
     for (const std::string& arg_name : inv.command->arg_names) {
         if (i >= args.size())
-            throw ToolError(name + ": missing argument " + arg_name);
+            throw host::HostError(name + ": missing argument " + arg_name);
         refuse_expression(args[i]);
         inv.args.push_back(args[i++]);
     }
@@ -106,8 +108,9 @@ std::vector<Invocation> parse_program(const std::vector<std::string>& args)
         if (inv.command->immediate) {
             // --validate checks what comes before it: anything after would go unchecked.
             if (inv.command->name == "--validate" && i < args.size())
-                throw ToolError("--validate checks the commands before it: put it last, not "
-                                "before '" + args[i] + "'");
+                throw host::HostError("--validate checks the commands before it: put it last, not "
+                                      "before '" +
+                                      args[i] + "'");
             break;
         }
         if (inv.command->check)

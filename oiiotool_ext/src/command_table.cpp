@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "help_text.h"
+#include "statmc/plugin_host/help_text.h"
 #include "statmc/tool/plugin_commands.h"
 
 namespace statmc::tool {
@@ -24,15 +24,15 @@ std::string usage_of(const Command& c)
 
 void describe(std::ostringstream& os, const Command& c)
 {
-    os << help_line("  " + usage_of(c), 32, c.summary);
+    os << host::help_line("  " + usage_of(c), 32, c.summary);
     for (const std::string& alias : c.aliases)
-        os << help_line("", 32, "(also " + alias + ")");
+        os << host::help_line("", 32, "(also " + alias + ")");
     // The left column shows the default as oiiotool's help does: ":radius=20".
-    for (const ModifierSpec& m : c.modifiers) {
+    for (const host::ModifierSpec& m : c.modifiers) {
         const std::string shown = m.default_value.empty() ? m.value_syntax() : m.default_value;
         const std::string range = m.range.empty() ? "" : " " + m.range.text();
-        os << help_line("      :" + m.name + "=" + shown, 32,
-                        "(" + m.value_syntax() + range + ") " + m.help);
+        os << host::help_line("      :" + m.name + "=" + shown, 32,
+                              "(" + m.value_syntax() + range + ") " + m.help);
     }
 }
 
@@ -45,15 +45,15 @@ const std::vector<Command>& command_table()
         input_command(),        output_command(),        data_format_command(),
         compression_command(),  all_subimages_command(), ch_command(),
         chnames_command(),      chappend_command(),      subimage_command(),
-        siappend_command(),     dup_command(),           add_command(),           sub_command(),
-        mul_command(),          addc_command(),          mulc_command(),
-        colorconfig_command(),  colorconvert_command(),  ociodisplay_command(),
-        crop_command(),         resize_command(),        info_command(),
-        verbose_command(),      stats_command(),         diff_command(),
-        echo_command(),         threads_command(),       max_memory_command(),
-        check_inputs_command(), frames_command(),        skip_missing_command(),
-        list_ops_command(),     help_command(),          validate_command(),
-        version_command(),
+        siappend_command(),     dup_command(),           add_command(),
+        sub_command(),          mul_command(),           addc_command(),
+        mulc_command(),         colorconfig_command(),   colorconvert_command(),
+        ociodisplay_command(),  crop_command(),          resize_command(),
+        info_command(),         verbose_command(),       stats_command(),
+        diff_command(),         echo_command(),          threads_command(),
+        max_memory_command(),   check_inputs_command(),  frames_command(),
+        skip_missing_command(), list_ops_command(),      help_command(),
+        validate_command(),     version_command(),
     };
     return table;
 }

@@ -9,7 +9,7 @@
 
 #include "statmc/layers/frame_match.h"
 #include "statmc/layers/openexr_check.h"
-#include "statmc/tool/tool_error.h"
+#include "statmc/plugin_host/host_error.h"
 
 namespace statmc::tool {
 
@@ -18,7 +18,7 @@ std::string frame_pattern(const std::string& text, std::string* range)
     try {
         return layers::frame_pattern(text, range);
     } catch (const std::invalid_argument& e) {
-        throw ToolError(e.what());
+        throw host::HostError(e.what());
     }
 }
 
@@ -26,14 +26,14 @@ std::vector<int> parse_frame_list(const std::string& spec)
 {
     const std::optional<std::vector<int>> list = layers::frame_list(spec);
     if (!list)
-        throw ToolError("--frames: cannot read '" + spec +
-                        "' as frames (e.g. 1-48, 1-48x2, 3,5,10-20; at most " +
-                        std::to_string(layers::kMaxFrames) + " frames)");
+        throw host::HostError("--frames: cannot read '" + spec +
+                              "' as frames (e.g. 1-48, 1-48x2, 3,5,10-20; at most " +
+                              std::to_string(layers::kMaxFrames) + " frames)");
     std::vector<int> sorted = *list;
     std::sort(sorted.begin(), sorted.end());
     if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
-        throw ToolError("--frames " + spec + ": frame " + std::to_string(*twice) +
-                        " is listed twice");
+        throw host::HostError("--frames " + spec + ": frame " + std::to_string(*twice) +
+                              " is listed twice");
     return *list;
 }
 
@@ -43,8 +43,9 @@ std::vector<int> frames_on_disk(const std::string& text, const std::string& patt
     std::vector<std::string> names;
     OIIO::Filesystem::scan_for_matching_filenames(pattern, frames, names);
     if (frames.empty())
-        throw ToolError(text + ": the frame pattern matches no file (looked for " +
-                        frame_path(pattern, 1) + " and the like); give --frames to name them");
+        throw host::HostError(text + ": the frame pattern matches no file (looked for " +
+                              frame_path(pattern, 1) +
+                              " and the like); give --frames to name them");
     std::sort(frames.begin(), frames.end());
     return frames;
 }
@@ -61,7 +62,8 @@ void FrameSequence::remember(int frame, const OIIO::ImageBuf& image)
         return;
     auto copy = std::make_shared<OIIO::ImageBuf>();
     if (!copy->copy(image))
-        throw ToolError(frame_path(pattern_, frame) + ": cannot keep a copy: " + copy->geterror());
+        throw host::HostError(frame_path(pattern_, frame) +
+                              ": cannot keep a copy: " + copy->geterror());
     read_[frame] = std::move(copy);
 }
 
@@ -69,8 +71,8 @@ int FrameSequence::position(int frame) const
 {
     const auto it = std::find(frames_.begin(), frames_.end(), frame);
     if (it == frames_.end())
-        throw ToolError(frame_path(pattern_, frame) + ": frame " + std::to_string(frame) +
-                        " is not in the sequence");
+        throw host::HostError(frame_path(pattern_, frame) + ": frame " + std::to_string(frame) +
+                              " is not in the sequence");
     return int(it - frames_.begin());
 }
 
@@ -134,10 +136,11 @@ void FrameSequence::read_missing(const std::vector<int>& frames, const layers::R
         options.max_memory > 0 ? options.max_memory : layers::default_read_budget();
     const std::uint64_t held = read_.size() + (frames.size() - first);
     if (held * bytes > budget)
-        throw ToolError(frame_path(pattern_, frames.front()) + ": the " + std::to_string(held) +
-                        " frames held at once (" + std::to_string(bytes >> 20) +
-                        " MiB each) exceed the memory budget of " + std::to_string(budget >> 20) +
-                        " MiB (--max-memory)");
+        throw host::HostError(frame_path(pattern_, frames.front()) + ": the " +
+                              std::to_string(held) + " frames held at once (" +
+                              std::to_string(bytes >> 20) +
+                              " MiB each) exceed the memory budget of " +
+                              std::to_string(budget >> 20) + " MiB (--max-memory)");
     const int room = int(std::min<std::uint64_t>(budget / bytes - read_.size(), 64));
     std::vector<std::shared_ptr<OIIO::ImageBuf>> images(frames.size());
     tbb::task_arena arena(std::max(1, std::min(room, int(frames.size() - first))));

@@ -19,14 +19,14 @@ namespace statmc::tool {
 
 using layers::frame_path;
 
-/// layers::frame_pattern, its error a ToolError.
+/// layers::frame_pattern, its error a HostError.
 std::string frame_pattern(const std::string& text, std::string* range = nullptr);
 
 /// "1-48", "1-48x2", "3,5,10-20": the frames, in order (layers::frame_list), each once.
-/// Throws ToolError naming `spec`.
+/// Throws HostError naming `spec`.
 std::vector<int> parse_frame_list(const std::string& spec);
 
-/// The frames whose files exist under `pattern`, ascending; throws ToolError naming the
+/// The frames whose files exist under `pattern`, ascending; throws HostError naming the
 /// pattern when none does.
 std::vector<int> frames_on_disk(const std::string& text, const std::string& pattern);
 
@@ -44,7 +44,7 @@ public:
     /// end), reading those not yet read with `options`. The first call compares the headers
     /// of every frame: one data window and one set of channels, or a LayerError naming the
     /// first frame that differs. Throws FileError for a file that cannot be read and
-    /// ToolError when the frames held would exceed the memory budget.
+    /// HostError when the frames held would exceed the memory budget.
     std::vector<const OIIO::ImageBuf*> around(int frame, const std::vector<int>& offsets,
                                               const layers::ReadOptions& options);
 

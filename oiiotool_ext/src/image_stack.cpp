@@ -1,13 +1,13 @@
 #include "image_stack.h"
 
-#include "statmc/tool/tool_error.h"
+#include "statmc/plugin_host/host_error.h"
 
 namespace statmc::tool {
 
 const StackImage& ImageStack::top(const std::string& command) const
 {
     if (images_.empty())
-        throw ToolError(command + ": the image stack is empty (give an input image first)");
+        throw host::HostError(command + ": the image stack is empty (give an input image first)");
     return images_.back();
 }
 
@@ -24,8 +24,8 @@ std::vector<StackImage> ImageStack::pop(std::size_t n, const std::string& comman
     if (n > 0)
         top(command);  // "the image stack is empty" says more than "needs 1"
     if (n > images_.size())
-        throw ToolError(command + ": needs " + std::to_string(n) + " images, the stack holds " +
-                        std::to_string(images_.size()));
+        throw host::HostError(command + ": needs " + std::to_string(n) +
+                              " images, the stack holds " + std::to_string(images_.size()));
     std::vector<StackImage> popped(std::make_move_iterator(images_.end() - n),
                                    std::make_move_iterator(images_.end()));
     images_.erase(images_.end() - n, images_.end());

@@ -50,10 +50,10 @@ public:
     std::size_t size() const { return images_.size(); }
     bool empty() const { return images_.empty(); }
 
-    /// The top image; throws ToolError "<command>: the image stack is empty".
+    /// The top image; throws HostError "<command>: the image stack is empty".
     const StackImage& top(const std::string& command) const;
     StackImage pop(const std::string& command);
-    /// The top n images, bottom first; throws ToolError when fewer are stacked ("the image
+    /// The top n images, bottom first; throws HostError when fewer are stacked ("the image
     /// stack is empty" when none are and n > 0).
     std::vector<StackImage> pop(std::size_t n, const std::string& command);
 

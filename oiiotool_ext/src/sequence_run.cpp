@@ -4,7 +4,7 @@
 #include <ostream>
 
 #include "statmc/layers/input_path.h"
-#include "statmc/tool/tool_error.h"
+#include "statmc/plugin_host/host_error.h"
 
 namespace statmc::tool {
 
@@ -43,9 +43,9 @@ SequenceRun::SequenceRun(std::vector<Invocation> program, std::ostream& err)
         std::any_of(patterns_.begin(), patterns_.end(), [](const auto& p) { return !p.empty(); });
     if (!any_pattern) {
         if (frames_given || skip_missing)
-            throw ToolError(std::string(frames_given ? "--frames" : "--skip-missing") +
-                            ": no input or output names a frame pattern (shot.#.exr, "
-                            "shot.@@@.exr, shot.%04d.exr)");
+            throw host::HostError(std::string(frames_given ? "--frames" : "--skip-missing") +
+                                  ": no input or output names a frame pattern (shot.#.exr, "
+                                  "shot.@@@.exr, shot.%04d.exr)");
         return;
     }
     std::vector<int> frames;
@@ -56,7 +56,7 @@ SequenceRun::SequenceRun(std::vector<Invocation> program, std::ostream& err)
     else if (!first_pattern.empty())
         frames = frames_on_disk(first_input, first_pattern);
     else
-        throw ToolError("the outputs name a frame pattern but no input does: give --frames");
+        throw host::HostError("the outputs name a frame pattern but no input does: give --frames");
 
     // A frame runs only when every input pattern has its file (the readers' own check).
     for (int frame : frames) {
@@ -72,13 +72,13 @@ SequenceRun::SequenceRun(std::vector<Invocation> program, std::ostream& err)
             err << "statmc: note: skipping frame " << frame << ": " << missing << ": " << why
                 << "\n";
         } else {
-            throw ToolError(missing + ": frame " + std::to_string(frame) +
-                            " of the sequence is missing: " + why +
-                            " (--skip-missing skips such frames)");
+            throw host::HostError(missing + ": frame " + std::to_string(frame) +
+                                  " of the sequence is missing: " + why +
+                                  " (--skip-missing skips such frames)");
         }
     }
     if (frames_.empty())
-        throw ToolError("no frame of the sequence has all its inputs");
+        throw host::HostError("no frame of the sequence has all its inputs");
     for (std::size_t k = 0; k < program_.size(); ++k)
         sequences_.push_back(program_[k].name == "-i" && !patterns_[k].empty()
                                  ? std::make_shared<FrameSequence>(patterns_[k], frames_)

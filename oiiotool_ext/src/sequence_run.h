@@ -17,7 +17,7 @@ namespace statmc::tool {
 class SequenceRun {
 public:
     /// Removes --frames and --skip-missing from `program` and resolves the frames.
-    /// `active()` is false for a program without frame patterns. Throws ToolError for
+    /// `active()` is false for a program without frame patterns. Throws HostError for
     /// --frames without a pattern, a pattern with no frames, or (without --skip-missing)
     /// a missing input frame; with it, a note on `err` names each frame skipped.
     SequenceRun(std::vector<Invocation> program, std::ostream& err);

@@ -3,9 +3,9 @@
 #include <optional>
 #include <string>
 
-#include "statmc/tool/number_parsing.h"
-#include "statmc/tool/tool_error.h"
-#include "text_split.h"
+#include "statmc/plugin_host/host_error.h"
+#include "statmc/plugin_host/number_parsing.h"
+#include "statmc/plugin_host/text_split.h"
 #include "tool_context.h"
 
 namespace statmc::tool {
@@ -20,7 +20,7 @@ std::vector<bool> selected_subimages(const ToolContext& ctx, const Invocation& i
     const std::size_t n = first.subimages.size();
     if (inv.modifiers.has("subimages")) {
         std::vector<bool> selected(n, false);
-        for (const std::string& item : split_text(inv.modifiers.get_string("subimages")))
+        for (const std::string& item : host::split_text(inv.modifiers.get_string("subimages")))
             selected[find_subimage(first, item, inv.name)] = true;
         return selected;
     }
@@ -40,18 +40,18 @@ std::size_t find_subimage(const StackImage& image, const std::string& which,
     // Digits only: from_chars would take "-0" as an index.
     const bool digits =
         !which.empty() && which.find_first_not_of("0123456789") == std::string::npos;
-    if (const std::optional<int> s = digits ? try_parse_int(which) : std::nullopt)
+    if (const std::optional<int> s = digits ? host::try_parse_int(which) : std::nullopt)
         if (std::size_t(*s) < image.subimages.size())
             return std::size_t(*s);
     std::vector<std::string> names;
     for (const OIIO::ImageBuf& sub : image.subimages)
         names.push_back(sub.spec().get_string_attribute("oiio:subimagename", "(unnamed)"));
-    throw ToolError(command + ": " + image.label + " has no subimage '" + which + "' (it has " +
-                    std::to_string(image.subimages.size()) + ": " +
-                    OIIO::Strutil::join(names, ", ") + ")");
+    throw host::HostError(command + ": " + image.label + " has no subimage '" + which +
+                          "' (it has " + std::to_string(image.subimages.size()) + ": " +
+                          OIIO::Strutil::join(names, ", ") + ")");
 }
 
-ModifierSpec subimages_modifier()
+host::ModifierSpec subimages_modifier()
 {
     return statmc::string_parameter("subimages", "",
                                     "only these subimages (indices or part names); the "
@@ -67,9 +67,9 @@ void apply_to_subimages(ToolContext& ctx, const Invocation& inv, std::size_t cou
     if (!selected.empty())
         for (const StackImage& in : inputs)
             if (in.subimages.size() != n)
-                throw ToolError(inv.name + ": " + inputs[0].label + " has " + std::to_string(n) +
-                                " subimages but " + in.label + " has " +
-                                std::to_string(in.subimages.size()));
+                throw host::HostError(inv.name + ": " + inputs[0].label + " has " +
+                                      std::to_string(n) + " subimages but " + in.label + " has " +
+                                      std::to_string(in.subimages.size()));
     std::vector<OIIO::ImageBuf> results;
     // A subimage that passes through keeps its MIP levels; a computed one has one level.
     layers::MipLevels levels(n);
@@ -86,7 +86,7 @@ void apply_to_subimages(ToolContext& ctx, const Invocation& inv, std::size_t cou
             images.push_back(&in.subimages[s]);
         OIIO::ImageBuf result = op(images);
         if (result.has_error())
-            throw ToolError(inv.name + ": " + inputs[0].label + ": " + result.geterror());
+            throw host::HostError(inv.name + ": " + inputs[0].label + ": " + result.geterror());
         results.push_back(std::move(result));
     }
     StackImage result{std::move(results), inputs[0].label + " (" + inv.name + ")"};

@@ -22,15 +22,15 @@ struct ToolContext;
 using SubimageOp = std::function<OIIO::ImageBuf(const std::vector<const OIIO::ImageBuf*>&)>;
 
 /// The subimage `which` names in `image`: its part name (oiio:subimagename) or its
-/// index. Throws ToolError "<command>: <label> has no subimage ..." listing the names.
+/// index. Throws HostError "<command>: <label> has no subimage ..." listing the names.
 std::size_t find_subimage(const StackImage& image, const std::string& which,
                           const std::string& command);
 
 /// The `:subimages=` modifier of the commands that take it.
-ModifierSpec subimages_modifier();
+host::ModifierSpec subimages_modifier();
 
 /// Pops `count` images, runs `op` on the subimages the invocation selects and pushes
-/// the result. Throws ToolError naming the command and input on failure, and when -a
+/// the result. Throws HostError naming the command and input on failure, and when -a
 /// pairs inputs with different subimage counts.
 void apply_to_subimages(ToolContext& ctx, const Invocation& inv, std::size_t count,
                         const SubimageOp& op);

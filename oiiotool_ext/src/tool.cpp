@@ -4,12 +4,12 @@
 #include <new>
 #include <string>
 
-#include "statmc/tool/plugin_commands.h"
 #include "sequence_run.h"
 #include "statmc/layers/file_error.h"
+#include "statmc/plugin_host/host_error.h"
 #include "statmc/tool/command_line.h"
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/tool_error.h"
+#include "statmc/tool/plugin_commands.h"
 #include "tool_context.h"
 
 namespace statmc::tool {
@@ -27,10 +27,10 @@ int run_frames(const SequenceRun& run, std::ostream& out)
         try {
             for (const Invocation& inv : run.program_for(frame, ctx))
                 inv.command->run(ctx, inv);
-        } catch (const ToolError& e) {
-            throw ToolError("frame " + std::to_string(frame) + ": " + e.what());
+        } catch (const host::HostError& e) {
+            throw host::HostError("frame " + std::to_string(frame) + ": " + e.what());
         } catch (const layers::FileError& e) {
-            throw ToolError("frame " + std::to_string(frame) + ": " + e.what());
+            throw host::HostError("frame " + std::to_string(frame) + ": " + e.what());
         }
         exit_code = std::max(exit_code, ctx.exit_code);
     }
@@ -65,7 +65,7 @@ int run_tool(const std::vector<std::string>& args, std::ostream& out, std::ostre
     ToolContext ctx(out);
     try {
         return run_program(args, ctx, err);
-    } catch (const ToolError& e) {
+    } catch (const host::HostError& e) {
         err << "statmc: error: " << e.what() << "\n";
     } catch (const layers::FileError& e) {
         err << "statmc: error: " << e.what() << "\n";

@@ -22,10 +22,10 @@
 
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/file_error.h"
+#include "statmc/plugin_host/host_error.h"
+#include "statmc/plugin_host/modifiers.h"
+#include "statmc/plugin_host/plugin_catalog.h"
 #include "statmc/plugin_sdk/operator_spec.h"
-#include "statmc/tool/modifiers.h"
-#include "statmc/tool/plugin_commands.h"
-#include "statmc/tool/tool_error.h"
 
 namespace py = pybind11;
 
@@ -152,7 +152,7 @@ statmc::ParameterValues parameters(const statmc::OperatorSpec& op, const py::dic
         }
         given.emplace_back(py::str(key), text);
     }
-    return statmc::tool::Modifiers::parse("--" + op.name, given, op.parameters).values();
+    return statmc::host::Modifiers::parse("--" + op.name, given, op.parameters).values();
 }
 
 // (names, pixels, attributes, origin), as read() returns it.
@@ -187,7 +187,7 @@ py::tuple run_operator(const std::string& name, const std::vector<PythonImage>& 
                        const std::vector<PythonImage>& previous,
                        const std::vector<PythonImage>& next, int nthreads)
 {
-    const statmc::OperatorSpec* op = statmc::tool::plugin_registry().find(name);
+    const statmc::OperatorSpec* op = statmc::host::plugin_registry().find(name);
     if (!op)
         throw py::value_error("no operator '" + name + "'");
     const statmc::ParameterValues values = parameters(*op, options);
@@ -213,11 +213,17 @@ py::tuple run_operator(const std::string& name, const std::vector<PythonImage>& 
     context.input_labels.resize(inputs.size());
     if (!before.empty() || !after.empty())
         context.sequence_frames = sequence_of(before, after);
+    // Collected while the GIL is released, raised as warnings once it is held again.
+    std::vector<std::string> messages;
+    context.message = [&messages](const std::string& line) { messages.push_back(line); };
     OIIO::ImageBuf result;
     {
         py::gil_scoped_release unlocked;
         result = op->run(pointers, values, context);
     }
+    for (const std::string& line : messages)
+        if (PyErr_WarnEx(PyExc_UserWarning, line.c_str(), 2) != 0)
+            throw py::error_already_set();  // warnings turned into errors
     if (result.has_error())
         throw py::value_error(command + ": " + result.geterror());
     return py::make_tuple(image_to_python(std::move(result)), report.str());
@@ -229,7 +235,7 @@ PYBIND11_MODULE(_statmc, m)
 {
     m.doc() = "statmc's native operators and files (use the statmc package)";
     statmc::layers::silence_library_debug_messages();
-    py::register_exception<statmc::tool::ToolError>(m, "ToolError", PyExc_ValueError);
+    py::register_exception<statmc::host::HostError>(m, "ToolError", PyExc_ValueError);
     py::register_exception<statmc::layers::FileError>(m, "FileError", PyExc_OSError);
 
     m.def("read", &read_file, py::arg("path"),
@@ -241,11 +247,12 @@ PYBIND11_MODULE(_statmc, m)
           py::arg("options"), py::arg("previous") = std::vector<PythonImage>{},
           py::arg("next") = std::vector<PythonImage>{}, py::arg("nthreads") = 0,
           "runs a plugin operator; returns ((names, pixels, attributes, origin), report)");
-    m.def("help", [](const std::string& name) { return statmc::tool::operator_help_text(name); },
-          py::arg("operator"), "the operator's help and parameter table, as statmc --help OP");
+    m.def(
+        "help", [](const std::string& name) { return statmc::host::operator_help_text(name); },
+        py::arg("operator"), "the operator's help and parameter table, as statmc --help OP");
     m.def("operators", [] {
         std::vector<std::string> names;
-        for (const statmc::OperatorSpec& op : statmc::tool::plugin_registry().operators())
+        for (const statmc::OperatorSpec& op : statmc::host::plugin_registry().operators())
             names.push_back(op.name);
         return names;
     });

@@ -10,10 +10,9 @@
 namespace statmc::render {
 
 Film::Film(int w, int h, BounceLayout bounce_layout)
-    : width(w), height(h), stats(w, h),
-      albedo_sum(std::size_t(w) * h * 3), normal_sum(std::size_t(w) * h * 3),
-      depth_sum(std::size_t(w) * h), albedo_squares(std::size_t(w) * h),
-      normal_squares(std::size_t(w) * h)
+    : width(w), height(h), stats(w, h), albedo_sum(std::size_t(w) * h * 3),
+      normal_sum(std::size_t(w) * h * 3), depth_sum(std::size_t(w) * h),
+      albedo_squares(std::size_t(w) * h), normal_squares(std::size_t(w) * h)
 {
     if (!bounce_layout.empty())
         bounces = std::make_unique<BounceStatistics>(w, h, bounce_layout);

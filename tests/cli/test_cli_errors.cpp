@@ -146,8 +146,7 @@ TEST_F(CliError, PassesWithMismatchedChannels)
 TEST_F(CliError, PassesNeedsTwoRenders)
 {
     const auto a = input("a.exr", cli_render(0));
-    expect_failure({a, "--passes", "-o", out()},
-                   "--passes: needs at least 2 renders, got 1");
+    expect_failure({a, "--passes", "-o", out()}, "--passes: needs at least 2 renders, got 1");
     expect_failure({a, a, "--passes:n=3", "-o", out()},
                    "--passes: needs 3 images, the stack holds 2");
     expect_failure({a, a, "--passes:n=1", "-o", out()}, "--passes: n must be at least 2, got 1");

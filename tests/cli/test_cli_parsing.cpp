@@ -1,29 +1,29 @@
 // The command-line pieces on their own: strict numbers, modifiers, splitting.
 #include <gtest/gtest.h>
 
+#include "statmc/plugin_host/host_error.h"
+#include "statmc/plugin_host/number_parsing.h"
 #include "statmc/tool/command_line.h"
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/number_parsing.h"
-#include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {
 namespace {
 
 TEST(CliParsing, IntegersAreWholeTokens)
 {
-    EXPECT_EQ(parse_int("20", "radius"), 20);
-    EXPECT_EQ(parse_int("-3", "radius"), -3);
+    EXPECT_EQ(host::parse_int("20", "radius"), 20);
+    EXPECT_EQ(host::parse_int("-3", "radius"), -3);
     for (const char* bad : {"", "abc", "3x", "3.0", " 3", "+3", "99999999999"})
-        EXPECT_THROW(parse_int(bad, "radius"), ToolError) << bad;
+        EXPECT_THROW(host::parse_int(bad, "radius"), host::HostError) << bad;
 }
 
 TEST(CliParsing, FloatsAreFiniteWholeTokens)
 {
-    EXPECT_EQ(parse_float("0.005", "alpha"), 0.005);
-    EXPECT_EQ(parse_float("1e-3", "alpha"), 1e-3);
-    EXPECT_EQ(parse_float("10", "sigma_s"), 10.0);
+    EXPECT_EQ(host::parse_float("0.005", "alpha"), 0.005);
+    EXPECT_EQ(host::parse_float("1e-3", "alpha"), 1e-3);
+    EXPECT_EQ(host::parse_float("10", "sigma_s"), 10.0);
     for (const char* bad : {"", "x", "0.1.2", "inf", "nan", "1e999", "0,5"})
-        EXPECT_THROW(parse_float(bad, "alpha"), ToolError) << bad;
+        EXPECT_THROW(host::parse_float(bad, "alpha"), host::HostError) << bad;
 }
 
 TEST(CliParsing, CommandWordsSplitIntoNameAndModifiers)
@@ -33,8 +33,8 @@ TEST(CliParsing, CommandWordsSplitIntoNameAndModifiers)
     ASSERT_EQ(mods.size(), 2u);
     EXPECT_EQ(mods[0], (std::pair<std::string, std::string>{"radius", "3"}));
     EXPECT_EQ(mods[1], (std::pair<std::string, std::string>{"guides", "albedo,normal"}));
-    EXPECT_THROW(split_command("--denoise::radius=3"), ToolError);
-    EXPECT_THROW(split_command("--denoise:=3"), ToolError);
+    EXPECT_THROW(split_command("--denoise::radius=3"), host::HostError);
+    EXPECT_THROW(split_command("--denoise:=3"), host::HostError);
 }
 
 TEST(CliParsing, InvocationsConsumeTheirArguments)

@@ -73,7 +73,6 @@ int departures_beyond(const std::vector<float>& out, const StatisticsPlanes& sta
     return count;
 }
 
-
 RadiusLadderOptions at_z3()
 {
     RadiusLadderOptions ladder;
@@ -184,8 +183,6 @@ TEST(RadiusLadder, ALonePixelOfItsOwnIsNotAveragedAway)
     EXPECT_EQ(laddered(stats, DenoiseOptions::paper(), unmoderated(true))[p], stats.mean[p]);
     EXPECT_EQ(laddered(stats, DenoiseOptions{}, the_defaults_ladder())[p], stats.mean[p]);
 }
-
-
 
 }  // namespace
 }  // namespace statmc

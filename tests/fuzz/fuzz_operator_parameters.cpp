@@ -1,16 +1,16 @@
 // `:name=value` modifiers → the typed parameter parser of the plugin SDK and the command's
 // own check, for every command (the built-ins and each plugin operator). The first byte
 // picks the command, the rest is the modifier text: "--denoise" + ":radius=3:alpha=0.01".
-// A bad value must be a ToolError naming the command and parameter; any other escape or
+// A bad value must be a HostError naming the command and parameter; any other escape or
 // a crash is a finding.
 #include <cstdint>
 #include <vector>
 
 #include "fuzz_input.h"
-#include "statmc/tool/plugin_commands.h"
+#include "statmc/plugin_host/host_error.h"
 #include "statmc/tool/command_line.h"
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/tool_error.h"
+#include "statmc/tool/plugin_commands.h"
 
 namespace {
 
@@ -43,12 +43,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         statmc::tool::Invocation inv;
         inv.command = &command;
         inv.name = name;
-        inv.modifiers = statmc::tool::Modifiers::parse(name, given, command.modifiers);
+        inv.modifiers = statmc::host::Modifiers::parse(name, given, command.modifiers);
         for (std::size_t a = 0; a < command.arg_names.size(); ++a)
             inv.args.push_back("in.exr");
         if (command.check)
             command.check(inv);
-    } catch (const statmc::tool::ToolError&) {
+    } catch (const statmc::host::HostError&) {
     }
     return 0;
 }

@@ -124,8 +124,8 @@ namespace {
 TEST(LayerNames, StatisticsOfAnyAovAreRecognisedAndMeansAreNot)
 {
     for (const char* statistic :
-         {"variance.R", "boxcoxM3.B", "sampleCount.Y", "diffuse.variance.G",
-          "bounce1L.M4.Y", "spec.boxcoxMean.R", "albedoVariance.Y", "normalVariance.Y"})
+         {"variance.R", "boxcoxM3.B", "sampleCount.Y", "diffuse.variance.G", "bounce1L.M4.Y",
+          "spec.boxcoxMean.R", "albedoVariance.Y", "normalVariance.Y"})
         EXPECT_TRUE(is_any_statistics_channel(statistic)) << statistic;
     for (const char* mean : {"R", "A", "diffuse.R", "albedo.G", "normal.X", "depth.Z", "bounce1L.Y",
                              "diagnostics.members", "ViewLayer.Combined.R", "subpixel.UV"})

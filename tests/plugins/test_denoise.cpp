@@ -302,8 +302,8 @@ TEST(DenoiseOperator, TheDefaultsLadderNeedsNoFourthMomentAndSaysWhatItLeavesOut
                                       channel_value(with_moments, channel, x, y)))
                     << channel << " at (" << x << ", " << y << ")";
     // Without the variance layer the ladder is left out, and the note says why.
-    const OIIO::ImageBuf no_variance = denoise(
-        test::without_channels(f.image, {"variance.R", "variance.G", "variance.B"}), o);
+    const OIIO::ImageBuf no_variance =
+        denoise(test::without_channels(f.image, {"variance.R", "variance.G", "variance.B"}), o);
     ASSERT_FALSE(no_variance.has_error()) << no_variance.geterror();
     EXPECT_EQ(no_variance.spec().get_string_attribute("statmc:denoiseSkipped"),
               "ici (needs the variance layer)");

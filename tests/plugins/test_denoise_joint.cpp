@@ -209,8 +209,9 @@ TEST(DenoiseJoint, MoreAovsThanTheFilterTakesSideBySideShareTheLeadsTestAndSaySo
     opt.joint = true;
     const OIIO::ImageBuf out = denoise(in, opt);
     ASSERT_FALSE(out.has_error()) << out.geterror();
-    EXPECT_NE(out.spec().get_string_attribute(layers::attr::kDenoiseSkipped).find(
-                  "15 channels side by side"),
+    EXPECT_NE(out.spec()
+                  .get_string_attribute(layers::attr::kDenoiseSkipped)
+                  .find("15 channels side by side"),
               std::string::npos)
         << out.spec().get_string_attribute(layers::attr::kDenoiseSkipped);
     double worst = 0;

@@ -70,6 +70,26 @@ def test_denoise_equals_the_command_line_bitwise(tmp_path):
                           expected["beauty"])
 
 
+def test_an_operators_notes_are_python_warnings_with_the_command_lines_text(tmp_path):
+    source = tmp_path / "stats.exr"
+    statmc.write_statistics(source, statistics_image())
+    # Diagnostics describe one radius per pixel, so the default leaves its ladder out and
+    # says so: on stderr from the command line, as a warning here.
+    cli = subprocess.run([CLI, str(source), "--denoise:diagnostics=1", "-o",
+                          str(tmp_path / "cli.exr")], capture_output=True, text=True, check=True)
+    assert "left out ici" in cli.stderr
+    with pytest.warns(UserWarning) as caught:
+        statmc.denoise(source, diagnostics=True)
+    assert [str(w.message) for w in caught] == [line.replace(str(source), str(source))
+                                                for line in cli.stderr.splitlines()]
+    # Warnings turned into errors stop the call.
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(UserWarning):
+            statmc.denoise(source, diagnostics=True)
+
+
 def test_read_layers_are_views_and_edits_reach_the_operator(tmp_path):
     # A read image's layers are views into one array, which goes back to the operator
     # whole; an edit in place is in that array, and a replaced layer makes a new one.

@@ -21,9 +21,9 @@
 #include <OpenImageIO/imagebuf.h>
 
 #include "renderer_test_support.h"
-#include "temp_dir.h"
 #include "statmc/layers/sample_provenance.h"
 #include "statmc/render/render_task.h"
+#include "temp_dir.h"
 
 namespace statmc::render::test {
 namespace {
@@ -141,8 +141,8 @@ TEST(Farm, MergedTasksHoldTheStatisticsOfOneRender)
     std::string tasks;
     for (int i = 0; i < 4; ++i) {
         const std::string out = f.dir.file("t" + std::to_string(i) + ".exr");
-        const ProgramRun r =
-            render_cli(f.common(24) + " --task " + std::to_string(i) + "/4 -o " + quoted(out), f.dir);
+        const ProgramRun r = render_cli(
+            f.common(24) + " --task " + std::to_string(i) + "/4 -o " + quoted(out), f.dir);
         ASSERT_EQ(r.status, 0) << r.output;
         const OIIO::ImageSpec spec = read(out).spec();
         EXPECT_EQ(spec.get_int_attribute("statmc:taskIndex", -1), i);
@@ -175,10 +175,10 @@ TEST(Farm, MergedTasksHoldTheStatisticsOfOneRender)
                 scale = std::max(scale, std::abs(a.getchannel(x, y, 0, ca)));
         for (int y = 0; y < 16; ++y)
             for (int x = 0; x < 24; ++x)
-                worst = std::max(worst, std::abs(a.getchannel(x, y, 0, ca) -
-                                                 b.getchannel(x, y, 0, cb)));
-        EXPECT_LE(worst, 1e-6f * scale) << name << ": largest difference " << worst
-                                        << " of values up to " << scale;
+                worst = std::max(worst,
+                                 std::abs(a.getchannel(x, y, 0, ca) - b.getchannel(x, y, 0, cb)));
+        EXPECT_LE(worst, 1e-6f * scale)
+            << name << ": largest difference " << worst << " of values up to " << scale;
     }
 }
 
@@ -209,9 +209,9 @@ TEST(Farm, RenderKilledAtAnyMomentResumesBitwiseEqual)
     const std::string straight = f.dir.file("straight.exr"), out = f.dir.file("out.exr");
     ASSERT_EQ(render_cli(f.common(2000) + " -o " + quoted(straight), f.dir).status, 0);
     const std::string checkpoint = out + ".checkpoint", log = f.dir.file("runs.log");
-    const std::vector<std::string> args{f.scene,      "--resolution", "24x16", "--spp", "2000",
-                                        "--seed",     "3",            "--threads", "2", "-q",
-                                        "--checkpoint", "0.05",       "--resume", "-o", out};
+    const std::vector<std::string> args{
+        f.scene, "--resolution", "24x16",        "--spp", "2000",     "--seed", "3", "--threads",
+        "2",     "-q",           "--checkpoint", "0.05",  "--resume", "-o",     out};
     // Killed three times, each soon after a fresh checkpoint (at a different point of the
     // render each time), then left to finish.
     int kills = 0;
@@ -231,7 +231,8 @@ TEST(Farm, RenderKilledAtAnyMomentResumesBitwiseEqual)
     EXPECT_GE(kills, 1) << "the render finished before it could be killed: make it longer";
     const pid_t last = start(args, log);
     ASSERT_EQ(wait_exit(last), 0) << file_bytes(log);
-    EXPECT_NE(file_bytes(log).find("resuming from checkpoint"), std::string::npos) << file_bytes(log);
+    EXPECT_NE(file_bytes(log).find("resuming from checkpoint"), std::string::npos)
+        << file_bytes(log);
     EXPECT_FALSE(fs::exists(checkpoint)) << "removed once the output holds the render";
     expect_bitwise_equal(out, straight);
 }
@@ -246,7 +247,8 @@ std::string stopped_render(const FarmScene& f, const std::string& out)
     EXPECT_TRUE(wait_for_new_file(checkpoint, fs::file_time_type::min(), pid));
     ::kill(pid, SIGTERM);
     EXPECT_EQ(wait_exit(pid), 130) << file_bytes(log);
-    EXPECT_NE(file_bytes(log).find("run again with --resume"), std::string::npos) << file_bytes(log);
+    EXPECT_NE(file_bytes(log).find("run again with --resume"), std::string::npos)
+        << file_bytes(log);
     EXPECT_FALSE(fs::exists(out)) << "a stopped task writes no output that could be merged";
     return checkpoint;
 }
@@ -263,8 +265,8 @@ std::string with_checkpoint_version(const std::string& checkpoint, const std::st
     const std::size_t end = header.find('\n', at + 1);
     header.replace(at, end - at, "\nversion=" + version);
     const std::uint32_t new_length = std::uint32_t(header.size());
-    const std::uint32_t crc = std::uint32_t(
-        crc32_z(crc32_z(0, nullptr, 0), reinterpret_cast<const Bytef*>(header.data()), header.size()));
+    const std::uint32_t crc = std::uint32_t(crc32_z(
+        crc32_z(0, nullptr, 0), reinterpret_cast<const Bytef*>(header.data()), header.size()));
     std::string out = checkpoint.substr(0, 8);
     out.append(reinterpret_cast<const char*>(&new_length), sizeof new_length);
     out += header;
@@ -279,7 +281,8 @@ TEST(Farm, CheckpointsOfOtherRendersAndDamagedOnesAreRefused)
     const std::string out = f.dir.file("out.exr");
     const std::string checkpoint = stopped_render(f, out);
     const std::string good = file_bytes(checkpoint);
-    const std::string base = quoted(f.scene) + " --spp 100000 --threads 2 -q --resume -o " + quoted(out);
+    const std::string base =
+        quoted(f.scene) + " --spp 100000 --threads 2 -q --resume -o " + quoted(out);
     const std::pair<std::string, std::string> others[] = {
         {" --resolution 24x16 --seed 4", "(seed: '3' in the checkpoint, '4' in this render)"},
         {" --resolution 24x17 --seed 3",
@@ -308,7 +311,8 @@ TEST(Farm, CheckpointsOfOtherRendersAndDamagedOnesAreRefused)
               std::string::npos)
         << r.output;
     EXPECT_EQ(file_bytes(checkpoint), older);
-    std::ofstream(checkpoint, std::ios::binary | std::ios::trunc) << good.substr(0, good.size() / 2);
+    std::ofstream(checkpoint, std::ios::binary | std::ios::trunc)
+        << good.substr(0, good.size() / 2);
     r = render_cli(same, f.dir);
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.output.find("checkpoint " + checkpoint + ": truncated"), std::string::npos)
@@ -346,7 +350,7 @@ TEST(Farm, CheckpointThatCannotBeWrittenKeepsThePreviousOne)
     ::kill(pid, SIGTERM);
     EXPECT_EQ(wait_exit(pid), 130) << file_bytes(log);
     EXPECT_NE(file_bytes(log).find("cannot write checkpoint: File too large; the previous "
-                                 "checkpoint is kept"),
+                                   "checkpoint is kept"),
               std::string::npos)
         << file_bytes(log);
     EXPECT_EQ(file_bytes(checkpoint), previous);
@@ -380,9 +384,10 @@ TEST(Farm, FramesRenderedWithOneSeedAreRefusedByTheTemporalDenoise)
     }
     const ProgramRun same = temporal("same");
     EXPECT_EQ(same.status, 1) << same.output;
-    EXPECT_NE(same.output.find(".exr): it and the frame denoised drew the same samples (seed 3, samples "
-                               "0..7): merged over time they would count twice"),
-              std::string::npos)
+    EXPECT_NE(
+        same.output.find(".exr): it and the frame denoised drew the same samples (seed 3, samples "
+                         "0..7): merged over time they would count twice"),
+        std::string::npos)
         << same.output;
     EXPECT_FALSE(fs::exists(f.dir.file("same-out.0001.exr")));
     EXPECT_FALSE(fs::exists(f.dir.file("same-out.0002.exr")));
@@ -410,9 +415,8 @@ TEST(Farm, FramesRenderedWithOneSeedAreRefusedByTheTemporalDenoise)
 TEST(Farm, EveryFrameOfASequenceRecordsTheSeedItDrewWith)
 {
     const FarmScene f;
-    const ProgramRun r = render_cli(f.common(4) + " --frames 1-2 -o " +
-                                        quoted(f.dir.file("seq.#.exr")),
-                                    f.dir);
+    const ProgramRun r =
+        render_cli(f.common(4) + " --frames 1-2 -o " + quoted(f.dir.file("seq.#.exr")), f.dir);
     ASSERT_EQ(r.status, 0) << r.output;
     for (int frame : {1, 2}) {
         char name[64];

@@ -141,10 +141,10 @@ OIIO::ImageBuf with_retired_position_layers(const OIIO::ImageBuf& buf)
         values.push_back(0.f);
         names.push_back(buf.spec().channelnames[c]);
     }
-    for (const char* name : {"subpixel.U", "subpixel.V", "subpixel.UU", "subpixel.VV",
-                             "subpixel.UV", "covU.R", "covU.G", "covU.B", "covV.R", "covV.G",
-                             "covV.B", "boxcoxCovU.R", "boxcoxCovU.G", "boxcoxCovU.B",
-                             "boxcoxCovV.R", "boxcoxCovV.G", "boxcoxCovV.B"}) {
+    for (const char* name :
+         {"subpixel.U", "subpixel.V", "subpixel.UU", "subpixel.VV", "subpixel.UV", "covU.R",
+          "covU.G", "covU.B", "covV.R", "covV.G", "covV.B", "boxcoxCovU.R", "boxcoxCovU.G",
+          "boxcoxCovU.B", "boxcoxCovV.R", "boxcoxCovV.G", "boxcoxCovV.B"}) {
         order.push_back(-1);
         values.push_back(-0.25f);
         names.push_back(name);

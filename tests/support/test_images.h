@@ -9,12 +9,12 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include "same_bits.h"
 #include "statmc/core/denoise_options.h"
 #include "statmc/core/estimator_image.h"
 #include "statmc/core/filter.h"
 #include "statmc/core/statistics_image.h"
 #include "statmc/layers/guide_layers.h"
-#include "same_bits.h"
 
 namespace statmc::test {
 

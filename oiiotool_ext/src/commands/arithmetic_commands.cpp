@@ -2,10 +2,10 @@
 // ImageBufAlgo.
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "statmc/plugin_host/number_parsing.h"
+#include "statmc/plugin_host/text_split.h"
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/number_parsing.h"
 #include "subimage_loop.h"
-#include "text_split.h"
 #include "tool_context.h"
 
 namespace statmc::tool {
@@ -17,8 +17,8 @@ using ImageOp = OIIO::ImageBuf (*)(OIIO::Image_or_Const, OIIO::Image_or_Const, O
 std::vector<float> constant_list(const std::string& text, const std::string& command)
 {
     std::vector<float> values;
-    for (const std::string& item : split_text(text))
-        values.push_back(float(parse_float(item, command)));
+    for (const std::string& item : host::split_text(text))
+        values.push_back(float(host::parse_float(item, command)));
     return values;
 }
 

@@ -2,9 +2,9 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "channel_selection.h"
+#include "statmc/plugin_host/text_split.h"
 #include "statmc/tool/command_table.h"
 #include "subimage_loop.h"
-#include "text_split.h"
 #include "tool_context.h"
 
 namespace statmc::tool {
@@ -33,7 +33,7 @@ Command chnames_command()
     c.summary = "Rename the channels in order; an empty entry keeps a name (e.g. ,,,A)";
     c.modifiers = {subimages_modifier()};
     c.run = [](ToolContext& ctx, const Invocation& inv) {
-        const std::vector<std::string> names = split_text(inv.args[0]);
+        const std::vector<std::string> names = host::split_text(inv.args[0]);
         apply_to_subimages(ctx, inv, 1, [&](const auto& in) {
             OIIO::ImageBuf renamed = *in[0];
             OIIO::ImageSpec& spec = renamed.specmod();

@@ -7,8 +7,8 @@
 #include <OpenImageIO/color.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "statmc/plugin_host/host_error.h"
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/tool_error.h"
 #include "subimage_loop.h"
 #include "tool_context.h"
 
@@ -33,9 +33,10 @@ std::shared_ptr<OIIO::ColorConfig> load_color_config(const ToolContext& ctx,
     if (!config_named(ctx))
         config->geterror();
     else if (config->has_error())
-        throw ToolError(command + ": colour config " +
-                        (ctx.colorconfig.empty() ? std::string("from $OCIO") : ctx.colorconfig) +
-                        ": " + config->geterror());
+        throw host::HostError(
+            command + ": colour config " +
+            (ctx.colorconfig.empty() ? std::string("from $OCIO") : ctx.colorconfig) + ": " +
+            config->geterror());
     return config;
 }
 
@@ -48,7 +49,7 @@ OIIO::ColorConfig& color_config(ToolContext& ctx, const std::string& command)
 }
 
 // Off by default, as in oiiotool (ImageBufAlgo's own default is on).
-ModifierSpec unpremult_modifier()
+host::ModifierSpec unpremult_modifier()
 {
     return statmc::bool_parameter("unpremult", false, "divide by alpha around the conversion");
 }
@@ -104,7 +105,8 @@ Command ociodisplay_command()
         // The built-in spaces have no displays; OIIO would fail (or crash on the
         // defaults) without a config.
         if (!config_named(ctx))
-            throw ToolError(inv.name + ": needs an OCIO config (--colorconfig FILE or $OCIO)");
+            throw host::HostError(inv.name +
+                                  ": needs an OCIO config (--colorconfig FILE or $OCIO)");
         OIIO::ColorConfig& config = color_config(ctx, inv.name);
         auto text = [](const char* s) { return std::string(s ? s : ""); };
         std::string display = inv.args[0], view = inv.args[1];

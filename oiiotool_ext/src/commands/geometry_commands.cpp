@@ -4,8 +4,8 @@
 
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "statmc/plugin_host/host_error.h"
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/tool_error.h"
 #include "subimage_loop.h"
 #include "tool_context.h"
 
@@ -22,7 +22,7 @@ struct Geometry {
 
 [[noreturn]] void no_pixels(const std::string& text, const std::string& command)
 {
-    throw ToolError(command + ": geometry '" + text + "' has no pixels");
+    throw host::HostError(command + ": geometry '" + text + "' has no pixels");
 }
 
 // oiiotool's GEOM: "WxH", "WxH+X+Y" (signed offsets) or "xmin,ymin,xmax,ymax"
@@ -47,8 +47,8 @@ Geometry parse_geometry(const std::string& text, bool allow_percent, const std::
         g.percent = percent;
         return g;
     } else {
-        throw ToolError(command + ": geometry '" + text + "' is not WxH, WxH+X+Y" +
-                        (allow_percent ? ", N%" : "") + " or xmin,ymin,xmax,ymax");
+        throw host::HostError(command + ": geometry '" + text + "' is not WxH, WxH+X+Y" +
+                              (allow_percent ? ", N%" : "") + " or xmin,ymin,xmax,ymax");
     }
     if (g.width <= 0 || g.height <= 0)
         no_pixels(text, command);

@@ -1,10 +1,11 @@
 // --help, --version, --validate, --threads and --echo: commands that touch no image.
 #include <OpenImageIO/imageio.h>
 
-#include "statmc/tool/plugin_commands.h"
+#include "statmc/plugin_host/host_error.h"
+#include "statmc/plugin_host/number_parsing.h"
+#include "statmc/plugin_host/plugin_catalog.h"
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/number_parsing.h"
-#include "statmc/tool/tool_error.h"
+#include "statmc/tool/plugin_commands.h"
 #include "tool_context.h"
 
 namespace statmc::tool {
@@ -15,10 +16,10 @@ constexpr int kMaxThreads = 4096;
 
 int thread_argument(const Invocation& inv)
 {
-    const int n = parse_int(inv.args[0], inv.name);
+    const int n = host::parse_int(inv.args[0], inv.name);
     if (n < 0 || n > kMaxThreads)
-        throw ToolError(inv.name + ": thread count must be in [0, " + std::to_string(kMaxThreads) +
-                        "], got " + std::to_string(n));
+        throw host::HostError(inv.name + ": thread count must be in [0, " +
+                              std::to_string(kMaxThreads) + "], got " + std::to_string(n));
     return n;
 }
 
@@ -47,7 +48,7 @@ Command help_command()
     c.summary = "Print this help, or an operator's parameters (--help OP), and exit";
     c.immediate = true;
     c.run = [](ToolContext& ctx, const Invocation& inv) {
-        ctx.out << (inv.args.empty() ? help_text() : operator_help_text(inv.args[0]));
+        ctx.out << (inv.args.empty() ? help_text() : host::operator_help_text(inv.args[0]));
     };
     return c;
 }
@@ -58,7 +59,7 @@ Command list_ops_command()
     c.name = "--list-ops";
     c.summary = "List the operators the plugins provide and exit";
     c.immediate = true;
-    c.run = [](ToolContext& ctx, const Invocation&) { ctx.out << operator_list_text(); };
+    c.run = [](ToolContext& ctx, const Invocation&) { ctx.out << host::operator_list_text(); };
     return c;
 }
 

@@ -12,9 +12,9 @@
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/layer_names.h"
 #include "statmc/layers/storage_rules.h"
+#include "statmc/plugin_host/host_error.h"
+#include "statmc/plugin_host/number_parsing.h"
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/number_parsing.h"
-#include "statmc/tool/tool_error.h"
 #include "tool_context.h"
 
 namespace statmc::tool {
@@ -25,15 +25,15 @@ namespace {
 OIIO::TypeDesc exr_type(const std::string& name, const std::string& command)
 {
     if (name.find('=') != std::string::npos)
-        throw ToolError(command + " " + name +
-                        ": per-channel types (-d CHAN=TYPE) are an oiiotool feature that "
-                        "statmc does not support");
+        throw host::HostError(command + " " + name +
+                              ": per-channel types (-d CHAN=TYPE) are an oiiotool feature that "
+                              "statmc does not support");
     if (name == "half" || name == "float")
         return OIIO::TypeDesc(name);
     if (name == "uint32")  // oiiotool's spelling; it refuses "uint"
         return OIIO::TypeDesc::UINT32;
-    throw ToolError(command + ": OpenEXR stores half, float or uint32 channels, got '" + name +
-                    "'");
+    throw host::HostError(command + ": OpenEXR stores half, float or uint32 channels, got '" +
+                          name + "'");
 }
 
 // A lossy codec would bias every later test on the statistics, so it is refused rather
@@ -41,8 +41,8 @@ OIIO::TypeDesc exr_type(const std::string& name, const std::string& command)
 void check_compression(const std::string& name, const std::string& command)
 {
     if (!layers::is_lossless_compression(name))
-        throw ToolError(command + ": '" + name +
-                        "' is lossy; statmc writes none, rle, zip, zips or piz");
+        throw host::HostError(command + ": '" + name +
+                              "' is lossy; statmc writes none, rle, zip, zips or piz");
 }
 
 // -o's :type= or :datatype= (the later one wins), if either is given.
@@ -63,11 +63,11 @@ OIIO::ImageBuf without_statistics(const OIIO::ImageBuf& image, const Invocation&
         if (!layers::is_any_statistics_channel(image.spec().channelnames[c]))
             kept.push_back(c);
     if (kept.empty())
-        throw ToolError(inv.name + ":keep=means " + inv.args[0] +
-                        ": the image holds only statistics channels");
+        throw host::HostError(inv.name + ":keep=means " + inv.args[0] +
+                              ": the image holds only statistics channels");
     OIIO::ImageBuf out;
     if (!OIIO::ImageBufAlgo::channels(out, image, int(kept.size()), kept, {}, {}, false, nthreads))
-        throw ToolError(inv.name + " " + inv.args[0] + ": " + out.geterror());
+        throw host::HostError(inv.name + " " + inv.args[0] + ": " + out.geterror());
     return out;
 }
 
@@ -83,10 +83,10 @@ std::uint64_t byte_size(const std::string& text, const std::string& command)
             scale = factor;
             number.pop_back();
         }
-    const std::optional<double> value = try_parse_float(number);
+    const std::optional<double> value = host::try_parse_float(number);
     if (!value || !(*value > 0) || *value * scale > 1e18)
-        throw ToolError(command + ": expected a size such as 16G, 512M or a byte count, got '" +
-                        text + "'");
+        throw host::HostError(
+            command + ": expected a size such as 16G, 512M or a byte count, got '" + text + "'");
     return std::uint64_t(*value * scale);
 }
 
@@ -116,7 +116,7 @@ Command check_inputs_command()
     auto flag = [](const Invocation& inv) {
         const std::string& a = inv.args[0];
         if (a != "0" && a != "1")
-            throw ToolError(inv.name + ": expected 0 or 1, got '" + a + "'");
+            throw host::HostError(inv.name + ": expected 0 or 1, got '" + a + "'");
         return a == "1";
     };
     c.check = [flag](const Invocation& inv) { flag(inv); };
@@ -163,7 +163,7 @@ Command input_command()
                 buf = select_channels(buf, inv.modifiers.get_string("ch"), path + ": -i:ch",
                                       ctx.nthreads);
                 if (buf.has_error())
-                    throw ToolError(path + ": -i:ch: " + buf.geterror());
+                    throw host::HostError(path + ": -i:ch: " + buf.geterror());
             };
             for (OIIO::ImageBuf& sub : image.subimages)
                 keep_channels(sub);

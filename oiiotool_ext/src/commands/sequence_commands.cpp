@@ -1,8 +1,8 @@
 // --frames and --skip-missing: how a command line with frame patterns runs over a
 // sequence. The sequence run (sequence_run.h) reads them before any frame runs.
 #include "frame_sequence.h"
+#include "statmc/plugin_host/host_error.h"
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/tool_error.h"
 
 namespace statmc::tool {
 

@@ -1,6 +1,6 @@
 // -a, --subimage, --siappend: the subimages (EXR parts) of stack images; --dup copies one.
+#include "statmc/plugin_host/host_error.h"
 #include "statmc/tool/command_table.h"
-#include "statmc/tool/tool_error.h"
 #include "subimage_loop.h"
 #include "tool_context.h"
 
@@ -28,8 +28,8 @@ Command subimage_command()
         const std::size_t s = find_subimage(image, inv.args[0], inv.name);
         if (inv.modifiers.get_bool("delete")) {
             if (image.subimages.size() == 1)
-                throw ToolError(inv.name + ": " + image.label +
-                                " has one subimage; deleting it would leave no image");
+                throw host::HostError(inv.name + ": " + image.label +
+                                      " has one subimage; deleting it would leave no image");
             image.subimages.erase(image.subimages.begin() + std::ptrdiff_t(s));
             if (!image.mip_levels.empty())
                 image.mip_levels.erase(image.mip_levels.begin() + std::ptrdiff_t(s));
@@ -93,7 +93,7 @@ Command dup_command()
         for (const OIIO::ImageBuf& image : top.subimages) {
             copy.subimages.emplace_back();
             if (!copy.subimages.back().copy(image))
-                throw ToolError(inv.name + ": " + copy.subimages.back().geterror());
+                throw host::HostError(inv.name + ": " + copy.subimages.back().geterror());
         }
         copy.mip_levels = top.mip_levels;
         copy.label = top.label;

@@ -40,7 +40,6 @@ void write_channels(OIIO::ImageBuf& image, const OIIO::ImageBuf* source,
         });
 }
 
-
 std::vector<ChannelWrite> mean_writes(const StatisticsChannels& ch, const Filtered& f,
                                       const Regions& regions)
 {
@@ -51,7 +50,6 @@ std::vector<ChannelWrite> mean_writes(const StatisticsChannels& ch, const Filter
     return writes;
 }
 
-
 OIIO::ImageBuf denoised_copy(const OIIO::ImageBuf& in, const StatisticsChannels& ch,
                              const Filtered& f, const Regions& regions, int nthreads)
 {
@@ -61,7 +59,6 @@ OIIO::ImageBuf denoised_copy(const OIIO::ImageBuf& in, const StatisticsChannels&
     write_channels(result, &in, mean_writes(ch, f, regions), regions, nthreads);
     return result;
 }
-
 
 OIIO::ImageBuf with_diagnostics_channels(const OIIO::ImageBuf& result, const std::string& aov,
                                          int& members, int& effective)

@@ -31,8 +31,8 @@ JointAovs plan_joint_aovs(const OIIO::ImageSpec& spec, const StatisticsChannels&
         StatisticsChannels ch = layers::find_statistics(spec, aov);
         if (ch.channels() != lead.channels())
             throw LayerError("aovs: " + aov + " has " + std::to_string(ch.channels()) +
-                             " channels and " + (lead.aov.empty() ? "the beauty" : lead.aov) +
-                             " " + std::to_string(lead.channels()) + "; joint AOVs must match");
+                             " channels and " + (lead.aov.empty() ? "the beauty" : lead.aov) + " " +
+                             std::to_string(lead.channels()) + "; joint AOVs must match");
         if (joint.side_by_side && !has_test_statistics(ch, domain)) {
             joint.side_by_side = false;
             joint.note = "the joint AOVs' own tests (AOV " + aov + " has no " +

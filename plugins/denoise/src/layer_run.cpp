@@ -8,9 +8,9 @@
 #include "joint_aovs.h"
 #include "mean_filter.h"
 #include "method_stages.h"
-#include "temporal_frames.h"
 #include "statmc/layers/guide_layers.h"
 #include "statmc/layers/view_window.h"
+#include "temporal_frames.h"
 
 namespace statmc::denoising {
 

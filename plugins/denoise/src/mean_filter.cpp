@@ -18,7 +18,6 @@ EstimatorImage lead_estimators(const StatisticsView& stats, TestDomain domain,
                         layers::thread_count(nthreads));
 }
 
-
 Filtered filter_region(const StatisticsView& stats, const EstimatorImage& est, const Guides& guides,
                        const DenoiseOptions& options, bool diagnostics,
                        const RadiusLadderOptions* ladder, int nthreads)

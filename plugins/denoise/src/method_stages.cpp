@@ -108,9 +108,8 @@ Stages stages_for(const StatisticsChannels& all, bool side_by_side, const Denois
     s.context_radius = opt.stages.context_radius;
     if (s.context_radius > 0) {
         // The lead's membership alone would change: joint AOVs would no longer add up.
-        const char* why = side_by_side
-                              ? "the AOVs are tested side by side, and the filter has no "
-                                "room for a context channel beside them"
+        const char* why = side_by_side ? "the AOVs are tested side by side, and the filter has no "
+                                         "room for a context channel beside them"
                           : all.channels() >= 4 ? "the filter takes at most four channels, "
                                                   "and the layer has four without it"
                                                 : nullptr;

@@ -3,7 +3,6 @@
 // default) denoised. The parameter table is `statmc --help denoise`, generated from
 // parameters() below; every default comes from DenoiseImageOptions{}.
 #include <algorithm>
-#include <iostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -149,7 +148,8 @@ std::vector<statmc::ParameterSpec> parameters()
         choice_parameter("test", spellings(kTests), spelling(kTests, defaults().test),
                          "test domain: auto = boxcox when the Box-Cox layers are present, "
                          "else untransformed"),
-        choice_parameter("device", spellings(kDevices), spelling(kDevices, defaults().filter.device),
+        choice_parameter("device", spellings(kDevices),
+                         spelling(kDevices, defaults().filter.device),
                          "where the filter kernel runs: cpu (the reference bits), cuda (a CUDA "
                          "GPU: the same members, values within float summation order; an error "
                          "where none is present), auto (a GPU when present and the image has at "
@@ -192,11 +192,11 @@ std::vector<statmc::ParameterSpec> parameters()
     };
 }
 
-// One line on stderr about the input: "--denoise: note: in.exr: ...".
+// One line about the input, to the host's message sink: "--denoise: note: in.exr: ...".
 void tell(const char* kind, const statmc::RunContext& ctx, const std::string& text)
 {
     const std::string label = ctx.input_labels.empty() ? "" : ctx.input_labels[0] + ": ";
-    std::cerr << "--denoise: " << kind << ": " << label << text << "\n";
+    ctx.tell("--denoise: " + std::string(kind) + ": " + label + text);
 }
 
 // The user learns once, on stderr, that the method ran without one of its stages.

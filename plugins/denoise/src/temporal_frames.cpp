@@ -162,7 +162,6 @@ StatisticsPlanes merged_over_time(const OIIO::ImageBuf& in, const StatisticsChan
                                   layers::thread_count(nthreads));
 }
 
-
 StatisticsView with_planes_of(StatisticsView shape, const StatisticsView& values)
 {
     auto take = [](ConstPlane& to, const ConstPlane& from) {

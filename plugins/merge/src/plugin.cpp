@@ -1,7 +1,7 @@
 // merge: statistics images of one frame (render-farm tasks, different seeds) → the one
 // image rendering all their samples at once would give, as a statmc plugin.
 // Pops n statistics images (or the whole stack); pushes their merged statistics.
-#include <iostream>
+#include <string>
 
 #include "statmc/layers/layer_names.h"
 #include "statmc/merge/merge.h"
@@ -9,16 +9,17 @@
 
 namespace {
 
-// The user learns on stderr that the merge holds only part of the frame's samples.
-void note_partial(const OIIO::ImageBuf& result, const statmc::MergeOptions& options)
+// The user learns that the merge holds only part of the frame's samples.
+void note_partial(const OIIO::ImageBuf& result, const statmc::MergeOptions& options,
+                  const statmc::RunContext& ctx)
 {
     if (!options.allow_partial || result.has_error())
         return;
     const int missing = result.spec().get_int_attribute(statmc::layers::attr::kTasksMissing, 0);
     if (missing > 0)
-        std::cerr << "--merge: note: " << missing
-                  << (missing == 1 ? " task is" : " tasks are")
-                  << " missing; merged the samples of the others (statmc:tasksMissing)\n";
+        ctx.tell("--merge: note: " + std::to_string(missing) +
+                 (missing == 1 ? " task is" : " tasks are") +
+                 " missing; merged the samples of the others (statmc:tasksMissing)");
 }
 
 void register_merge(statmc::PluginRegistry& registry)
@@ -42,7 +43,7 @@ void register_merge(statmc::PluginRegistry& registry)
         statmc::MergeOptions options;
         options.allow_partial = p.get_bool("allow_partial");
         OIIO::ImageBuf result = statmc::merge(inputs, options, ctx.nthreads);
-        note_partial(result, options);
+        note_partial(result, options, ctx);
         return result;
     };
     registry.add(std::move(op));

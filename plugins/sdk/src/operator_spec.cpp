@@ -1,6 +1,16 @@
 #include "statmc/plugin_sdk/operator_spec.h"
 
+#include <iostream>
+
 namespace statmc {
+
+void RunContext::tell(const std::string& line) const
+{
+    if (message)
+        message(line);
+    else
+        std::cerr << line << "\n";
+}
 
 void take_variadic_inputs(OperatorSpec& op, int min_inputs, const std::string& noun)
 {

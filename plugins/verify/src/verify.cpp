@@ -176,9 +176,8 @@ bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in, const OIIO::
     const StatisticsView view = layers::statistics_view(in, ch);
     CandidateTestOptions test = opt.test;
     test.prior_dof = method_settings(Method::Default).stages.ladder.variance.prior_dof;
-    const std::vector<std::uint8_t> rejected =
-        test_candidate(view, moderated_variances(view, nthreads), cand, test,
-                       layers::thread_count(nthreads));
+    const std::vector<std::uint8_t> rejected = test_candidate(
+        view, moderated_variances(view, nthreads), cand, test, layers::thread_count(nthreads));
 
     // A renderer's file comes out under the contract's names, as --passes writes them. The
     // fallback's denoise runs in place on the copy, which already holds the map's channel.

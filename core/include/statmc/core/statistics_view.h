@@ -39,6 +39,7 @@ struct StatisticsView {
     bool has_moments() const { return all_of(variance) && all_of(moment3) && all_of(moment4); }
     /// M4 of the Box-Cox samples, with the Box-Cox set it extends.
     bool has_box_cox_moment4() const { return has_box_cox() && all_of(bc_moment4); }
+
 private:
     bool all_of(const std::array<ConstPlane, 4>& planes) const
     {

@@ -24,7 +24,7 @@ struct StatisticsChannels {
     int count = -1;                     ///< sampleCount.Y
     std::vector<int> mean, variance, bc_mean, bc_variance, bc_moment3;
     std::vector<int> moment3, moment4, bc_moment4;  ///< format version 2, optional
-    bool variance_of_mean = false;  ///< statmc:variance = "mean"
+    bool variance_of_mean = false;                  ///< statmc:variance = "mean"
 
     int channels() const { return int(suffixes.size()); }
     bool has(Statistic stat) const { return !indices(stat).empty(); }

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "statmc/tool/modifiers.h"
+#include "statmc/plugin_host/modifiers.h"
 
 namespace statmc::tool {
 
@@ -18,7 +18,7 @@ struct Invocation {
     const Command* command = nullptr;
     std::string name;               ///< as typed, without modifiers: "--denoise"
     std::vector<std::string> args;  ///< the fixed number of positional arguments
-    Modifiers modifiers;
+    host::Modifiers modifiers;
 };
 
 struct Command {
@@ -27,12 +27,12 @@ struct Command {
     std::vector<std::string> arg_names;  ///< positional arguments, e.g. {"FILE"}
     std::string optional_arg_name;       ///< one more argument taken when present ("--help OP")
     std::string summary;
-    std::vector<ModifierSpec> modifiers;
+    std::vector<host::ModifierSpec> modifiers;
     /// Runs as soon as it is parsed and ends the program (--help, --version).
     bool immediate = false;
-    /// Checks arguments and modifier values before anything runs; throws ToolError.
+    /// Checks arguments and modifier values before anything runs; throws HostError.
     std::function<void(const Invocation&)> check;
-    /// Does the work on the image stack; throws ToolError.
+    /// Does the work on the image stack; throws HostError.
     std::function<void(ToolContext&, const Invocation&)> run;
 };
 

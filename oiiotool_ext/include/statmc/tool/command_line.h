@@ -13,19 +13,19 @@
 namespace statmc::tool {
 
 /// "--denoise:radius=3:alpha=0.01" → {"--denoise", {{"radius","3"}, {"alpha","0.01"}}}.
-/// Throws ToolError for an empty or value-less modifier.
+/// Throws HostError for an empty or value-less modifier.
 std::pair<std::string, std::vector<std::pair<std::string, std::string>>>
 split_command(const std::string& word);
 
 /// Parses the invocation starting at args[i] and advances i past its arguments. A bare
-/// argument becomes `-i <arg>`. Throws ToolError for an unknown command, a missing
+/// argument becomes `-i <arg>`. Throws HostError for an unknown command, a missing
 /// argument or a bad modifier.
 Invocation parse_invocation(const std::vector<std::string>& args, std::size_t& i);
 
 /// The whole command line, parsed and each invocation checked (Command::check), so that
 /// a typo late on the line is reported before the first command runs. An immediate
 /// command (--help, --version) ends the program: it is the last invocation returned, and
-/// nothing after it is parsed. Throws ToolError.
+/// nothing after it is parsed. Throws HostError.
 std::vector<Invocation> parse_program(const std::vector<std::string>& args);
 
 }  // namespace statmc::tool

@@ -13,7 +13,7 @@ namespace statmc::tool {
 const std::vector<Command>& command_table();
 
 /// The built-in or operator command named or aliased `name`, or null. Loads the
-/// plugins on first use (and throws ToolError if one fails).
+/// plugins on first use (and throws HostError if one fails).
 const Command* find_command(std::string_view name);
 
 std::string help_text();

@@ -32,6 +32,13 @@ struct RunContext {
     /// the input as read for later frames: an in-place operator calls this before writing.
     std::function<std::vector<const OIIO::ImageBuf*>(const std::vector<int>& offsets)>
         sequence_frames;
+    /// Where the operator's notes and warnings go, a line each ("--denoise: note: in.exr:
+    /// …"): the statmc tool prints them on stderr, Python raises them as warnings. Unset:
+    /// stderr. Called on the thread that runs the operator.
+    std::function<void(const std::string& line)> message;
+
+    /// Sends `line` to `message`, or to stderr without one.
+    void tell(const std::string& line) const;
 };
 
 /// Inputs bottom of the stack first. Returns the image to push; on failure the result

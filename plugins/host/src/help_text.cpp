@@ -1,9 +1,9 @@
-#include "help_text.h"
+#include "statmc/plugin_host/help_text.h"
 
 #include <algorithm>
 #include <sstream>
 
-namespace statmc::tool {
+namespace statmc::host {
 
 std::string help_line(const std::string& left, std::size_t column, const std::string& text)
 {
@@ -25,4 +25,4 @@ std::string help_line(const std::string& left, std::size_t column, const std::st
     return out + line + "\n";
 }
 
-}  // namespace statmc::tool
+}  // namespace statmc::host

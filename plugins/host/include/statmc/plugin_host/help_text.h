@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <string>
 
-namespace statmc::tool {
+namespace statmc::host {
 
 inline constexpr std::size_t kHelpWidth = 100;
 
@@ -14,4 +14,4 @@ inline constexpr std::size_t kHelpWidth = 100;
 /// lines indented to the same column; ends with a newline.
 std::string help_line(const std::string& left, std::size_t column, const std::string& text);
 
-}  // namespace statmc::tool
+}  // namespace statmc::host

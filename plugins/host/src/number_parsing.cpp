@@ -1,19 +1,19 @@
-#include "statmc/tool/number_parsing.h"
+#include "statmc/plugin_host/number_parsing.h"
 
 #include <charconv>
 #include <cmath>
 #include <string>
 #include <system_error>
 
-#include "statmc/tool/tool_error.h"
+#include "statmc/plugin_host/host_error.h"
 
-namespace statmc::tool {
+namespace statmc::host {
 
 namespace {
 
 [[noreturn]] void fail(std::string_view what, std::string_view expected, std::string_view text)
 {
-    throw ToolError(std::string(what) + ": expected " + std::string(expected) + ", got '" +
+    throw HostError(std::string(what) + ": expected " + std::string(expected) + ", got '" +
                     std::string(text) + "'");
 }
 
@@ -64,4 +64,4 @@ double parse_float(std::string_view text, std::string_view what)
     fail(what, "a finite number", text);
 }
 
-}  // namespace statmc::tool
+}  // namespace statmc::host

@@ -8,7 +8,7 @@
 
 #include <OpenImageIO/strutil.h>
 
-namespace statmc::tool {
+namespace statmc::host {
 
 /// OIIO::Strutil::splits, except that "" is one empty item rather than none, so that an
 /// empty list is refused like an empty entry instead of meaning "nothing".
@@ -19,4 +19,4 @@ inline std::vector<std::string> split_text(std::string_view text, char separator
     return OIIO::Strutil::splits(text, std::string_view(&separator, 1));
 }
 
-}  // namespace statmc::tool
+}  // namespace statmc::host

@@ -1,12 +1,12 @@
-#include "statmc/tool/modifiers.h"
+#include "statmc/plugin_host/modifiers.h"
 
 #include <algorithm>
 
-#include "statmc/tool/number_parsing.h"
-#include "statmc/tool/tool_error.h"
-#include "text_split.h"
+#include "statmc/plugin_host/host_error.h"
+#include "statmc/plugin_host/number_parsing.h"
+#include "statmc/plugin_host/text_split.h"
 
-namespace statmc::tool {
+namespace statmc::host {
 
 namespace {
 
@@ -23,7 +23,7 @@ bool parse_bool(const std::string& text, const std::string& what)
     for (const char* no : {"0", "false", "no", "off"})
         if (text == no)
             return false;
-    throw ToolError(what + ": expected a boolean (1/0, true/false, yes/no, on/off), got '" + text +
+    throw HostError(what + ": expected a boolean (1/0, true/false, yes/no, on/off), got '" + text +
                     "'");
 }
 
@@ -40,11 +40,11 @@ statmc::ParameterValue parse_text(const std::string& command, const ModifierSpec
         return parse_bool(text, what);
     case ModifierType::String:
         if (text.empty())
-            throw ToolError(what + ": expected a value");
+            throw HostError(what + ": expected a value");
         return text;
     case ModifierType::Choice:
         if (!contains(spec.choices, text))
-            throw ToolError(what + ": expected one of " + OIIO::Strutil::join(spec.choices, ", ") +
+            throw HostError(what + ": expected one of " + OIIO::Strutil::join(spec.choices, ", ") +
                             ", got '" + text + "'");
         return text;
     case ModifierType::List: {
@@ -53,13 +53,13 @@ statmc::ParameterValue parse_text(const std::string& command, const ModifierSpec
         std::vector<std::string> items = split_text(text);
         for (const std::string& item : items)
             if (!contains(spec.choices, item))
-                throw ToolError(what + ": unknown item '" + item + "' (expected a list of " +
+                throw HostError(what + ": unknown item '" + item + "' (expected a list of " +
                                 OIIO::Strutil::join(spec.choices, ", ") + ", or " +
                                 OIIO::Strutil::join(spec.keywords, " or ") + ")");
         return items;
     }
     }
-    throw ToolError(what + ": unsupported modifier type");
+    throw HostError(what + ": unsupported modifier type");
 }
 
 // Parses and checks the declared range: "--denoise: radius must be in [0, 1000], got -1".
@@ -75,7 +75,7 @@ statmc::ParameterValue parse_value(const std::string& command, const ModifierSpe
     else
         return value;
     if (const std::string why = spec.range.violation(spec.name, number); !why.empty())
-        throw ToolError(command + ": " + why);
+        throw HostError(command + ": " + why);
     return value;
 }
 
@@ -84,7 +84,7 @@ statmc::ParameterValue parse_value(const std::string& command, const ModifierSpe
 void Modifiers::require(const std::string& name) const
 {
     if (!values_.has(name))
-        throw ToolError("modifier '" + name + "' has no value");
+        throw HostError("modifier '" + name + "' has no value");
 }
 
 int Modifiers::get_int(const std::string& name) const
@@ -134,13 +134,13 @@ Modifiers Modifiers::parse(const std::string& command,
             std::vector<std::string> known;
             for (const ModifierSpec& s : specs)
                 known.push_back(s.name);
-            throw ToolError(command + ": unknown modifier '" + name + "' (" +
+            throw HostError(command + ": unknown modifier '" + name + "' (" +
                             (known.empty() ? std::string("it takes no modifiers")
                                            : "modifiers: " + OIIO::Strutil::join(known, ", ")) +
                             ")");
         }
         if (m.has(name))
-            throw ToolError(command + ": modifier '" + name + "' given twice");
+            throw HostError(command + ": modifier '" + name + "' given twice");
         m.values_.set(name, parse_value(command, *spec, text));
     }
     for (const ModifierSpec& spec : specs)
@@ -149,4 +149,4 @@ Modifiers Modifiers::parse(const std::string& command,
     return m;
 }
 
-}  // namespace statmc::tool
+}  // namespace statmc::host

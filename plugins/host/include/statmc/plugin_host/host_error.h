@@ -5,11 +5,11 @@
 #include <stdexcept>
 #include <string>
 
-namespace statmc::tool {
+namespace statmc::host {
 
-class ToolError : public std::runtime_error {
+class HostError : public std::runtime_error {
 public:
-    explicit ToolError(const std::string& message) : std::runtime_error(message) {}
+    explicit HostError(const std::string& message) : std::runtime_error(message) {}
 };
 
-}  // namespace statmc::tool
+}  // namespace statmc::host

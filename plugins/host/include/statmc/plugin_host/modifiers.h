@@ -11,7 +11,7 @@
 #include "statmc/plugin_sdk/parameter_spec.h"
 #include "statmc/plugin_sdk/parameter_values.h"
 
-namespace statmc::tool {
+namespace statmc::host {
 
 using ModifierSpec = statmc::ParameterSpec;
 using ModifierType = statmc::ParameterType;
@@ -20,7 +20,7 @@ using ModifierType = statmc::ParameterType;
 class Modifiers {
 public:
     bool has(const std::string& name) const { return values_.has(name); }
-    // These throw ToolError when the modifier has no value (neither given nor defaulted).
+    // These throw HostError when the modifier has no value (neither given nor defaulted).
     int get_int(const std::string& name) const;
     double get_float(const std::string& name) const;
     bool get_bool(const std::string& name) const;
@@ -31,7 +31,7 @@ public:
     const statmc::ParameterValues& values() const { return values_; }
 
     /// Parses `given` (name, text) pairs of command `command` against `specs`. Throws
-    /// ToolError naming the command and modifier for an unknown or repeated modifier,
+    /// HostError naming the command and modifier for an unknown or repeated modifier,
     /// a malformed value and a value outside the declared range.
     static Modifiers parse(const std::string& command,
                            const std::vector<std::pair<std::string, std::string>>& given,
@@ -42,4 +42,4 @@ private:
     statmc::ParameterValues values_;
 };
 
-}  // namespace statmc::tool
+}  // namespace statmc::host
