@@ -16,21 +16,14 @@
 
 #include <CLI/CLI.hpp>
 
-#include "statmc/denoise/denoise.h"
 #include "statmc/layers/atomic_file.h"
 #include "statmc/layers/exr_files.h"
-#include "statmc/layers/file_error.h"
 #include "statmc/layers/frame_names.h"
-#include "statmc/layers/layer_names.h"
-#include "statmc/merge/merge.h"
 
 #include "option_checks.h"
 #include "sampling_options.h"
-#include "statmc/render/camera.h"
-#include "statmc/render/checkpoint.h"
-#include "statmc/render/exr_output.h"
 #include "statmc/render/progress.h"
-#include "statmc/render/render_loop.h"
+#include "statmc/render/render_job.h"
 #include "statmc/render/render_task.h"
 #include "statmc/render/scene.h"
 #include "statmc/render/scene_parser.h"
@@ -59,51 +52,12 @@ bool parse_resolution(const std::string& text, int& width, int& height)
     return h.ec == std::errc() && h.ptr == end && h.ptr != w.ptr + 1;
 }
 
-// What else, besides scene, seed, resolution and task, makes two renders' films
-// incompatible: a checkpoint's settings line.
-std::string settings_text(const statmc::render::RenderSettings& s, bool bounce_layers)
-{
-    const auto& i = s.integrator;
-    char text[256];
-    std::snprintf(text, sizeof text,
-                  "maxdepth %d, rr %d/%d/%d, mis %d/%d/%g, estimates radius %d, bounce layers "
-                  "%s, %s, schedule",
-                  i.maxdepth, int(i.roulette.mode), i.roulette.start_bounce,
-                  i.roulette.tracked_bounces, int(i.mis.mode), i.mis.tracked_bounces,
-                  double(i.mis.threshold), s.bounce_filter.radius, bounce_layers ? "all" : "used",
-                  s.adaptive.text().c_str());
-    std::string out = text;
-    for (int n : s.schedule)
-        out += " " + std::to_string(n);
-    return out;
-}
-
-// The tasks' images merged in task order: what statmc --merge makes of their files.
-OIIO::ImageBuf merge_tasks(const std::vector<OIIO::ImageBuf>& parts)
-{
-    std::vector<const OIIO::ImageBuf*> pointers;
-    for (const OIIO::ImageBuf& p : parts)
-        pointers.push_back(&p);
-    OIIO::ImageBuf merged = statmc::merge(pointers);
-    if (merged.has_error())
-        throw std::runtime_error(merged.geterror());
-    return merged;
-}
-
-// One frame to render: its output file, its time, its seed and its number (none for a
-// still).
-struct FrameToRender {
-    std::string output;
-    double time = 0;
-    int seed = 0;
-    std::optional<int> number;
-};
-
 // The frames --frame/--frames ask for (one still without them). A frame's seed mixes the
 // frame number into --seed (layers::frame_seed), so that the frames of a sequence have
 // independent noise, and its header says which seed it drew with.
-std::vector<FrameToRender> frames_to_render(const std::string& output, const std::string& list,
-                                            bool one_frame, int frame, double fps, int seed)
+std::vector<statmc::render::FrameToRender> frames_to_render(const std::string& output,
+                                                            const std::string& list, bool one_frame,
+                                                            int frame, double fps, int seed)
 {
     if (list.empty() && !one_frame)
         return {{output, 0.0, seed, std::nullopt}};
@@ -121,7 +75,7 @@ std::vector<FrameToRender> frames_to_render(const std::string& output, const std
         throw std::runtime_error("-o " + output +
                                  ": --frames needs a frame pattern in the output name "
                                  "(shot.#.exr, shot.%04d.exr)");
-    std::vector<FrameToRender> frames;
+    std::vector<statmc::render::FrameToRender> frames;
     for (int n : numbers) {
         frames.push_back({pattern.empty() ? output : statmc::layers::frame_path(pattern, n),
                           n / fps, statmc::layers::frame_seed(seed, n), n});
@@ -288,209 +242,33 @@ int main(int argc, char** argv)
         const int frame_spp = int(schedule_samples(settings.schedule));
         task_samples(frame_spp, task_total > 0 ? RenderTask{task_total - 1, task_total} : task);
         if (validate) {
-            std::printf("statmc-render: %s: the scene and options are valid\n",
-                        scene_path.c_str());
+            std::printf("statmc-render: %s: the scene and options are valid\n", scene_path.c_str());
             return 0;
         }
 
-        Scene scene(desc);
+        RenderJob job;
+        job.scene_path = scene_path;
+        job.scene = std::move(desc);
+        job.settings = settings;
+        job.bounce_layers = bounce_layers;
+        job.frames = frames;
+        job.fps = fps;
+        job.task = task;
+        job.whole_frame = task_text.empty() && task_total == 0;
+        job.tasks = task_total;
+        job.checkpoint_seconds = checkpoint_seconds;
+        job.resume = resume;
+        job.denoise = denoise;
+        job.every_iteration = every_iteration;
+        job.quiet = quiet;
+        job.profile = profile;
+        Scene scene(job.scene);
         scene.enable_profiling(profile);
-        const BounceLayout layout = bounce_layout_for(integrator, bounce_layers);
+        // SIGTERM is what schedulers send on preemption: it stops the render like Ctrl-C, and
+        // what was rendered is written with its true counts (or, checkpointing, saved).
         std::signal(SIGINT, on_interrupt);
         std::signal(SIGTERM, on_interrupt);
-        for (const FrameToRender& this_frame : frames) {
-            const std::string& output = this_frame.output;
-            settings.seed = std::uint64_t(this_frame.seed);
-            const Camera camera(desc.camera.at_time(this_frame.time), width, height);
-            std::optional<Camera> previous;
-            if (this_frame.number)
-                previous.emplace(desc.camera.at_time(this_frame.time - 1 / fps), width, height);
-            settings.previous_camera = previous ? &*previous : nullptr;
-            const auto start = std::chrono::steady_clock::now();
-
-            // One share of the frame's samples into a film of its own; `task` 0/1 for the whole.
-            const bool whole = task_text.empty() && task_total == 0;
-            // The header of a film holding `task`'s samples after `seconds` of rendering.
-            auto output_info = [&](const Film& f, const RenderTask& task, double seconds) {
-                OutputInfo info;
-                info.spp = f.sample_counts();
-                info.provenance.seed = this_frame.seed;
-                info.provenance.range = task_samples(frame_spp, task);
-                // Pixel p holds sample indices 0 .. n_p − 1: the range covers them all.
-                if (settings.adaptive.enabled)
-                    info.provenance.range->end = info.provenance.range->begin + info.spp.max;
-                if (!whole) {
-                    info.provenance.task_index = task.index;
-                    info.provenance.task_count = task.count;
-                }
-                info.render_seconds = float(seconds);
-                info.scene = scene_path;
-                info.frame = this_frame.number;
-                return info;
-            };
-            auto render_share = [&](const RenderTask& task,
-                                    const IterationCallback& after_iteration,
-                                    double& seconds_before) {
-                const statmc::layers::SampleRange range = task_samples(frame_spp, task);
-                RenderSettings share = settings;
-                if (!whole)
-                    share.schedule = schedule_for_spp(range.count());
-                share.first_sample = std::uint64_t(range.begin);
-                share.checkpoint_seconds = checkpoint_seconds;
-                auto film = std::make_unique<Film>(width, height, layout);
-                if (share.previous_camera)
-                    film->track_motion();
-                CheckpointIdentity identity{scene_path,      desc.source_crc,
-                                            this_frame.seed, width,
-                                            height,     task.index,
-                                            task.count, range.begin,
-                                            range.end,  settings_text(share, bounce_layers)};
-                const std::string checkpoint = checkpoint_path(output);
-                seconds_before = 0;
-                if (resume && std::filesystem::exists(checkpoint)) {
-                    const CheckpointProgress done = read_checkpoint(checkpoint, *film, identity);
-                    share.samples_done = done.samples_done;
-                    seconds_before = done.render_seconds;
-                    std::fprintf(
-                        stderr,
-                        "%s: resuming from checkpoint %s: %llu of %d samples per pixel done\n",
-                        output.c_str(), checkpoint.c_str(),
-                        static_cast<unsigned long long>(done.samples_done), range.count());
-                }
-                CheckpointCallback save;
-                if (checkpoint_seconds > 0)
-                    save = [&, identity](const Film& f, std::uint64_t samples_done) {
-                        const double seconds =
-                            seconds_before +
-                            std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-                                .count();
-                        try {
-                            write_checkpoint(checkpoint, f, identity, {samples_done, seconds});
-                        } catch (const statmc::layers::FileError& e) {
-                            // The render goes on; the previous checkpoint, if any, is intact.
-                            std::fprintf(stderr,
-                                         "statmc-render: warning: %s; the previous checkpoint is "
-                                         "kept and the render continues\n",
-                                         e.what());
-                        }
-                    };
-                const RenderStats stats =
-                    render(scene, camera, share, *film, &g_interrupted, after_iteration, save);
-                const OutputInfo info = output_info(*film, task, seconds_before + stats.seconds);
-                return std::make_tuple(std::move(film), stats, info);
-            };
-            auto write_denoised = [&](const OIIO::ImageBuf& image) {
-                if (!denoise)
-                    return;
-                OIIO::ImageBuf denoised;
-                const statmc::DenoiseImageOptions options;
-                if (!statmc::denoise(denoised, image, options))
-                    throw std::runtime_error("denoise: " + denoised.geterror());
-                write_exr(denoised, denoised_path(output));
-            };
-
-            // SIGTERM is what schedulers send on preemption: it stops the render like Ctrl-C,
-            // and what was rendered is written with its true counts (or, checkpointing, saved);
-            // the handlers are installed above, before the first frame.
-            RenderStats stats;
-            Film::SampleCounts counts;
-            if (task_total > 0) {
-                // The tasks one after another, merged in task order as statmc --merge would.
-                std::vector<OIIO::ImageBuf> parts;
-                for (int t = 0; t < task_total && !g_interrupted.load(); ++t) {
-                    double before = 0;
-                    auto [film, task_stats, info] = render_share({t, task_total}, {}, before);
-                    stats.samples += task_stats.samples;
-                    stats.seconds += task_stats.seconds;
-                    stats.tile_cycles += task_stats.tile_cycles;
-                    if (task_stats.interrupted)
-                        break;
-                    parts.push_back(make_output_image(*film, info));
-                }
-                statmc::layers::install_write_signal_handlers();
-                if (int(parts.size()) < task_total) {
-                    std::fprintf(
-                        stderr,
-                        "statmc-render: interrupted after %zu of %d tasks; %s not written\n",
-                        parts.size(), task_total, output.c_str());
-                    return 130;
-                }
-                OIIO::ImageBuf merged = merge_tasks(parts);
-                merged.specmod().attribute(statmc::layers::attr::kRenderTime, float(stats.seconds));
-                merged.specmod().attribute(statmc::layers::attr::kScene, scene_path);
-                write_exr(merged, output);
-                write_denoised(merged);
-                counts = Film::SampleCounts{frame_spp, frame_spp, double(frame_spp), true};
-            } else {
-                IterationCallback after_iteration;
-                if (every_iteration)
-                    after_iteration = [&](int, const Film& f, const IterationStats&) {
-                        OutputInfo info = output_info(
-                            f, task,
-                            std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-                                .count());
-                        // The samples so far, not the whole range.
-                        info.provenance.range->end = info.provenance.range->begin + info.spp.min;
-                        const OIIO::ImageBuf image = make_output_image(f, info);
-                        write_exr(image, output);
-                        write_denoised(image);
-                    };
-                double before = 0;
-                auto [film, share_stats, info] = render_share(task, after_iteration, before);
-                statmc::layers::install_write_signal_handlers();
-                stats = share_stats;
-                counts = info.spp;
-                if (checkpoint_seconds > 0 && !stats.complete) {
-                    // The film is saved; an output now would be a partial task that merges wrongly.
-                    std::fprintf(
-                        stderr,
-                        "statmc-render: interrupted: %s holds the render so far; run again "
-                        "with --resume to finish %s\n",
-                        checkpoint_path(output).c_str(), output.c_str());
-                    return 130;
-                }
-                const OIIO::ImageBuf image = make_output_image(*film, info);
-                write_exr(image, output);
-                write_denoised(image);
-                if (stats.complete) {  // the output holds it all now
-                    std::error_code ignored;
-                    std::filesystem::remove(checkpoint_path(output), ignored);
-                }
-            }
-            if (!quiet && settings.adaptive.enabled)
-                std::fprintf(stderr,
-                             "%s: %dx%d, adaptive: %.1f spp on average, %d to %d%s%s, %.2f s, "
-                             "%.2f Msamples/s\n",
-                             output.c_str(), width, height, counts.mean, counts.min, counts.max,
-                             stats.converged ? ", every pixel within the noise threshold" : "",
-                             stats.interrupted ? " (interrupted)" : "", stats.seconds,
-                             stats.seconds > 0 ? double(stats.samples) / stats.seconds * 1e-6
-                                               : 0.0);
-            else if (!quiet)
-                std::fprintf(stderr, "%s: %dx%d, %s%d spp%s, %.2f s, %.2f Msamples/s\n",
-                             output.c_str(), width, height, counts.uniform ? "" : "at least ",
-                             counts.min, stats.interrupted ? " (interrupted)" : "", stats.seconds,
-                             stats.seconds > 0 ? double(stats.samples) / stats.seconds * 1e-6
-                                               : 0.0);
-            if (profile) {
-                const auto t = scene.traversal_counters();
-                std::printf("%s: %dx%d, %d spp, %zu triangles, threads %s\n", scene_path.c_str(),
-                            width, height, counts.min, scene.triangle_count(),
-                            threads > 0 ? std::to_string(threads).c_str() : "all");
-                std::printf("  %.3f s, %.3f Msamples/s, %.2f Mrays/s, %.2f rays/sample\n",
-                            stats.seconds, double(stats.samples) / stats.seconds * 1e-6,
-                            double(t.rays) / stats.seconds * 1e-6,
-                            stats.samples ? double(t.rays) / double(stats.samples) : 0.0);
-                std::printf(
-                    "  Embree traversal %.1f%% of render time, shading and the rest %.1f%%\n",
-                    100.0 * double(t.cycles) / double(stats.tile_cycles),
-                    100.0 - 100.0 * double(t.cycles) / double(stats.tile_cycles));
-            }
-            // A stop that came after the last sample changed nothing: the output is whole.
-            if (stats.interrupted && !stats.complete)
-                return 130;
-        }
-        return 0;
+        return run_render_job(job, scene, g_interrupted);
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "statmc-render: error: out of memory rendering %s\n",
                      scene_path.c_str());
