@@ -134,7 +134,6 @@ void BM_VarianceFilter(benchmark::State& state)
     static const bench::GuidePlanes guide_planes;
     const Guides guides = state.range(0) ? guide_planes.guides : Guides{};
     VarianceFilterOptions options = RadiusLadderOptions{}.variance;
-    options.interval_test = false;
     options.prior_dof = 16;
     options.prior_alpha = 0.05;
     for (auto _ : state)

@@ -65,4 +65,11 @@ double CriticalValues::gamma(double df) const
     return tail_[k] + f * (tail_[k + 1] - tail_[k]);
 }
 
+double normal_critical_value(double alpha)
+{
+    if (!(alpha > 0 && alpha < 1))
+        throw std::invalid_argument("normal_critical_value: alpha must be in (0, 1)");
+    return boost::math::quantile(boost::math::complement(boost::math::normal(), alpha / 2));
+}
+
 }  // namespace statmc

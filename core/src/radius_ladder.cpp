@@ -8,7 +8,7 @@
 
 #include "filter_layout.h"
 #include "statmc/core/thread_limit.h"
-#include "statmc/core/variance_interval.h"
+#include "statmc/core/critical_values.h"
 
 namespace statmc {
 

@@ -8,8 +8,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "statmc/core/critical_values.h"
 #include "statmc/core/thread_limit.h"
-#include "statmc/core/variance_interval.h"
 #include "variance_filter_layout.h"
 
 namespace statmc {
@@ -28,25 +28,16 @@ void require_valid(const StatisticsView& view, TestDomain domain, const Variance
         throw std::invalid_argument("variance filter: prior_alpha must be in [0, 1)");
     if (!(o.sigma_spatial > 0 && o.sigma_albedo > 0 && o.sigma_normal > 0))
         throw std::invalid_argument("variance filter: the sigmas must be > 0");
-    // The fourth moment only sets the intervals' widths: without the test it is not read.
-    if (domain == TestDomain::BoxCox && o.interval_test &&
-        !(view.count && view.has_box_cox_moment4()))
-        throw std::invalid_argument(
-            "variance filter: needs the Box-Cox statistics and their fourth moment (boxcoxM4)");
     if (domain == TestDomain::BoxCox && !(view.count && view.has_box_cox()))
         throw std::invalid_argument("variance filter: needs the Box-Cox statistics");
-    if (domain == TestDomain::Untransformed && o.interval_test &&
-        !(view.count && view.has_moments()))
-        throw std::invalid_argument("variance filter: needs the variance and its moments M3, M4");
     if (domain == TestDomain::Untransformed && !(view.count && view.has_variance()))
         throw std::invalid_argument("variance filter: needs the variance");
 }
 
-// The mean, per-sample s² and M4/n planes of one domain.
+// The mean and per-sample s² planes of one domain.
 struct DomainPlanes {
     const std::array<ConstPlane, 4>& mean;
     const std::array<ConstPlane, 4>& variance;
-    const std::array<ConstPlane, 4>& moment4;
     bool variance_of_mean;
 
     double s2(int c, int x, int y, double n) const
@@ -58,20 +49,23 @@ struct DomainPlanes {
 DomainPlanes planes_of(const StatisticsView& view, TestDomain domain)
 {
     if (domain == TestDomain::BoxCox)
-        return {view.bc_mean, view.bc_variance, view.bc_moment4, false};
-    return {view.mean, view.variance, view.moment4, view.variance_of_mean};
+        return {view.bc_mean, view.bc_variance, false};
+    return {view.mean, view.variance, view.variance_of_mean};
 }
 
-// Each pixel's interval on ln σ² (a NaN centre where it has none), its s², whether the
-// moderation may use it and, for the prior's test, its mean and s²/n: what the disk loop
-// reads of a neighbour, made once per pixel rather than once per tap.
+// A pixel's own s² counts as an estimate (VarianceFilterOptions::alpha): enough values,
+// and spread among them.
+bool has_estimate(double n, double m2, double z) { return n >= 4 && n > z && m2 > 0; }
+
+// Each pixel's estimate mark (0, or NaN where it has none), its s², whether the moderation
+// may use it and, for the prior's test, its mean and s²/n: what the disk loop reads of a
+// neighbour, made once per pixel rather than once per tap.
 void fill_pixel_planes(const StatisticsView& view, const DomainPlanes& d, double z, bool moderate,
                        detail::VarianceLayout& L)
 {
     const std::size_t n = L.pixels;
     const bool test_means = moderate && L.prior_z2 > 0;
-    L.log_centre.resize(n * view.channels);
-    L.log_se2.resize(L.tested ? n * view.channels : 0);
+    L.estimate.resize(n * view.channels);
     L.s2.resize(n * view.channels);
     L.usable.resize(n * view.channels);
     L.mean.resize(test_means ? n * view.channels : 0);
@@ -82,19 +76,7 @@ void fill_pixel_planes(const StatisticsView& view, const DomainPlanes& d, double
                 const double count = view.count(x, y);
                 const double s2 = d.s2(c, x, y, count);
                 const std::size_t k = c * n + std::size_t(y) * view.width + x;
-                const double m2 = s2 * (count - 1);
-                if (L.tested) {
-                    const double m4 = double(d.moment4[c](x, y)) * count;
-                    const auto interval = bonett_interval(count, m2, m4, z);
-                    L.log_centre[k] = interval ? float(interval->centre) : NAN;
-                    const double se = interval ? interval->half_width / z : 0;
-                    L.log_se2[k] = float(se * se);
-                } else {
-                    // Whether it would have an interval is all a borrower asks. That does
-                    // not depend on M4, which is never negative in valid statistics and
-                    // may be absent without the test.
-                    L.log_centre[k] = has_bonett_interval(count, m2, 0.0, z) ? 0.f : NAN;
-                }
+                L.estimate[k] = has_estimate(count, s2 * (count - 1), z) ? 0.f : NAN;
                 L.s2[k] = s2;
                 L.usable[k] = moderate && count >= 2 && std::isfinite(s2);
                 if (test_means) {
@@ -135,16 +117,16 @@ void fill_taps_and_guides(const StatisticsView& view, const Guides& guides,
         add_group(guides.normal, o.sigma_normal);
 }
 
-// The centre's own terms: its s² with weight 1 where it has an interval (or nothing), and
+// The centre's own terms: its s² with weight 1 where it is an estimate (or nothing), and
 // in the moderation's sums where it is usable.
 detail::VarianceSums own_terms(const detail::VarianceLayout& L, std::size_t p)
 {
     detail::VarianceSums s;
     for (int c = 0; c < L.channels; ++c) {
         const std::size_t k = c * L.pixels + p;
-        const bool has_interval = !std::isnan(L.log_centre[k]);
-        s.sum[c] = has_interval ? L.s2[k] : 0;
-        s.weight[c] = has_interval ? 1 : 0;
+        const bool has_estimate = !std::isnan(L.estimate[k]);
+        s.sum[c] = has_estimate ? L.s2[k] : 0;
+        s.weight[c] = has_estimate ? 1 : 0;
         s.prior_sum[c] = L.usable[k] ? L.s2[k] : 0;
         s.prior_weight[c] = L.usable[k] ? 1 : 0;
     }
@@ -161,22 +143,16 @@ bool in_prior(const detail::VarianceLayout& L, std::size_t i, std::size_t j)
     return d * d <= L.prior_z2 * (double(L.mean_se2[i]) + L.mean_se2[j]);
 }
 
-// Whether neighbour j's s² joins centre i's average: their intervals on ln σ² agree (with
-// the test; without it a pixel with an interval keeps its own). NaN (no interval) fails
-// the comparison: such a pixel joins none. A borrowing pixel (no interval) takes any that
-// has one.
-bool member(const detail::VarianceLayout& L, std::size_t i, std::size_t j)
+// Whether neighbour j's s² joins centre i's own sum: only for a borrower (no estimate of
+// its own), from a neighbour that has one.
+bool lends(const detail::VarianceLayout& L, std::size_t i, std::size_t j)
 {
-    const bool borrows = L.borrow && std::isnan(L.log_centre[i]) && !std::isnan(L.log_centre[j]);
-    if (!L.tested)
-        return borrows;
-    const double diff = double(L.log_centre[i]) - L.log_centre[j];
-    return diff * diff <= L.z2 * (double(L.log_se2[i]) + L.log_se2[j]) || borrows;
+    return L.borrow && std::isnan(L.estimate[i]) && !std::isnan(L.estimate[j]);
 }
 
 // The scalar disk loop, and the reference the SIMD kernels match bit for bit: per channel
-// the tested sum (centre first, then the disk in raster order: a fixed summation order,
-// whichever thread runs the row) and, for the moderation, the untested one.
+// the borrowed sum and the moderation's (centre first, then the disk in raster order: a
+// fixed summation order, whichever thread runs the row).
 void add_disk_scalar(const detail::VarianceLayout& L, int x, int y, detail::VarianceSums& s)
 {
     const int w = L.width, h = L.height;
@@ -204,7 +180,7 @@ void add_disk_scalar(const detail::VarianceLayout& L, int x, int y, detail::Vari
         for (int c = 0; c < L.channels; ++c) {
             const std::size_t i = c * n + p, j = c * n + q;
             const double term = wij * L.s2[j];
-            if (member(L, i, j)) {
+            if (lends(L, i, j)) {
                 s.sum[c] += term;
                 s.weight[c] += wij;
             }
@@ -245,7 +221,6 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
     L.channels = view.channels;
     L.radius = options.radius;
     L.pixels = std::size_t(view.width) * view.height;
-    L.z2 = z * z;
     // The prior's test on the means only exists with the moderation: without it the mean
     // planes are not filled, and the kernels must not read them.
     if (moderate && options.prior_alpha > 0) {
@@ -253,7 +228,6 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
         L.prior_z2 = z_prior * z_prior;
     }
     L.borrow = options.borrow_without_interval;
-    L.tested = options.interval_test;
     const std::size_t n = L.pixels;
     std::vector<float> out(n * L.channels);
     run_with_threads(nthreads, [&] {
@@ -278,19 +252,20 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
                 const detail::VarianceSums& s = row[xx];
                 for (int c = 0; c < L.channels; ++c) {
                     const double own = L.s2[c * n + p];
-                    const double tested = s.weight[c] > 0 ? s.sum[c] / s.weight[c] : own;
+                    const double own_or_borrowed = s.weight[c] > 0 ? s.sum[c] / s.weight[c] : own;
                     if (!moderate || s.prior_weight[c] <= 0) {
-                        out[c * n + p] = float(tested);
+                        out[c * n + p] = float(own_or_borrowed);
                         continue;
                     }
                     // Empirical Bayes (Smyth 2004): the neighbourhood's variance as a prior
                     // worth prior_dof degrees of freedom against the pixel's n − 1.
                     const double prior = s.prior_sum[c] / s.prior_weight[c];
                     const double dof = std::max(count - 1, 0.0);
-                    out[c * n + p] = dof > 0 && std::isfinite(tested)
-                                         ? float((options.prior_dof * prior + dof * tested) /
-                                                 (options.prior_dof + dof))
-                                         : float(prior);
+                    out[c * n + p] =
+                        dof > 0 && std::isfinite(own_or_borrowed)
+                            ? float((options.prior_dof * prior + dof * own_or_borrowed) /
+                                    (options.prior_dof + dof))
+                            : float(prior);
                 }
             }
         });

@@ -84,10 +84,10 @@ struct Lanes {
 };
 
 // One channel of add_variance_disk: `weights` holds each tap's W guide weights, or is null
-// (the spatial weight alone). Tested: the members' sums too (VarianceLayout::tested), else
-// only the prior's. TestMeans: the prior takes only neighbours that pass the test on the
-// means (in_prior() in variance_filter.cpp).
-template <int W, bool Tested, bool TestMeans>
+// (the spatial weight alone). Borrowers gather their neighbours' s² (lends() in
+// variance_filter.cpp); TestMeans: the prior takes only neighbours that pass the test on
+// the means (in_prior()).
+template <int W, bool TestMeans>
 void add_variance_channel(const VarianceLayout& L, int c, std::size_t p0, const double* weights,
                           VarianceSums* sums)
 {
@@ -95,18 +95,16 @@ void add_variance_channel(const VarianceLayout& L, int c, std::size_t p0, const 
     using D = typename V::D;
     using Mask = typename V::Mask;
     const std::size_t plane = std::size_t(c) * L.pixels;
-    const D z2 = V::splat(L.z2), prior_z2 = V::splat(L.prior_z2);
-    const D centre = V::load(L.log_centre.data() + plane + p0);
-    const D se2 = Tested ? V::load(L.log_se2.data() + plane + p0) : D{};
+    const D prior_z2 = V::splat(L.prior_z2);
+    const D centre = V::load(L.estimate.data() + plane + p0);
     D mean{}, mean_se2{};
     if (TestMeans) {
         mean = V::load(L.mean.data() + plane + p0);
         mean_se2 = V::load(L.mean_se2.data() + plane + p0);
     }
-    // Lanes without an interval that take any neighbour with one.
+    // Lanes without an estimate that take any neighbour with one: most chunks have none.
     const Mask borrows = L.borrow ? centre != centre : Mask{};
-    // Without the test only borrowers gather members' sums: most chunks have none.
-    const bool gathers = Tested || V::any(borrows);
+    const bool gathers = V::any(borrows);
     D sum, weight, prior_sum, prior_weight;
     for (int k = 0; k < W; ++k) {
         sum[k] = sums[k].sum[c];
@@ -120,13 +118,8 @@ void add_variance_channel(const VarianceLayout& L, int c, std::size_t p0, const 
         const D w = weights ? V::load(weights + t * W) : V::splat(tap.spatial);
         const D term = w * V::load(L.s2.data() + q0);
         if (gathers) {
-            const D other = V::load(L.log_centre.data() + q0);
-            Mask member = borrows & (other == other);
-            if (Tested) {
-                // A NaN centre (no interval) fails the comparison: such a pixel joins none.
-                const D diff = centre - other;
-                member = (diff * diff <= z2 * (se2 + V::load(L.log_se2.data() + q0))) | member;
-            }
+            const D other = V::load(L.estimate.data() + q0);
+            const Mask member = borrows & (other == other);
             sum = member ? sum + term : sum;
             weight = member ? weight + w : weight;
         }
@@ -186,14 +179,10 @@ void add_variance_disk(const VarianceLayout& L, int x0, int y, VarianceSums* sum
     // raster order.
     const double* w = groups > 0 ? weights.data() : nullptr;
     for (int c = 0; c < channels; ++c) {
-        if (L.tested && L.prior_z2 > 0)
-            add_variance_channel<W, true, true>(L, c, p0, w, sums);
-        else if (L.tested)
-            add_variance_channel<W, true, false>(L, c, p0, w, sums);
-        else if (L.prior_z2 > 0)
-            add_variance_channel<W, false, true>(L, c, p0, w, sums);
+        if (L.prior_z2 > 0)
+            add_variance_channel<W, true>(L, c, p0, w, sums);
         else
-            add_variance_channel<W, false, false>(L, c, p0, w, sums);
+            add_variance_channel<W, false>(L, c, p0, w, sums);
     }
 }
 

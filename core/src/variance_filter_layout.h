@@ -30,11 +30,10 @@ struct VarianceTap {
 
 struct VarianceLayout {
     int width = 0, height = 0, channels = 0, radius = 0;
-    std::size_t pixels = 0;         ///< per channel; every plane below is channel-major
-    std::vector<float> log_centre;  ///< centre of the interval on ln σ²; NaN: none (`tested`)
-    std::vector<float> log_se2;     ///< its squared standard error
-    std::vector<double> s2;         ///< the per-sample s² that is averaged
-    std::vector<char> usable;       ///< whether the moderation may use s2
+    std::size_t pixels = 0;       ///< per channel; every plane below is channel-major
+    std::vector<float> estimate;  ///< 0 where the pixel's s² is an estimate, else NaN
+    std::vector<double> s2;       ///< the per-sample s² that is averaged
+    std::vector<char> usable;     ///< whether the moderation may use s2
     /// With a test on the means for the prior (prior_z2 > 0): each pixel's mean and the
     /// squared standard error s²/n of that mean.
     std::vector<float> mean;
@@ -44,13 +43,8 @@ struct VarianceLayout {
     /// and each group's 1/(2σ²).
     std::vector<std::vector<float>> guide;
     double guide_falloff[2] = {0, 0};
-    double z2 = 0;        ///< the squared critical value of the test on ln σ²
-    double prior_z2 = 0;  ///< that of the prior's test on the means; 0 = no test
+    double prior_z2 = 0;  ///< the squared critical value of the prior's test on the means; 0 = none
     bool borrow = false;  ///< VarianceFilterOptions::borrow_without_interval
-    /// VarianceFilterOptions::interval_test; false: log_centre only marks which pixels have
-    /// an interval (0, else NaN), log_se2 stays empty, and the members' sums gather only
-    /// what borrowers take.
-    bool tested = true;
 
     int guide_groups() const { return int(guide.size()) / 3; }
     bool interior(int x, int y) const
@@ -59,8 +53,9 @@ struct VarianceLayout {
     }
 };
 
-/// One pixel's weighted sums per channel: over the members (tested) and over every
-/// neighbour the moderation may use (prior). They arrive holding the centre's own terms.
+/// One pixel's weighted sums per channel: its own s² or, borrowing, its neighbours' (sum),
+/// and over every neighbour the moderation may use (prior). They arrive holding the
+/// centre's own terms.
 struct VarianceSums {
     double sum[4], weight[4], prior_sum[4], prior_weight[4];
 };

@@ -38,4 +38,7 @@ private:
     std::vector<double> tail_;   // node k at 1/df = k / (kTailNodes * kDenseLimit)
 };
 
+/// z for a two-sided confidence of 1 − α (α in (0, 1)): the normal quantile at 1 − α/2.
+double normal_critical_value(double alpha);
+
 }  // namespace statmc

@@ -4,8 +4,8 @@
 namespace statmc {
 
 /// Running mean and central sums Mk = Σ(x − mean)^k, k = 2..4, of one quantity. The count
-/// is kept by the caller so that the channels of one pixel share it. M4 feeds the
-/// variance's own confidence interval (variance_interval.h, docs/method.md §10).
+/// is kept by the caller so that the channels of one pixel share it. M3 of the Box-Cox
+/// values feeds Johnson's correction; M3 and M4 merge exactly (format version 2).
 template <class Real>
 struct CentralMoments {
     Real mean = 0;
