@@ -39,42 +39,53 @@ StatisticsPlanes synthetic(std::uint64_t seed)
     return img.planes();
 }
 
+// A dark field (normal samples, mean 0.04, σ = 0.01) beside a bright one of another
+// expectation (mean 10, σ = 10), 64 samples per pixel, kDarkW × kDarkH pixels.
+constexpr int kDarkW = 24, kDarkH = 12;
+StatisticsPlanes dark_beside_bright(std::uint64_t seed)
+{
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<float> dark(0.04f, 0.01f), bright(10.f, 10.f);
+    StatisticsImage<1> img(kDarkW, kDarkH);
+    for (int y = 0; y < kDarkH; ++y)
+        for (int x = 0; x < kDarkW; ++x)
+            for (int s = 0; s < 64; ++s) {
+                const float v = x < kDarkW / 2 ? dark(rng) : bright(rng);
+                img.add(x, y, &v);
+            }
+    return img.planes();
+}
+
+// The dark pixels within 3 of the edge: `lifted` takes the bright side's s² of about 100
+// into their prior (10⁴ times their own), `kept` does not (s² of 64 normal samples is
+// within ±18%, one sd, of σ², and the prior averages many of them).
+void expect_the_edge(const std::vector<float>& lifted, const std::vector<float>& kept)
+{
+    const double truth = 0.01 * 0.01;
+    for (int y = 0; y < kDarkH; ++y)
+        for (int x = kDarkW / 2 - 3; x < kDarkW / 2; ++x) {
+            const std::size_t i = std::size_t(y) * kDarkW + x;
+            EXPECT_GT(lifted[i], 100 * truth) << x << "," << y;
+            EXPECT_NEAR(kept[i], truth, 0.5 * truth) << x << "," << y;
+        }
+}
+
 TEST(VarianceFilter, AnAlbedoGuideAlongAnEdgeKeepsTheOtherSidesVarianceOutOfThePrior)
 {
     // The guide weights of the mean filter apply to the prior too: with every neighbour
     // in it (no test on the means), an albedo step where the variance steps keeps the
     // bright side's s² out of the dark side's prior.
-    constexpr int w = 24, h = 12, spp = 64;
-    std::mt19937_64 rng(29);
-    std::normal_distribution<float> dark(0.04f, 0.01f), bright(10.f, 10.f);
-    StatisticsImage<1> img(w, h);
-    std::vector<float> albedo(std::size_t(w) * h);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            albedo[std::size_t(y) * w + x] = x < w / 2 ? 0.2f : 0.8f;
-            for (int s = 0; s < spp; ++s) {
-                const float v = x < w / 2 ? dark(rng) : bright(rng);
-                img.add(x, y, &v);
-            }
-        }
-    const StatisticsPlanes stats = img.planes();
+    const StatisticsPlanes stats = dark_beside_bright(29);
+    std::vector<float> albedo(std::size_t(kDarkW) * kDarkH);
+    for (std::size_t i = 0; i < albedo.size(); ++i)
+        albedo[i] = int(i % kDarkW) < kDarkW / 2 ? 0.2f : 0.8f;
     Guides guides;
-    guides.albedo = {dense_plane(albedo.data(), w), dense_plane(albedo.data(), w),
-                     dense_plane(albedo.data(), w)};
+    guides.albedo = {dense_plane(albedo.data(), kDarkW), dense_plane(albedo.data(), kDarkW),
+                     dense_plane(albedo.data(), kDarkW)};
     VarianceFilterOptions o;
     o.prior_dof = 16;
-    const std::vector<float> plain =
-        denoise_variances(stats.view(), TestDomain::Untransformed, {}, o);
-    const std::vector<float> guided =
-        denoise_variances(stats.view(), TestDomain::Untransformed, guides, o);
-    const double truth = 0.01 * 0.01;
-    for (int y = 0; y < h; ++y)
-        for (int x = w / 2 - 3; x < w / 2; ++x) {
-            const std::size_t i = std::size_t(y) * w + x;
-            EXPECT_GT(plain[i], 100 * truth) << x << "," << y;
-            // s² of 64 normal samples is within ±18% (one sd) of σ².
-            EXPECT_NEAR(guided[i], truth, 0.5 * truth) << x << "," << y;
-        }
+    expect_the_edge(denoise_variances(stats.view(), TestDomain::Untransformed, {}, o),
+                    denoise_variances(stats.view(), TestDomain::Untransformed, guides, o));
 }
 
 TEST(VarianceFilter, SameBitsForAnyThreadCount)
@@ -188,38 +199,15 @@ TEST(VarianceFilter, ModerationLiftsVariancesThatFewSamplesUnderestimate)
 
 TEST(VarianceFilter, TheMeansTestKeepsAnotherExpectationsVarianceOutOfThePrior)
 {
-    // A dark field (normal samples, mean 0.04, σ = 0.01) beside a bright one of another
-    // expectation (mean 10, σ = 10), 64 samples per pixel. Untested, the prior of a dark
-    // pixel at the edge averages the bright pixels' s² of about 100 and lifts its variance
-    // 10⁴-fold. With the test on the means, a bright pixel would have to come within 2 of
-    // its own standard errors of 0.04 (an 8σ event) to lend its variance.
-    constexpr int w = 24, h = 12, spp = 64;
-    std::mt19937_64 rng(23);
-    std::normal_distribution<float> dark(0.04f, 0.01f), bright(10.f, 10.f);
-    StatisticsImage<1> img(w, h);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int s = 0; s < spp; ++s) {
-                const float v = x < w / 2 ? dark(rng) : bright(rng);
-                img.add(x, y, &v);
-            }
-    const StatisticsPlanes stats = img.planes();
+    // With the test on the means, a bright pixel would have to come within 2 of its own
+    // standard errors of 0.04 (an 8σ event) to lend a dark pixel its variance.
+    const StatisticsPlanes stats = dark_beside_bright(23);
     VarianceFilterOptions o;
     o.prior_dof = 16;
     const std::vector<float> untested =
         denoise_variances(stats.view(), TestDomain::Untransformed, {}, o);
     o.prior_alpha = 0.05;
-    const std::vector<float> tested =
-        denoise_variances(stats.view(), TestDomain::Untransformed, {}, o);
-    const double truth = 0.01 * 0.01;
-    for (int y = 0; y < h; ++y)
-        for (int x = w / 2 - 3; x < w / 2; ++x) {
-            const std::size_t i = std::size_t(y) * w + x;
-            EXPECT_GT(untested[i], 100 * truth) << x << "," << y;
-            // s² of 64 normal samples is within ±18% (one sd) of σ², and the prior averages
-            // many of them.
-            EXPECT_NEAR(tested[i], truth, 0.5 * truth) << x << "," << y;
-        }
+    expect_the_edge(untested, denoise_variances(stats.view(), TestDomain::Untransformed, {}, o));
 }
 
 TEST(VarianceFilter, EverySimdLevelGivesTheScalarLoopsBits)
