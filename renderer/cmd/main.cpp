@@ -96,7 +96,7 @@ int main(int argc, char** argv)
     int spp = 0, iterations = 0, seed = 0, threads = 0, maxdepth = -1;
     std::string resolution;
     bool denoise = false, quiet = false, profile = false, every_iteration = false,
-         bounce_layers = false;
+         bounce_layers = false, higher_moments = false;
     SamplingOptions sampling;
     statmc::render::AdaptiveSettings adaptive;
     app.add_option("scene", scene_path, "pbrt-v3 scene file")->required();
@@ -131,6 +131,9 @@ int main(int argc, char** argv)
         "--bounce-layers", bounce_layers,
         "track and write every per-bounce layer (L and win counts) even with classic RR and "
         "standard MIS [default: only those --rr/--mis use]");
+    app.add_flag("--higher-moments", higher_moments,
+                 "also write M3, M4 and boxcoxM4 (docs/exr-layers.md): no statmc stage reads "
+                 "them; they merge exactly, for research [default: off]");
     std::string task_text;
     int task_total = 0;
     double checkpoint_seconds = 0;
@@ -251,6 +254,7 @@ int main(int argc, char** argv)
         job.scene = std::move(desc);
         job.settings = settings;
         job.bounce_layers = bounce_layers;
+        job.higher_moments = higher_moments;
         job.frames = frames;
         job.fps = fps;
         job.task = task;

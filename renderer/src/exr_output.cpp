@@ -12,9 +12,24 @@ namespace statmc::render {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// `planes` without the higher moments, which a file carries only when asked for.
+StatisticsPlanes without_higher_moments(StatisticsPlanes planes)
+{
+    planes.moment3.clear();
+    planes.moment4.clear();
+    planes.bc_moment4.clear();
+    return planes;
+}
+
+}  // namespace
+
 OIIO::ImageBuf make_output_image(const Film& film, const OutputInfo& info)
 {
-    const StatisticsPlanes planes = film.stats.planes();
+    StatisticsPlanes planes = film.stats.planes();
+    if (!info.higher_moments)
+        planes = without_higher_moments(std::move(planes));
     const std::vector<float> albedo = film.albedo(), normal = film.normal(), depth = film.depth();
     const std::size_t n = std::size_t(film.width) * film.height;
     layers::GuidePlanes guides;
@@ -39,6 +54,9 @@ OIIO::ImageBuf make_output_image(const Film& film, const OutputInfo& info)
     std::vector<layers::AovStatistics> aovs;
     if (film.bounces) {
         groups = film.bounces->group_planes();
+        if (!info.higher_moments)
+            for (StatisticsPlanes& group : groups)
+                group = without_higher_moments(std::move(group));
         const BounceLayout& layout = film.bounces->layout();
         for (int q = 0; q < layout.quantities(); ++q)
             aovs.push_back({layout.aov(q), BounceStatistics::quantity_view(groups, q)});

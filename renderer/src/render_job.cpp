@@ -94,6 +94,7 @@ private:
         }
         info.render_seconds = float(seconds);
         info.scene = job_.scene_path;
+        info.higher_moments = job_.higher_moments;
         info.frame = frame_.number;
         return info;
     }

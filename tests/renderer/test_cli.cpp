@@ -68,6 +68,34 @@ TEST(Cli, WritesStatisticsLayersAndHeader)
     EXPECT_EQ(den.spec().get_int_attribute("statmc:denoised"), 1);
 }
 
+TEST(Cli, HigherMomentsOnlyWhenAskedForAndTheRestTheSameBits)
+{
+    // M3, M4 and boxcoxM4 are read by no statmc stage: a file carries them on request.
+    ScratchDir dir("cli-moments");
+    const std::string scene = dir.write("s.pbrt", kScene);
+    const std::string common = "\"" + scene + "\" --seed 5 --quiet -o ";
+    ASSERT_EQ(run(common + "\"" + dir.file("plain.exr") + "\"", dir).status, 0);
+    ASSERT_EQ(run(common + "\"" + dir.file("all.exr") + "\" --higher-moments", dir).status, 0);
+    OIIO::ImageBuf plain(dir.file("plain.exr")), all(dir.file("all.exr"));
+    ASSERT_TRUE(plain.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << plain.geterror();
+    ASSERT_TRUE(all.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << all.geterror();
+    for (const char* ch : {"M3.R", "M4.G", "boxcoxM4.B"}) {
+        EXPECT_LT(plain.spec().channelindex(ch), 0) << ch;
+        EXPECT_GE(all.spec().channelindex(ch), 0) << ch;
+    }
+    EXPECT_EQ(all.spec().nchannels, plain.spec().nchannels + 9);
+    for (int c = 0; c < plain.spec().nchannels; ++c) {
+        const std::string& name = plain.spec().channelnames[c];
+        const int a = all.spec().channelindex(name);
+        ASSERT_GE(a, 0) << name;
+        for (int y = 0; y < plain.spec().height; ++y)
+            for (int x = 0; x < plain.spec().width; ++x) {
+                const float p = plain.getchannel(x, y, 0, c), q = all.getchannel(x, y, 0, a);
+                ASSERT_EQ(std::memcmp(&p, &q, sizeof p), 0) << name << " at " << x << "," << y;
+            }
+    }
+}
+
 TEST(Cli, WriteEveryIterationEndsWithTheSameImage)
 {
     // Rewriting the outputs after each iteration must not change what the render

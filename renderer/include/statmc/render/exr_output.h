@@ -21,6 +21,9 @@ struct OutputInfo {
     float render_seconds = 0;
     std::string scene;
     std::optional<int> frame;  ///< statmc:frame, in a sequence
+    /// Also write M3, M4 and boxcoxM4 (format version 2's higher moments). No stage of
+    /// statmc reads them; they merge exactly, for research on the variance's own statistics.
+    bool higher_moments = false;
 };
 
 /// Mean, variance, Box-Cox statistics, sampleCount, the per-bounce AOVs the film tracks

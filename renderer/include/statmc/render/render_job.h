@@ -33,6 +33,7 @@ struct RenderJob {
     /// each frame's.
     RenderSettings settings;
     bool bounce_layers = false;  ///< every per-bounce layer, not only those steering uses
+    bool higher_moments = false;  ///< also write M3, M4, boxcoxM4 (OutputInfo::higher_moments)
     std::vector<FrameToRender> frames;
     double fps = 24;
     RenderTask task;          ///< the farm task; 0/1 for the whole frame
