@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Runs every command of README.md's "Studio workflows" section on generated files, so the
-# examples stay true. The inputs are made with oiiotool: eight "renders" of one frame (a
+# Runs every command of README.md's "Using it" block and "Studio workflows" section on
+# generated files, so the examples stay true. The "Using it" block is read from the README
+# itself; --oidn needs OIDN's library ($STATMC_OIDN_LIBRARY, or the one
+# scripts/install-test-deps.sh installs), and fails loudly without it. The inputs are made with oiiotool: eight "renders" of one frame (a
 # gradient plus Gaussian noise of a different seed each, with albedo and normal layers)
 # and the noise-free gradient as the reference. Work happens in out/readme-examples/.
 set -euo pipefail
@@ -54,4 +56,21 @@ run statmc shot.%04d.exr --denoise -o shot-per-frame.%04d.exr
 run statmc frame-denoised.exr reference.exr --compare -o error.exr
 run statmc frame-denoised.exr reference.exr --compare --mulc 10 --display -o error-view.exr
 run statmc --stats error.exr
+# The README's "Using it" block, line by line as written, on files named as it names them.
+statmc frame.exr aovs.exr --ch diffuse.R,diffuse.G,diffuse.B,diffuse.variance.R,diffuse.variance.G,diffuse.variance.B,specular.R,specular.G,specular.B,specular.variance.R,specular.variance.G,specular.variance.B \
+       --chappend -o in.exr
+for k in 1 2 3 4; do cp render$k.exr "$(printf '\x'$(printf %x $((96 + k))))".exr; done  # a.exr … d.exr
+for f in $(seq 5 48); do cp "shot.000$(( (f - 1) % 4 + 1 )).exr" "$(printf 'shot.%04d.exr' "$f")"; done
+if [ -z "${STATMC_OIDN_LIBRARY:-}" ]; then
+  STATMC_OIDN_LIBRARY=$(ls /opt/statmc-oidn/lib/python3*/site-packages/pyoidn/oidn/lib/libOpenImageDenoise.so.2 2>/dev/null || true)
+  export STATMC_OIDN_LIBRARY
+fi
+block=$(awk '/^## Using it/ {on = 1} on && /^```sh/ {inside = 1; next} inside && /^```/ {exit} inside' ../../README.md)
+[ -n "$block" ] || { echo "readme-examples: no \"Using it\" block in README.md" >&2; exit 1; }
+while IFS= read -r line; do
+  command=${line%%  #*}  # the comment, not a frame pattern's #
+  [ -n "${command// }" ] || continue
+  echo "+ $command"
+  eval "$command" >/dev/null
+done <<<"$block"
 echo "readme-examples: every command ran"
