@@ -92,14 +92,14 @@ int main(int argc, char** argv)
     statmc::layers::install_write_signal_handlers();
     CLI::App app{"statmc-render: path-trace a pbrt-v3 scene (Embree 3) into a statistics EXR\n"
                  "(mean, variance, Box-Cox moments, sample count, albedo/normal/depth guides)."};
-    std::string scene_path, output_option;
+    // The job's own options land in it directly; the rest become its settings below.
+    RenderJob job;
+    std::string output_option;
     int spp = 0, iterations = 0, seed = 0, threads = 0, maxdepth = -1;
     std::string resolution;
-    bool denoise = false, quiet = false, profile = false, every_iteration = false,
-         bounce_layers = false, higher_moments = false;
     SamplingOptions sampling;
     statmc::render::AdaptiveSettings adaptive;
-    app.add_option("scene", scene_path, "pbrt-v3 scene file")->required();
+    app.add_option("scene", job.scene_path, "pbrt-v3 scene file")->required();
     app.add_option("-o,--output", output_option,
                    "output statistics EXR; with --frame/--frames it may hold a frame pattern "
                    "(shot.#.exr = %04d, shot.%04d.exr)")
@@ -128,23 +128,20 @@ int main(int argc, char** argv)
     add_sampling_options(app, sampling);
     add_adaptive_options(app, adaptive);
     app.add_flag(
-        "--bounce-layers", bounce_layers,
+        "--bounce-layers", job.bounce_layers,
         "track and write every per-bounce layer (L and win counts) even with classic RR and "
         "standard MIS [default: only those --rr/--mis use]");
-    app.add_flag("--higher-moments", higher_moments,
+    app.add_flag("--higher-moments", job.higher_moments,
                  "also write M3, M4 and boxcoxM4 (docs/exr-layers.md): no statmc stage reads "
                  "them; they merge exactly, for research [default: off]");
     std::string task_text;
-    int task_total = 0;
-    double checkpoint_seconds = 0;
-    bool resume = false;
     auto* task_opt = app.add_option(
         "--task", task_text,
         "render task I of N (counted from 0): the sample indices floor(I*S/N) .. "
         "floor((I+1)*S/N)-1 of every pixel, for a farm; merge the N outputs with statmc "
         "--merge (docs/farm.md) [default: the whole frame]");
     auto* tasks_opt =
-        app.add_option("--tasks", task_total,
+        app.add_option("--tasks", job.tasks,
                        "render the frame as N tasks one after another in this process and write "
                        "their merge: what statmc --merge makes of N --task outputs, bit for bit "
                        "[default: unset]")
@@ -152,27 +149,26 @@ int main(int argc, char** argv)
             ->excludes(task_opt);
     // Adaptive counts come from the whole frame's statistics, which no task holds.
     app.get_option("--adaptive")->excludes(task_opt)->excludes(tasks_opt);
-    app.add_option("--checkpoint", checkpoint_seconds,
+    app.add_option("--checkpoint", job.checkpoint_seconds,
                    "every SECONDS, at a sample boundary, save the film to OUT.checkpoint "
                    "(atomically); a SIGINT/SIGTERM saves it and stops; removed once OUT is "
                    "written [default: off]")
         ->check(CLI::PositiveNumber)
         ->excludes(tasks_opt);
-    app.add_flag("--resume", resume,
+    app.add_flag("--resume", job.resume,
                  "continue from OUT.checkpoint when it exists (refused when it belongs to "
                  "another scene, seed, resolution, task or settings); start afresh when it does "
                  "not [default: off]")
         ->excludes(tasks_opt);
-    app.add_flag("--denoise", denoise,
+    app.add_flag("--denoise", job.denoise,
                  "also write the denoised image to OUT.denoised.exr [default: off]");
     app.add_flag(
-           "--write-every-iteration", every_iteration,
+           "--write-every-iteration", job.every_iteration,
            "rewrite OUT (and OUT.denoised.exr with --denoise) after every progressive iteration, "
            "each time atomically, to watch the render refine [default: off]")
         ->excludes(tasks_opt);
     int frame = 0;
     std::string frames_text;
-    double fps = 24;
     auto* frame_opt = app.add_option(
         "--frame", frame,
         "render frame F of a sequence: the camera at time F/fps (ActiveTransform and "
@@ -183,7 +179,7 @@ int main(int argc, char** argv)
                        "render these frames one after another, each as --frame would (1-24, "
                        "1-48x2, 3,5,7); -o must hold a frame pattern [default: a still]")
             ->excludes(frame_opt);
-    app.add_option("--fps", fps, "frames per second of --frame/--frames")
+    app.add_option("--fps", job.fps, "frames per second of --frame/--frames")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
     for (CLI::Option* sequence : {frame_opt, frames_opt})
@@ -196,8 +192,8 @@ int main(int argc, char** argv)
     app.add_flag("--validate", validate,
                  "read the scene and check every option, then exit without rendering (what "
                  "statmc-farm submit runs before it submits) [default: off]");
-    app.add_flag("-q,--quiet", quiet, "no progress bar and no summary [default: off]");
-    app.add_flag("--profile", profile,
+    app.add_flag("-q,--quiet", job.quiet, "no progress bar and no summary [default: off]");
+    app.add_flag("--profile", job.profile,
                  "print samples/s, rays/s and the share of render time spent in Embree traversal "
                  "(the rest is shading, sampling and accumulation) [default: off]");
     CLI11_PARSE(app, argc, argv);
@@ -210,10 +206,10 @@ int main(int argc, char** argv)
                 throw std::runtime_error(output_option + ": cannot write: directory '" +
                                          dir.string() + "' does not exist");
         }
-        const std::vector<FrameToRender> frames =
-            frames_to_render(output_option, frames_text, frame_opt->count() > 0, frame, fps, seed);
+        const std::vector<FrameToRender> frames = frames_to_render(
+            output_option, frames_text, frame_opt->count() > 0, frame, job.fps, seed);
         const RenderTask task = task_text.empty() ? RenderTask{} : parse_task(task_text);
-        SceneDescription desc = parse_scene_file(scene_path);
+        SceneDescription desc = parse_scene_file(job.scene_path);
         for (const std::string& w : desc.warnings)
             std::fprintf(stderr, "%s\n", w.c_str());
         int width = desc.camera.width, height = desc.camera.height;
@@ -238,36 +234,26 @@ int main(int argc, char** argv)
                 std::to_string(adaptive.min_spp) +
                 " uniformly (--adaptive-min-spp); give --spp above that");
         // Before anything is allocated: the same limits for --resolution and the Film.
-        require_renderable_resolution(width, height, bounce_layout_for(integrator, bounce_layers),
+        require_renderable_resolution(width, height,
+                                      bounce_layout_for(integrator, job.bounce_layers),
                                       resolution.empty() ? desc.film_where : "--resolution");
-        settings.progress = !quiet && Progress::stderr_is_terminal();
+        settings.progress = !job.quiet && Progress::stderr_is_terminal();
 
         const int frame_spp = int(schedule_samples(settings.schedule));
-        task_samples(frame_spp, task_total > 0 ? RenderTask{task_total - 1, task_total} : task);
+        task_samples(frame_spp, job.tasks > 0 ? RenderTask{job.tasks - 1, job.tasks} : task);
         if (validate) {
-            std::printf("statmc-render: %s: the scene and options are valid\n", scene_path.c_str());
+            std::printf("statmc-render: %s: the scene and options are valid\n",
+                        job.scene_path.c_str());
             return 0;
         }
 
-        RenderJob job;
-        job.scene_path = scene_path;
         job.scene = std::move(desc);
         job.settings = settings;
-        job.bounce_layers = bounce_layers;
-        job.higher_moments = higher_moments;
         job.frames = frames;
-        job.fps = fps;
         job.task = task;
-        job.whole_frame = task_text.empty() && task_total == 0;
-        job.tasks = task_total;
-        job.checkpoint_seconds = checkpoint_seconds;
-        job.resume = resume;
-        job.denoise = denoise;
-        job.every_iteration = every_iteration;
-        job.quiet = quiet;
-        job.profile = profile;
+        job.whole_frame = task_text.empty() && job.tasks == 0;
         Scene scene(job.scene);
-        scene.enable_profiling(profile);
+        scene.enable_profiling(job.profile);
         // SIGTERM is what schedulers send on preemption: it stops the render like Ctrl-C, and
         // what was rendered is written with its true counts (or, checkpointing, saved).
         std::signal(SIGINT, on_interrupt);
@@ -275,7 +261,7 @@ int main(int argc, char** argv)
         return run_render_job(job, scene, g_interrupted);
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "statmc-render: error: out of memory rendering %s\n",
-                     scene_path.c_str());
+                     job.scene_path.c_str());
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "statmc-render: error: %s\n", e.what());

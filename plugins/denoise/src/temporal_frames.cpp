@@ -174,8 +174,7 @@ StatisticsView with_planes_of(StatisticsView shape, const StatisticsView& values
     for (int c = 0; c < shape.channels; ++c) {
         for (auto member :
              {&StatisticsView::mean, &StatisticsView::variance, &StatisticsView::bc_mean,
-              &StatisticsView::bc_variance, &StatisticsView::bc_moment3, &StatisticsView::moment3,
-              &StatisticsView::moment4, &StatisticsView::bc_moment4})
+              &StatisticsView::bc_variance, &StatisticsView::bc_moment3})
             take((shape.*member)[c], (values.*member)[c]);
     }
     shape.variance_of_mean = values.variance_of_mean;

@@ -81,16 +81,15 @@ void require_finite(const std::vector<ConstPlane>& planes, const OIIO::ImageBuf&
                                      "), channel " + std::to_string(c));
 }
 
-// The moderated per-sample variances the test reads: the default ladder's moderation, but
-// a pixel whose samples all agree does not borrow its neighbours' s² outright: at many
-// samples that agreement is evidence (the inside of a light), and at few the moderation's
-// prior already lifts it.
-std::vector<float> moderated_variances(const StatisticsView& view, int nthreads)
+// How the test's variances are moderated: as the default ladder's, but a pixel whose
+// samples all agree does not borrow its neighbours' s² outright: at many samples that
+// agreement is evidence (the inside of a light), and at few the moderation's prior already
+// lifts it.
+VarianceFilterOptions test_moderation()
 {
     VarianceFilterOptions v = method_settings(Method::Default).stages.ladder.variance;
     v.borrow_without_interval = false;
-    return denoise_variances(view, TestDomain::Untransformed, {}, v,
-                             layers::thread_count(nthreads));
+    return v;
 }
 
 // The smallest ROI (within `roi`) holding every rejected pixel; undefined when none is.
@@ -174,10 +173,13 @@ bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in, const OIIO::
     require_finite(cand, candidate, roi, spec.x, spec.y);
 
     const StatisticsView view = layers::statistics_view(in, ch);
+    const VarianceFilterOptions moderation = test_moderation();
     CandidateTestOptions test = opt.test;
-    test.prior_dof = method_settings(Method::Default).stages.ladder.variance.prior_dof;
-    const std::vector<std::uint8_t> rejected = test_candidate(
-        view, moderated_variances(view, nthreads), cand, test, layers::thread_count(nthreads));
+    test.prior_dof = moderation.prior_dof;  // the moderated variances' degrees of freedom
+    const std::vector<float> variances = denoise_variances(
+        view, TestDomain::Untransformed, {}, moderation, layers::thread_count(nthreads));
+    const std::vector<std::uint8_t> rejected =
+        test_candidate(view, variances, cand, test, layers::thread_count(nthreads));
 
     // A renderer's file comes out under the contract's names, as --passes writes them. The
     // fallback's denoise runs in place on the copy, which already holds the map's channel.

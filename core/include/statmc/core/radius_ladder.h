@@ -1,6 +1,6 @@
 // A per-pixel choice of the filter radius by the intersection of confidence intervals
-// (ICI, Katkovnik's rule; docs/method.md §11): a candidate for do-no-harm that, unlike a
-// clamp, drops a harmful average instead of keeping its edge. Each rung r of a ladder of
+// (ICI, Katkovnik's rule; docs/method.md §11): the default method's way of keeping each
+// output consistent with its own pixel, which drops a harmful average instead of clamping it. Each rung r of a ladder of
 // radii gives the pixel an estimate ŷ_r (the filter at radius r; ŷ_0 = x̄) and an interval
 // ŷ_r ± z·sqrt(ṽ / N_r), N_r the filter's effective sample count; the pixel takes the
 // largest r whose interval still overlaps those of every smaller rung, in every channel.
