@@ -52,11 +52,13 @@ TEST(CliPlugins, HelpOfAnOperatorIsItsParameterTable)
     const std::string table = squeezed(r.out);
     for (const char* row :
          {"\n parameter type default range meaning\n", "\n radius int 20 [0, 1000] ",
-          "\n alpha float 0.005 (0, 1) ", "\n sigma_s float 10 > 0 ", "\n test choice auto - ",
-          "\n method choice default - ", "\n temporal int 0 [0, 16] ", "denoise.so"})
+          "\n alpha float 0.005 (0, 1) ", "\n sigma_albedo float 0.02 > 0 ",
+          "\n test choice auto - ", "\n method choice default - ", "\n temporal int 0 [0, 16] ",
+          "denoise.so"})
         EXPECT_NE(table.find(row), std::string::npos) << row << "\n" << r.out;
     // The product's options only: a method's internal settings are not parameters.
-    for (const char* internal : {"\n ici ", "\n context ", "\n guide_noise ", "\n variance_dof "})
+    for (const char* internal :
+         {"\n ici ", "\n context ", "\n guide_noise ", "\n variance_dof ", "\n sigma_s "})
         EXPECT_EQ(table.find(internal), std::string::npos) << internal << "\n" << r.out;
     EXPECT_EQ(run_cli({"--help", "--denoise"}).out, r.out);
     const CliResult unknown = run_cli({"--help", "denoize"});

@@ -52,16 +52,16 @@ TEST(CliRun, DenoiseRoundTripEqualsTheOperator)
 {
     TempDir dir;
     write_exr(cli_statistics_image(), dir.file("in.exr"));
-    const CliResult r =
-        run_cli({dir.file("in.exr"), "--denoise:radius=6:alpha=0.01:sigma_s=3:guides=albedo,normal",
-                 "-o", dir.file("out.exr")});
+    const CliResult r = run_cli(
+        {dir.file("in.exr"), "--denoise:radius=6:alpha=0.01:sigma_albedo=0.05:guides=albedo,normal",
+         "-o", dir.file("out.exr")});
     expect_success(r);
     EXPECT_EQ(dir.entries(), (std::vector<std::string>{"in.exr", "out.exr"}));
 
     DenoiseImageOptions opt;
     opt.filter.radius = 6;
     opt.filter.alpha = 0.01;
-    opt.filter.sigma_spatial = 3.f;
+    opt.filter.sigma_albedo = 0.05f;
     opt.guides.albedo = opt.guides.normal = GuideUse::Required;
     const OIIO::ImageBuf in = read_exr(dir.file("in.exr"));
     const OIIO::ImageBuf expected = denoise(in, opt);
@@ -400,9 +400,8 @@ TEST(CliRun, HelpListsEveryCommandAndModifier)
     expect_success(r);
     for (const char* text :
          {"-i[:mod=val...] FILE", "-o[:mod=val...] FILE", "--denoise", "--passes", "--threads N",
-          "--help", "--version", ":radius=20 ", ":alpha=0.005 ", ":sigma_s=10 ",
-          ":sigma_albedo=0.02 ", ":sigma_normal=0.1 ", ":guides=auto ", "(albedo,normal|auto|none)",
-          ":albedo_layer=albedo ", ":normal_layer=normal ", ":test=auto ",
+          "--help", "--version", ":radius=20 ", ":alpha=0.005 ", ":sigma_albedo=0.02 ",
+          ":sigma_normal=0.1 ", ":guides=auto ", "(albedo,normal|auto|none)", ":test=auto ",
           "(auto|boxcox|untransformed)", ":nonfinite=error ", "(error|zero)", ":n=int ",
           ":diagnostics=0 ", ":aov=name ", ":aovs=name,name,... ",
           // the oiiotool commands, from the same table

@@ -130,7 +130,7 @@ def test_an_edit_of_a_layer_read_as_a_copy_is_passed_on():
     ({"radius": -1}, "radius=-1"),
     ({"method": "fancy"}, "method=fancy"),
     ({"guides": ["albedo", "depth"]}, "guides=albedo,depth"),
-    ({"sigma_s": "wide"}, "sigma_s=wide"),
+    ({"sigma_albedo": "wide"}, "sigma_albedo=wide"),
     ({"no_such": 1}, "no_such=1"),
     ({"device": "gpu"}, "device=gpu"),
     ({"joint": "maybe"}, "joint=maybe"),

@@ -89,15 +89,12 @@ statmc::DenoiseImageOptions options_from(const ParameterValues& p)
         chosen(kMethods, p.get_string("method", "default"), statmc::Method::Default));
     opt.filter.radius = p.get_int("radius", opt.filter.radius);
     opt.filter.alpha = p.get_float("alpha", opt.filter.alpha);
-    opt.filter.sigma_spatial = float(p.get_float("sigma_s", opt.filter.sigma_spatial));
     opt.filter.sigma_albedo = float(p.get_float("sigma_albedo", opt.filter.sigma_albedo));
     opt.filter.sigma_normal = float(p.get_float("sigma_normal", opt.filter.sigma_normal));
     opt.filter.firefly_ratio = float(p.get_float("fireflies", opt.filter.firefly_ratio));
     const std::vector<std::string> guides = p.get_list("guides", {"auto"});
     opt.guides.albedo = guide_use(guides, "albedo");
     opt.guides.normal = guide_use(guides, "normal");
-    opt.guides.albedo_layer = p.get_string("albedo_layer", opt.guides.albedo_layer);
-    opt.guides.normal_layer = p.get_string("normal_layer", opt.guides.normal_layer);
     opt.test = chosen(kTests, p.get_string("test", spelling(kTests, opt.test)), opt.test);
     opt.filter.device = chosen(
         kDevices, p.get_string("device", spelling(kDevices, opt.filter.device)), opt.filter.device);
@@ -127,7 +124,6 @@ std::vector<statmc::ParameterSpec> parameters()
                          "The parameters below apply over any method"),
         int_parameter("radius", f.radius, "filter disk radius in pixels").between(0, 1000),
         float_parameter("alpha", f.alpha, "significance level of the t-test").open_between(0, 1),
-        float_parameter("sigma_s", f.sigma_spatial, "spatial Gaussian falloff in pixels").above(0),
         float_parameter("sigma_albedo", f.sigma_albedo, "albedo guide falloff").above(0),
         float_parameter("sigma_normal", f.sigma_normal, "normal guide falloff").above(0),
         float_parameter("fireflies", std::nullopt,
@@ -141,10 +137,6 @@ std::vector<statmc::ParameterSpec> parameters()
         list_parameter("guides", {"albedo", "normal"}, {"auto", "none"}, "auto",
                        "guide layers: a list is required to be present, auto uses those "
                        "present, none none"),
-        string_parameter("albedo_layer", defaults().guides.albedo_layer,
-                         "layer of the albedo guide (.R,.G,.B)"),
-        string_parameter("normal_layer", defaults().guides.normal_layer,
-                         "layer of the normal guide (.X,.Y,.Z)"),
         choice_parameter("test", spellings(kTests), spelling(kTests, defaults().test),
                          "test domain: auto = boxcox when the Box-Cox layers are present, "
                          "else untransformed"),
