@@ -49,11 +49,6 @@ def render(args, scene, spp, seed, path):
     return path
 
 
-def layers(statmc, path):
-    image = statmc.read_statistics(path)
-    return image
-
-
 def highlight_windows(reference_rgb):
     """Pixels near the reference's brightest: luminance above both its 99.5th percentile and
     4 times its median, grown by 2 pixels."""
@@ -76,56 +71,36 @@ def scores(x, ref, ref_share, window):
 
 
 def report(path):
-    """results.csv as markdown: per scene and metric, a row per (spp, seed), a column per
-    method; a method's figure is starred where it is above the noisy input's (energy: more
-    than 5% further from 1)."""
+    """results.csv as markdown: per scene and metric, a row per cell (sample count and seed,
+    or passes), a column per method; a method's figure is starred where it is above the noisy
+    input's (energy: more than 5% further from 1)."""
     with open(path) as f:
         rows = list(csv.DictReader(f))
     methods = list(dict.fromkeys(r["method"] for r in rows))
-    cells = {(r["scene"], int(r["spp"]), r["seed"], r["method"]): r for r in rows}
+    cells = {(r["scene"], int(r["spp"]), r["cell"], r["method"]): r for r in rows}
     for scene in dict.fromkeys(r["scene"] for r in rows):
         keys = sorted({(k[1], k[2]) for k in cells if k[0] == scene})
         for metric in ("mse", "relmse", "dssim", "energy"):
             print(f"\n{scene}, {metric}\n")
-            print("| spp | seed | " + " | ".join(methods) + " |")
+            print("| spp | cell | " + " | ".join(methods) + " |")
             print("|---" * (len(methods) + 2) + "|")
-            for spp, seed in keys:
-                noisy = float(cells[(scene, spp, seed, "noisy")][metric])
+            for spp, cell in keys:
+                noisy = float(cells[(scene, spp, cell, "noisy")][metric])
                 out = []
                 for m in methods:
-                    v = float(cells[(scene, spp, seed, m)][metric])
+                    row = cells.get((scene, spp, cell, m))
+                    if row is None:
+                        out.append("")
+                        continue
+                    v = float(row[metric])
                     worse = (abs(v - 1) > abs(noisy - 1) + 0.05 if metric == "energy"
                              else v > noisy)
                     out.append(f"{v:.4g}" + ("*" if worse and m != "noisy" else ""))
-                print(f"| {spp} | {seed} | " + " | ".join(out) + " |")
+                print(f"| {spp} | {cell} | " + " | ".join(out) + " |")
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--out", default=os.path.join(ROOT, "build", "promise"))
-    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
-    parser.add_argument("--resolution", default="320x180")
-    parser.add_argument("--ref-spp", type=int, default=4096)
-    parser.add_argument("--spps", default="4 16 64 256")
-    parser.add_argument("--seeds", default="11 12")
-    parser.add_argument("--scenes", default=" ".join(SCENES))
-    parser.add_argument("--method", action="append", default=[])
-    parser.add_argument("--chain", action="append", default=[])
-    parser.add_argument("--oidn", action="store_true")
-    parser.add_argument("--no-defaults", action="store_true",
-                        help="leave out the default and classic methods")
-    parser.add_argument("--report", action="store_true",
-                        help="print OUT/results.csv as markdown tables and stop")
-    args = parser.parse_args()
-    if args.report:
-        report(os.path.join(args.out, "results.csv"))
-        return
-    args.render = os.path.join(args.build, "renderer", "statmc-render")
-    statmc_cli = os.path.join(args.build, "oiiotool_ext", "statmc")
-    sys.path.insert(0, os.path.join(args.build, "python"))
-    import statmc  # noqa: E402
-
-    # (name, statmc, the commands between the noisy frame and -o)
+def method_list(args, statmc_cli):
+    """(name, statmc, the commands between the noisy frame and -o) for every method asked."""
     methods = [("default", statmc_cli, ["--denoise"]),
                ("classic", statmc_cli, ["--denoise:method=classic"])]
     if args.no_defaults:
@@ -140,42 +115,98 @@ def main():
     for text in chains:
         name, commands = text.split("=", 1)
         methods.append((name, statmc_cli, commands.split()))
+    return methods
+
+
+def add_method_arguments(parser):
+    parser.add_argument("--method", action="append", default=[])
+    parser.add_argument("--chain", action="append", default=[])
+    parser.add_argument("--oidn", action="store_true")
+    parser.add_argument("--no-defaults", action="store_true",
+                        help="leave out the default and classic methods")
+    parser.add_argument("--report", action="store_true",
+                        help="print OUT/results.csv as markdown tables and stop")
+
+
+class Reference:
+    """A statistics image of a long render: its RGB mean, its own share of MSE and relMSE
+    (its variance over its count), and the highlight windows it defines."""
+
+    def __init__(self, statmc, path):
+        image = statmc.read_statistics(path)
+        self.path = path
+        self.rgb = image["beauty"][:, :, :3].astype(np.float64)
+        share = image["variance"][:, :, :3] / image["sampleCount"]
+        self.share = {"mse": float(share.mean()),
+                      "relmse": float((share / (self.rgb ** 2 + EPS)).mean())}
+        self.window = highlight_windows(self.rgb)
+
+
+def score_frame(statmc, methods, noisy_path, prefix, reference, cell):
+    """Runs every method on one noisy frame (outputs PREFIX-NAME.exr) and scores them and the
+    noisy input against the reference; returns one row per method, `cell`'s keys first."""
+    outputs = [("noisy", noisy_path)]
+    for name, exe, commands in methods:
+        out = f"{prefix}-{name}.exr"
+        run([exe, noisy_path] + commands + ["-o", out])
+        outputs.append((name, out))
+    rows = []
+    for name, path in outputs:
+        x = statmc.read_statistics(path)["beauty"][:, :, :3].astype(np.float64)
+        mse, rel, energy = scores(x, reference.rgb, reference.share, reference.window)
+        dssim = statmc.compare(path, reference.path).metrics["DSSIM"]
+        rows.append({**cell, "method": name, "mse": mse, "relmse": rel, "dssim": dssim,
+                     "energy": energy, "ref_mse_share": reference.share["mse"],
+                     "ref_relmse_share": reference.share["relmse"]})
+        print(f"{cell['scene']:15s} {cell['spp']:5d} {cell['cell']:14s} {name:11s} "
+              f"MSE {mse:.4g} relMSE {rel:.4g} DSSIM {dssim:.4f} energy {energy:.3f}",
+              flush=True)
+    return rows
+
+
+def write_rows(path, rows):
+    with open(path, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", default=os.path.join(ROOT, "build", "promise"))
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
+    parser.add_argument("--resolution", default="320x180")
+    parser.add_argument("--ref-spp", type=int, default=4096)
+    parser.add_argument("--spps", default="4 16 64 256")
+    parser.add_argument("--seeds", default="11 12")
+    parser.add_argument("--scenes", default=" ".join(SCENES))
+    add_method_arguments(parser)
+    args = parser.parse_args()
+    if args.report:
+        report(os.path.join(args.out, "results.csv"))
+        return
+    args.render = os.path.join(args.build, "renderer", "statmc-render")
+    statmc_cli = os.path.join(args.build, "oiiotool_ext", "statmc")
+    sys.path.insert(0, os.path.join(args.build, "python"))
+    import statmc  # noqa: E402
+
+    methods = method_list(args, statmc_cli)
     os.makedirs(args.out, exist_ok=True)
     rows = []
     for scene in args.scenes.split():
         d = os.path.join(args.out, scene)
         os.makedirs(d, exist_ok=True)
-        ref_path = render(args, scene, args.ref_spp, 1000,
-                          os.path.join(d, f"reference-{args.ref_spp}-{args.resolution}.exr"))
-        ref_image = layers(statmc, ref_path)
-        ref = ref_image["beauty"][:, :, :3].astype(np.float64)
-        share = ref_image["variance"][:, :, :3] / ref_image["sampleCount"]
-        ref_share = {"mse": float(share.mean()),
-                     "relmse": float((share / (ref ** 2 + EPS)).mean())}
-        window = highlight_windows(ref)
+        reference = Reference(statmc, render(
+            args, scene, args.ref_spp, 1000,
+            os.path.join(d, f"reference-{args.ref_spp}-{args.resolution}.exr")))
         for spp in [int(s) for s in args.spps.split()]:
             for seed in [int(s) for s in args.seeds.split()]:
                 noisy_path = render(args, scene, spp, seed,
                                     os.path.join(d, f"noisy-{args.resolution}-{spp}-{seed}.exr"))
-                outputs = [("noisy", noisy_path)]
-                for name, exe, commands in methods:
-                    out = os.path.join(d, f"{name}-{spp}-{seed}.exr")
-                    run([exe, noisy_path] + commands + ["-o", out])
-                    outputs.append((name, out))
-                for name, path in outputs:
-                    x = layers(statmc, path)["beauty"][:, :, :3].astype(np.float64)
-                    mse, rel, energy = scores(x, ref, ref_share, window)
-                    dssim = statmc.compare(path, ref_path).metrics["DSSIM"]
-                    rows.append({"scene": scene, "spp": spp, "seed": seed, "method": name,
-                                 "mse": mse, "relmse": rel, "dssim": dssim, "energy": energy,
-                                 "ref_mse_share": ref_share["mse"],
-                                 "ref_relmse_share": ref_share["relmse"]})
-                    print(f"{scene:15s} {spp:5d} {seed:3d} {name:10s} MSE {mse:.4g} "
-                          f"relMSE {rel:.4g} DSSIM {dssim:.4f} energy {energy:.3f}", flush=True)
-    with open(os.path.join(args.out, "results.csv"), "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+                rows += score_frame(statmc, methods, noisy_path,
+                                    os.path.join(d, f"{spp}-{seed}"), reference,
+                                    {"scene": scene, "spp": spp, "cell": f"seed {seed}"})
+    write_rows(os.path.join(args.out, "results.csv"), rows)
 
 
 if __name__ == "__main__":
