@@ -221,11 +221,12 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) filter_kernel(const KernelPa
                         far = g == kHalf ? __fmul_rn(d, d) : fmaf(d, d, far);
                 }
                 float log2_weight = __fsub_rn(near, far);
-                if (guide_noise)  // less the guides' noise, never above the spatial weight
-                    log2_weight = fminf(
-                        __fadd_rn(log2_weight,
-                                  __fadd_rn(guide_noise_i, fminf(guide_noise_i, s_guide_noise[k]))),
-                        p.spatial_log2[table_row + dx]);
+                if (guide_noise) {  // less the guides' noise (both ways alike), never above
+                                    // the spatial weight
+                    const float shared = fminf(guide_noise_i, s_guide_noise[k]);
+                    log2_weight = fminf(__fadd_rn(log2_weight, __fadd_rn(shared, shared)),
+                                        p.spatial_log2[table_row + dx]);
+                }
                 w = exp2f(log2_weight);
             }
             for (int c = 0; c < NC; ++c)

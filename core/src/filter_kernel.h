@@ -190,14 +190,14 @@ void add_band(const FilterLayout& L, int y, int x0, int y_first, int y_last,
             // is in a table. Left as it was written, so that the compiler fuses it as before.
             F log2_weight[R];
             if constexpr (kNoise) {
-                // Guide noise: spatial − max(0, Σ(Δg)² − (u_i + min(u_i, u_j))). With u = 0
-                // the sum adds +0 and the min keeps it: the bits of the loop below.
+                // Guide noise: spatial − max(0, Σ(Δg)² − 2·min(u_i, u_j)), the same both ways
+                // (docs/method.md §5). With u = 0 it adds +0: the bits of the loop below.
                 const F noise = V::load(L.guide_noise + off);
-                for (int k = First; k < Last; ++k)
+                for (int k = First; k < Last; ++k) {
+                    const F shared = V::min(ctr[k].guide_noise, noise);
                     log2_weight[k] = V::min(
-                        V::add(V::sub(near[k], far[k]),
-                               V::add(ctr[k].guide_noise, V::min(ctr[k].guide_noise, noise))),
-                        spatial[k]);
+                        V::add(V::sub(near[k], far[k]), V::add(shared, shared)), spatial[k]);
+                }
             } else {
                 for (int k = First; k < Last; ++k)
                     log2_weight[k] = V::sub(near[k], far[k]);

@@ -53,7 +53,7 @@ struct FilterLayout {
     const float* guide[6] = {};  // scaled by √(log2 e)/(√2·σ): −Σ (Δg)² is the log2-weight
     // With the guides' variances (else null): u = Σ_guides (scale² · s²/n), the part of
     // E[Σ (Δg)²] a pixel's own guide noise adds. The log2-weight is then
-    // spatial − max(0, Σ (Δg)² − (u_i + min(u_i, u_j))) (docs/method.md §5, guide noise).
+    // spatial − max(0, Σ (Δg)² − 2·min(u_i, u_j)) (docs/method.md §5, guide noise).
     const float* guide_noise = nullptr;
 
     // The window walked: rows |dy| ≤ reach_y, and in row dy the columns

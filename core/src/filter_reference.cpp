@@ -32,9 +32,10 @@ double variance_of_mean(const ConstPlane& variance, const EstimatorImage& est, i
     return v > 0 && std::isfinite(v) && n > 0 && std::isfinite(n) ? v / n : 0.0;
 }
 
-// The guides' part of −log w: D − (U_i + min(U_i, U_j)), at least 0, with
+// The guides' part of −log w: D − 2·min(U_i, U_j), at least 0, with
 // D = Σ_guides |g_i − g_j|²/(2σ²) and U = Σ_guides (s²/n)/(2σ²): the distance less what
-// the guides' own noise explains, and only as much of j's as i's (docs/method.md §5).
+// the guides' own noise explains, the less noisy side's twice, so that i weighs j as j
+// weighs i (docs/method.md §5).
 double guide_exponent(const EstimatorImage& est, const Guides& guides,
                       const DenoiseOptions& options, int xi, int yi, int xj, int yj)
 {
@@ -51,7 +52,7 @@ double guide_exponent(const EstimatorImage& est, const Guides& guides,
         add(guides.albedo, guides.albedo_variance, options.sigma_albedo);
     if (guides.has_normal())
         add(guides.normal, guides.normal_variance, options.sigma_normal);
-    return std::max(0.0, e - (noise_i + std::min(noise_i, noise_j)));
+    return std::max(0.0, e - 2 * std::min(noise_i, noise_j));
 }
 
 }  // namespace

@@ -67,9 +67,10 @@ TEST(Filter, TheFixturesFirefliesAreGuardedAgainst)
 }
 
 // Guide noise (docs/method.md §5): centre i weighs j by spatial · exp(−max(0, D − U)),
-// D = Σ_guides |g_i − g_j|²/(2σ²) and U = u_i + min(u_i, u_j), u = Σ_guides (s²/n)/(2σ²):
-// a noisy neighbour explains away no more than the centre's own noise. Two pixels that the
-// test cannot tell apart, so pixel i's output is (F_i + w_i F_j)/(1 + w_i), written out.
+// D = Σ_guides |g_i − g_j|²/(2σ²) and U = 2·min(u_i, u_j), u = Σ_guides (s²/n)/(2σ²): the
+// less noisy side's noise explains the distance away, so i weighs j exactly as j weighs i
+// (a noisy pixel cannot take neighbours that do not take it, and lose its light). Two
+// pixels that the test cannot tell apart, so pixel i's output is (F_i + w F_j)/(1 + w).
 TEST(Filter, GuideNoiseTakesWhatItExplainsOutOfTheGuideDistance)
 {
     EstimatorImage est(2, 1, 1);
@@ -99,8 +100,8 @@ TEST(Filter, GuideNoiseTakesWhatItExplainsOutOfTheGuideDistance)
         }
         g.albedo_variance = dense_plane(variance, 2);
         const double D = 3 * 0.1 * 0.1 * falloff, u0 = s2 / 4 * falloff, u1 = s2 / 8 * falloff;
-        const double w0 = spatial * std::exp(-std::max(0.0, D - (u0 + std::min(u0, u1))));
-        const double w1 = spatial * std::exp(-std::max(0.0, D - (u1 + std::min(u1, u0))));
+        const double w0 = spatial * std::exp(-std::max(0.0, D - 2 * std::min(u0, u1)));
+        const double w1 = spatial * std::exp(-std::max(0.0, D - 2 * std::min(u1, u0)));
         for (SimdLevel level : supported_simd_levels()) {
             SCOPED_TRACE(simd_level_name(level));
             Output fast(2, 1, 1), ref(2, 1, 1);
@@ -112,6 +113,7 @@ TEST(Filter, GuideNoiseTakesWhatItExplainsOutOfTheGuideDistance)
             EXPECT_NEAR(ref.values[1], (3 + w1 * 1) / (1 + w1), 1e-6);
             EXPECT_NEAR(fast.weights[0], 1 + w0, 2e-6);
             EXPECT_NEAR(fast.weights[1], 1 + w1, 2e-6);
+            EXPECT_EQ(fast.weights[0], fast.weights[1]);  // the same weight both ways
         }
     }
 }
