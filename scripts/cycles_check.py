@@ -15,6 +15,7 @@ its own share comes from its passes' spread. Renders are cached in OUT; not part
 import argparse
 import glob
 import os
+import shutil
 import subprocess
 import sys
 
@@ -84,6 +85,8 @@ def main():
     if args.report:
         report(os.path.join(args.out, "results.csv"))
         return
+    if not shutil.which("blender"):
+        sys.exit("cycles_check: blender is not installed (apt-get install blender)")
     statmc_cli = os.path.join(args.build, "oiiotool_ext", "statmc")
     sys.path.insert(0, os.path.join(args.build, "python"))
     import statmc  # noqa: E402
