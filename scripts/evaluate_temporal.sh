@@ -38,18 +38,44 @@ render_sequence() {  # scene spp dir seed
   fi
 }
 
-# Denoises DIR/f.#.exr per frame (K = 0) and with temporal=K; the wall time per frame
-# (reading and writing included) goes to DIR/timing.csv.
+# OIDN (docs/method.md §15) where its library is found (STATMC_OIDN_LIBRARY, or pyoidn beside
+# Python); without it the OIDN rows are left out, and the report says only what ran.
+oidn=""
+oidn_found() {  # a frame to try it on
+  if [ -z "$oidn" ]; then
+    if "$tool" "$1" --oidn -o "$out/oidn-probe.exr" >/dev/null 2>&1; then
+      oidn=1
+    else
+      oidn=0
+      echo "evaluate_temporal.sh: the OIDN library was not found: no OIDN rows" >&2
+    fi
+  fi
+  [ "$oidn" = 1 ]
+}
+
+# Times one command over the sequence into DIR/timing.csv as LABEL, per frame.
+timed() {  # dir label commands...
+  local dir=$1 label=$2 start end
+  shift 2
+  start=$(date +%s.%N)
+  "$tool" "$dir/f.#.exr" --frames "1-$frames" "$@"
+  end=$(date +%s.%N)
+  echo "$label,$(echo "($end - $start) / $frames" | bc -l)" >> "$dir/timing.csv"
+}
+
+# Denoises DIR/f.#.exr per frame (K = 0) and with temporal=K, and with OIDN and verified
+# OIDN per frame; the wall time per frame (reading and writing included) goes to
+# DIR/timing.csv.
 denoise_sequence() {  # dir [extra denoise parameters]
   local dir=$1 extra=${2:-}
   echo "k,seconds_per_frame" > "$dir/timing.csv"
   for k in 0 1 2; do
-    local start end
-    start=$(date +%s.%N)
-    "$tool" "$dir/f.#.exr" --frames "1-$frames" "--denoise:temporal=$k$extra" -o "$dir/d$k.#.exr"
-    end=$(date +%s.%N)
-    echo "$k,$(echo "($end - $start) / $frames" | bc -l)" >> "$dir/timing.csv"
+    timed "$dir" "$k" "--denoise:temporal=$k$extra" -o "$dir/d$k.#.exr"
   done
+  if oidn_found "$dir/f.0001.exr"; then
+    timed "$dir" oidn --oidn -o "$dir/oidn.#.exr"
+    timed "$dir" verified --dup --oidn --verify -o "$dir/verified.#.exr"
+  fi
 }
 
 [ -f "$out/static-ref.exr" ] || "$render" "$out/static.pbrt" --spp "$ref_spp" --seed 1000 \

@@ -38,18 +38,30 @@ def sequence(directory, prefix, frames):
 
 
 def timing(directory):
+    """Seconds per frame by label: K=0, K=1, K=2 and, where OIDN ran, oidn and verified."""
     with open(os.path.join(directory, "timing.csv")) as f:
-        return {int(row["k"]): float(row["seconds_per_frame"]) for row in csv.DictReader(f)}
+        return {(f"K={row['k']}" if row["k"].isdigit() else row["k"]):
+                float(row["seconds_per_frame"]) for row in csv.DictReader(f)}
+
+
+# OIDN per frame and verified OIDN per frame (`--oidn`, `--dup --oidn --verify`), where
+# evaluate_temporal.sh could run them.
+OIDN_LABELS = ("oidn", "verified")
 
 
 def score(directory, refs, frames):
-    """relMSE (mean, per frame) and flicker of the noisy input and of K = 0, 1, 2."""
+    """relMSE and MSE (mean, per frame) and flicker of the noisy input, of K = 0, 1, 2 and of
+    OIDN and verified OIDN per frame where they are there."""
     rows = {}
     noisy = sequence(directory, "f", frames)
-    for label, xs in [("noisy", noisy)] + [(f"K={k}", sequence(directory, f"d{k}", frames))
-                                           for k in (0, 1, 2)]:
+    runs = [("noisy", noisy)] + [(f"K={k}", sequence(directory, f"d{k}", frames))
+                                 for k in (0, 1, 2)]
+    runs += [(label, sequence(directory, label, frames)) for label in OIDN_LABELS
+             if os.path.exists(os.path.join(directory, f"{label}.0001.exr"))]
+    for label, xs in runs:
         per_frame = [relmse(x, r) for x, r in zip(xs, refs)]
-        rows[label] = {"relmse": float(np.mean(per_frame)), "per_frame": per_frame,
+        mse = float(np.mean([np.mean((x - r) ** 2) for x, r in zip(xs, refs)]))
+        rows[label] = {"relmse": float(np.mean(per_frame)), "per_frame": per_frame, "mse": mse,
                        "flicker": flicker(xs, refs), "images": xs}
     worst = max(max(rows[k]["per_frame"][t] / rows["noisy"]["per_frame"][t]
                     for t in range(frames)) for k in ("K=0", "K=1", "K=2"))
@@ -125,13 +137,14 @@ def main():
 
     def table(results, caption):
         rows, worst, times = results
-        lines = [caption, "", "| | relMSE (mean of frames) | flicker | time per frame (s) |",
-                 "| --- | --- | --- | --- |"]
-        for label in ("noisy", "K=0", "K=1", "K=2"):
-            name = "per frame (K = 0)" if label == "K=0" else label.replace("=", " = ")
-            t = f"{times[int(label[2])]:.3f}" if label != "noisy" else ""
-            lines.append(f"| {name} | {rows[label]['relmse']:.5g} | {rows[label]['flicker']:.4g} "
-                         f"| {t} |")
+        lines = [caption, "", "| | relMSE (mean of frames) | MSE (mean of frames) | flicker "
+                 "| time per frame (s) |", "| --- | --- | --- | --- | --- |"]
+        names = {"K=0": "per frame (K = 0)", "K=1": "K = 1", "K=2": "K = 2",
+                 "oidn": "OIDN 2 per frame (guides)", "verified": "verified OIDN per frame"}
+        for label in ["noisy"] + [k for k in names if k in rows]:
+            t = f"{times[label]:.3f}" if label in times else ""
+            lines.append(f"| {names.get(label, label)} | {rows[label]['relmse']:.5g} "
+                         f"| {rows[label]['mse']:.4g} | {rows[label]['flicker']:.4g} | {t} |")
         k0 = rows["K=0"]
         lines += ["", f"K = 2 against per frame: flicker {k0['flicker'] / rows['K=2']['flicker']:.2f}× "
                   f"lower, relMSE {k0['relmse'] / rows['K=2']['relmse']:.2f}× lower; "
@@ -152,8 +165,10 @@ def main():
            f"{a.ref_spp} spp, and a **pan** (the camera orbiting the box by 16° per second "
            f"at 24 frames per second, with the motion layer), scored frame by frame against references of "
            f"{a.pan_ref_spp} spp. The denoiser is statmc's default (`--denoise`, guides on) "
-           "per frame (K = 0) and with `temporal=K`; time per frame is the tool's wall time "
-           "over the sequence, reading and writing included, on this 2-core machine.", "",
+           "per frame (K = 0) and with `temporal=K`, beside OIDN 2 with guides per frame "
+           "(`--oidn`, pyoidn's library, CPU) and verified OIDN per frame (`--dup --oidn "
+           "--verify`) where the OIDN library was found; time per frame is the tool's wall "
+           "time over the sequence, reading and writing included, on this 2-core machine.", "",
            "![flicker and relMSE against spp](images/temporal_flicker.png)", ""]
     for spp in spps:
         out += table(static[spp], f"## Static camera, {spp} spp per frame")
