@@ -23,7 +23,8 @@ struct DenoiseOptions {
     /// times its own reference level. 0 = off, the paper's filter; else ≥ 1.
     float firefly_ratio = 256.f;
     /// Guide noise (docs/method.md §5): with the guides' variances (Guides), take the part
-    /// of a guide distance that their sampling noise explains out of the guide weight.
+    /// of a guide distance that their sampling noise explains out of the guide weight, the
+    /// less noisy pixel's twice, so that i weighs j as j weighs i.
     /// Off in the paper's filter; without the variances it changes nothing.
     bool guide_noise = true;
     /// The GPU gives the same members and values within float summation order (docs/gpu.md);
