@@ -22,8 +22,8 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from promise_check import (Reference, add_method_arguments, method_list, report,  # noqa: E402
-                           score_frame, write_rows)
+from promise_check import (Reference, add_common_arguments, report, score_frame,  # noqa: E402
+                           tools, write_rows)
 
 SCENES = ("glints", "caustic", "dof")
 
@@ -72,26 +72,18 @@ def merged(statmc_cli, files, path):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--out", default=os.path.join(ROOT, "build", "cycles-check"))
-    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
-    parser.add_argument("--resolution", default="320x180")
-    parser.add_argument("--ref-spp", type=int, default=4096)
+    add_common_arguments(parser, "cycles-check")
     parser.add_argument("--samples", default="4 16", help="samples per pass")
     parser.add_argument("--passes", default="4 8 16", help="passes K")
     parser.add_argument("--seed", type=int, default=1, help="the first pass's seed")
     parser.add_argument("--scenes", default=" ".join(SCENES))
-    add_method_arguments(parser)
     args = parser.parse_args()
     if args.report:
         report(os.path.join(args.out, "results.csv"))
         return
     if not shutil.which("blender"):
         sys.exit("cycles_check: blender is not installed (apt-get install blender)")
-    statmc_cli = os.path.join(args.build, "oiiotool_ext", "statmc")
-    sys.path.insert(0, os.path.join(args.build, "python"))
-    import statmc  # noqa: E402
-
-    methods = method_list(args, statmc_cli)
+    statmc, statmc_cli, methods = tools(args)
     ks = [int(k) for k in args.passes.split()]
     rows = []
     for scene in args.scenes.split():

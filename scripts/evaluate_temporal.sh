@@ -45,6 +45,7 @@ oidn_found() {  # a frame to try it on
   if [ -z "$oidn" ]; then
     if "$tool" "$1" --oidn -o "$out/oidn-probe.exr" >/dev/null 2>&1; then
       oidn=1
+      rm -f "$out/oidn-probe.exr"
     else
       oidn=0
       echo "evaluate_temporal.sh: the OIDN library was not found: no OIDN rows" >&2

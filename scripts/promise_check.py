@@ -118,7 +118,13 @@ def method_list(args, statmc_cli):
     return methods
 
 
-def add_method_arguments(parser):
+def add_common_arguments(parser, out_name):
+    """The options both checks take: where renders are cached, the build, the frames'
+    resolution, the references' sample count, and the methods (method_list)."""
+    parser.add_argument("--out", default=os.path.join(ROOT, "build", out_name))
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
+    parser.add_argument("--resolution", default="320x180")
+    parser.add_argument("--ref-spp", type=int, default=4096)
     parser.add_argument("--method", action="append", default=[])
     parser.add_argument("--chain", action="append", default=[])
     parser.add_argument("--oidn", action="store_true")
@@ -126,6 +132,14 @@ def add_method_arguments(parser):
                         help="leave out the default and classic methods")
     parser.add_argument("--report", action="store_true",
                         help="print OUT/results.csv as markdown tables and stop")
+
+
+def tools(args):
+    """The build's statmc command, its Python package, and the methods asked for."""
+    statmc_cli = os.path.join(args.build, "oiiotool_ext", "statmc")
+    sys.path.insert(0, os.path.join(args.build, "python"))
+    import statmc
+    return statmc, statmc_cli, method_list(args, statmc_cli)
 
 
 class Reference:
@@ -173,24 +187,16 @@ def write_rows(path, rows):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--out", default=os.path.join(ROOT, "build", "promise"))
-    parser.add_argument("--build", default=os.path.join(ROOT, "build"))
-    parser.add_argument("--resolution", default="320x180")
-    parser.add_argument("--ref-spp", type=int, default=4096)
+    add_common_arguments(parser, "promise")
     parser.add_argument("--spps", default="4 16 64 256")
     parser.add_argument("--seeds", default="11 12")
     parser.add_argument("--scenes", default=" ".join(SCENES))
-    add_method_arguments(parser)
     args = parser.parse_args()
     if args.report:
         report(os.path.join(args.out, "results.csv"))
         return
     args.render = os.path.join(args.build, "renderer", "statmc-render")
-    statmc_cli = os.path.join(args.build, "oiiotool_ext", "statmc")
-    sys.path.insert(0, os.path.join(args.build, "python"))
-    import statmc  # noqa: E402
-
-    methods = method_list(args, statmc_cli)
+    statmc, _, methods = tools(args)
     os.makedirs(args.out, exist_ok=True)
     rows = []
     for scene in args.scenes.split():

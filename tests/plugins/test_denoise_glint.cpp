@@ -69,23 +69,28 @@ OIIO::ImageBuf full_statistics(int n, std::uint64_t seed, Glint& glint)
     return layers::make_statistics_image(img.planes());
 }
 
-// K renders of 4 samples per pixel through --passes: each render is one sample.
-OIIO::ImageBuf k_passes(int K, std::uint64_t seed, Glint& glint)
+// K renders of 4 samples per pixel with the channels `names`, through --passes: each
+// render is one sample. `draw` writes one sample of pixel (x, y), a value per channel.
+using SampleDraw = std::function<void(std::mt19937_64&, int x, int y, float* sample)>;
+OIIO::ImageBuf through_passes(int K, std::uint64_t seed, const std::vector<std::string>& names,
+                              const SampleDraw& draw, Glint& glint)
 {
     std::mt19937_64 rng(seed);
+    const int n = int(names.size());
     std::vector<OIIO::ImageBuf> renders;
     for (int k = 0; k < K; ++k) {
-        OIIO::ImageBuf r(OIIO::ImageSpec(kW, kH, 3, OIIO::TypeFloat));
+        OIIO::ImageSpec spec(kW, kH, n, OIIO::TypeFloat);
+        spec.channelnames = names;
+        OIIO::ImageBuf r(spec);
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x) {
-                float px[3] = {0, 0, 0};
+                std::vector<float> px(n, 0.f), s(n);
                 for (int i = 0; i < 4; ++i) {
-                    float s[3];
-                    sample(rng, x, y, s);
-                    for (int c = 0; c < 3; ++c)
+                    draw(rng, x, y, s.data());
+                    for (int c = 0; c < n; ++c)
                         px[c] += s[c] / 4;
                 }
-                r.setpixel(x, y, px);
+                r.setpixel(x, y, px.data());
                 if (x == kGx && y == kGy)
                     glint.add(px[0]);
             }
@@ -95,6 +100,11 @@ OIIO::ImageBuf k_passes(int K, std::uint64_t seed, Glint& glint)
     for (const OIIO::ImageBuf& r : renders)
         pointers.push_back(&r);
     return passes(pointers);
+}
+
+OIIO::ImageBuf k_passes(int K, std::uint64_t seed, Glint& glint)
+{
+    return through_passes(K, seed, {"R", "G", "B"}, sample, glint);
 }
 
 // What 20 seeds of a route gave: the glint's output over its noisy mean, summed over the
@@ -174,35 +184,18 @@ TEST(Glint, KeepsItsLightWhereItRestsOnSeveralSamplesAndLeavesItsNeighbours)
 // about 30), so its value rests on about one sample and the mutual guard does not keep it.
 OIIO::ImageBuf reflected_glint(int K, std::uint64_t seed, Glint& glint)
 {
-    std::mt19937_64 rng(seed);
-    std::vector<OIIO::ImageBuf> renders;
-    for (int k = 0; k < K; ++k) {
-        OIIO::ImageSpec spec(kW, kH, 6, OIIO::TypeFloat);
-        spec.channelnames = {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B"};
-        OIIO::ImageBuf r(spec);
-        for (int y = 0; y < kH; ++y)
-            for (int x = 0; x < kW; ++x) {
-                const bool at_glint = x == kGx && y == kGy;
-                float px[6] = {0, 0, 0, 0, 0, 0};
-                for (int i = 0; i < 4; ++i) {
-                    std::uniform_real_distribution<float> u(0, 1);
-                    const float e = std::exponential_distribution<float>(1.f)(rng);
-                    const bool hit = u(rng) < 0.03f, bright_reflection = u(rng) < 0.5f;
-                    for (int c = 0; c < 3; ++c) {
-                        px[c] += (at_glint ? (hit ? 80.f : 0.f) : dark_truth(c) * e) / 4;
-                        px[3 + c] += (at_glint ? (bright_reflection ? 0.4f : 0.f) : 0.25f) / 4;
-                    }
-                }
-                r.setpixel(x, y, px);
-                if (at_glint)
-                    glint.add(px[0]);
-            }
-        renders.push_back(r);
-    }
-    std::vector<const OIIO::ImageBuf*> pointers;
-    for (const OIIO::ImageBuf& r : renders)
-        pointers.push_back(&r);
-    return passes(pointers);
+    auto draw = [](std::mt19937_64& rng, int x, int y, float* s) {
+        const bool at_glint = x == kGx && y == kGy;
+        std::uniform_real_distribution<float> u(0, 1);
+        const float e = std::exponential_distribution<float>(1.f)(rng);
+        const bool hit = u(rng) < 0.03f, bright_reflection = u(rng) < 0.5f;
+        for (int c = 0; c < 3; ++c) {
+            s[c] = at_glint ? (hit ? 80.f : 0.f) : dark_truth(c) * e;
+            s[3 + c] = at_glint ? (bright_reflection ? 0.4f : 0.f) : 0.25f;
+        }
+    };
+    return through_passes(K, seed, {"R", "G", "B", "albedo.R", "albedo.G", "albedo.B"}, draw,
+                          glint);
 }
 
 // The guide-noise correction takes out the less noisy side's noise: between the glint and
