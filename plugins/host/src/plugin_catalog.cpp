@@ -7,9 +7,7 @@
 #include <sstream>
 #include <system_error>
 
-#include <dlfcn.h>
-#include <sys/auxv.h>
-
+#include "statmc/layers/shipped_files.h"
 #include "statmc/plugin_host/help_text.h"
 #include "statmc/plugin_host/host_error.h"
 #include "statmc/plugin_sdk/plugin_loader.h"
@@ -20,47 +18,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The shared object holding this code when it is not the main program (the Python
-// module), else empty. glibc's dladdr names the main program by its argv[0], which is no
-// path to it, so the main program is recognised by its entry point's load base.
-fs::path host_module()
-{
-    Dl_info here{}, main_program{};
-    if (!::dladdr(reinterpret_cast<void*>(&host_module), &here) || !here.dli_fname ||
-        !::dladdr(reinterpret_cast<void*>(::getauxval(AT_ENTRY)), &main_program) ||
-        here.dli_fbase == main_program.dli_fbase)
-        return {};
-    std::error_code ec;
-    const fs::path module = fs::absolute(here.dli_fname, ec);
-    return ec ? fs::path() : module;
-}
-
-// Relative to the running program, so that a build tree or an installed prefix can be
-// moved as a whole: PREFIX/bin/statmc finds PREFIX/lib/statmc/plugins (and a build tree's
-// statmc its plugins/ beside it), and the Python module at
-// PREFIX/lib/pythonX.Y/*-packages/statmc finds PREFIX/lib/statmc/plugins. The build tree's
-// directory is only a fallback for programs that do not sit beside the modules (the tests,
-// the Python module in the build tree).
+// The shipped modules' directory (layers/shipped_files.h); the build tree's is only a
+// fallback for programs that do not sit beside the modules (the tests, the Python module
+// in the build tree).
 std::vector<std::string> shipped_plugin_dirs()
 {
-    std::error_code ec;
-    std::vector<fs::path> candidates;
-    if (const fs::path module = host_module(); !module.empty()) {
-        candidates = {module.parent_path() / ".." / ".." / ".." / "statmc" / "plugins"};
-    } else {
-        const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-        if (!ec)
-            candidates = {exe.parent_path() / "plugins",
-                          exe.parent_path() / ".." / "lib" / "statmc" / "plugins"};
-    }
     std::vector<std::string> dirs;
-    for (const fs::path& dir : candidates)
+    std::error_code ec;
+    for (const std::string& dir : statmc::layers::shipped_paths("plugins", STATMC_BUILD_PLUGIN_DIR))
         if (fs::is_directory(dir, ec))
-            dirs.push_back(dir.lexically_normal().string());
-#ifdef STATMC_BUILD_PLUGIN_DIR
-    if (dirs.empty() && fs::is_directory(STATMC_BUILD_PLUGIN_DIR, ec))
-        dirs.push_back(STATMC_BUILD_PLUGIN_DIR);
-#endif
+            dirs.push_back(dir);
     return dirs;
 }
 
