@@ -65,7 +65,8 @@ struct EstimatorImage {
     /// Branch-free (|v| ≤ FLT_MAX is std::isfinite(v)), so that testable_row vectorises.
     static bool testable_estimate(float mean, float variance)
     {
-        return (std::abs(mean) <= FLT_MAX) & (std::abs(variance) <= FLT_MAX) & (variance >= 0);
+        return bool(int(std::abs(mean) <= FLT_MAX) & int(std::abs(variance) <= FLT_MAX) &
+                    int(variance >= 0));
     }
     bool testable(int x, int y) const
     {
