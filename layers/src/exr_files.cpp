@@ -12,6 +12,7 @@
 #include "statmc/layers/atomic_file.h"
 #include "statmc/layers/file_error.h"
 #include "statmc/layers/input_path.h"
+#include "statmc/layers/isolated_decode.h"
 #include "statmc/layers/layer_names.h"
 #include "statmc/layers/openexr_check.h"
 #include "statmc/layers/storage_rules.h"
@@ -56,9 +57,8 @@ std::string statistics_channel(const std::vector<OIIO::ImageBuf>& subimages)
 
 // OpenEXR for everything; another format OIIO writes (PNG, JPEG, TIFF) only for one plain
 // picture, such as --display makes: statistics need OpenEXR's float channels and parts.
-std::unique_ptr<OIIO::ImageOutput> image_writer(const std::string& path,
-                                                const std::vector<OIIO::ImageBuf>& subimages,
-                                                bool mip_mapped)
+std::unique_ptr<OIIO::ImageOutput>
+image_writer(const std::string& path, const std::vector<OIIO::ImageBuf>& subimages, bool mip_mapped)
 {
     auto out = OIIO::ImageOutput::create(path);
     if (!out)
@@ -96,10 +96,11 @@ void check_target(const std::string& path)
 }
 
 // Subimage `s` of an existing file opened for reading, after the header's checks (deep,
-// volume, memory budget) and, for s = 0, OpenEXR's check of the whole file; `subimages`
-// is set to the file's count.
+// volume, memory budget) and, for s = 0 with `check_whole_file`, OpenEXR's check of the
+// whole file; `subimages` is set to the file's count.
 std::unique_ptr<OIIO::ImageInput> open_checked(const std::string& path, int s, int& subimages,
-                                               const ReadOptions& options)
+                                               const ReadOptions& options,
+                                               bool check_whole_file = false)
 {
     const bool openexr = is_openexr_file(path);
     if (s == 0 && openexr)
@@ -120,14 +121,53 @@ std::unique_ptr<OIIO::ImageInput> open_checked(const std::string& path, int s, i
     check_read_budget(path, s, spec,
                       options.max_memory > 0 ? options.max_memory : default_read_budget());
     // The whole file once, after the header's own checks have had their say.
-    if (s == 0 && openexr && options.check_structure)
+    if (s == 0 && openexr && check_whole_file)
         check_openexr_structure(path);
     return in;
 }
 
-// MIP level `m` of subimage `s` in float pixels, after open_checked. OIIO's ImageBuf
-// reads it (so that the file's own pixel types stay known as its nativespec, which --info
-// reports); its forced read goes through ImageInput, the header through the ImageCache.
+// The levels of subimage `s` of `in` as its headers declare them: the first only, or with
+// `all_levels` every MIP level. Each level halves the one before (rounded down or up); a
+// rip map's levels do not (OIIO lists them as levels of the full size): written back as a
+// MIP map they would not be what was read, so such a file is refused rather than changed.
+// Each level is smaller than the first, so the budget that admitted it covers them.
+std::vector<DecodeLevel> declared_levels(OIIO::ImageInput& in, const std::string& path, int s,
+                                         bool all_levels)
+{
+    auto halves = [](int size, int previous) {
+        return size == std::max(1, previous / 2) || size == std::max(1, (previous + 1) / 2);
+    };
+    std::vector<DecodeLevel> levels;
+    for (int m = 0; (m == 0 || all_levels) && in.seek_subimage(s, m); ++m) {
+        levels.push_back({s, m, in.spec()});
+        if (m == 0)
+            continue;
+        const OIIO::ImageSpec& previous = levels[levels.size() - 2].spec;
+        const OIIO::ImageSpec& level = levels.back().spec;
+        if (!halves(level.width, previous.width) || !halves(level.height, previous.height))
+            throw FileError(path + ": subimage " + std::to_string(s) + " has levels that are " +
+                            "not a MIP map (a rip map?), which statmc cannot keep");
+    }
+    return levels;
+}
+
+// The levels to read, subimage by subimage: subimage 0 alone or every one, each with its
+// first level alone or all of them. Every header is judged first (open_checked).
+std::vector<std::vector<DecodeLevel>> plan_read(const std::string& path, const ReadOptions& options,
+                                                bool all_subimages, bool all_levels)
+{
+    std::vector<std::vector<DecodeLevel>> plan;
+    int subimages = 1;
+    for (int s = 0; s < (all_subimages ? subimages : 1); ++s) {
+        auto in = open_checked(path, s, subimages, options);
+        plan.push_back(declared_levels(*in, path, s, all_levels));
+    }
+    return plan;
+}
+
+// MIP level `m` of subimage `s` in float pixels, decoded in this process. OIIO's ImageBuf
+// reads it (so that the file's own pixel types stay known as its nativespec); its forced
+// read goes through ImageInput, the header through the ImageCache.
 OIIO::ImageBuf read_level(const std::string& path, int s, int m)
 {
     OIIO::ImageBuf image(path);
@@ -136,34 +176,34 @@ OIIO::ImageBuf read_level(const std::string& path, int s, int m)
     return image;
 }
 
-OIIO::ImageBuf read_subimage(const std::string& path, int s, int& subimages,
-                             const ReadOptions& options)
+// The planned levels' pixels, in float, in the plan's shape. An OpenEXR file to be
+// checked is decoded once, in the isolated decoder; where that cannot run (no decoder
+// ships with the program, no shared memory), OpenEXR's checker reads the whole file first
+// and this process decodes it.
+std::vector<std::vector<OIIO::ImageBuf>>
+read_planned(const std::string& path, const std::vector<std::vector<DecodeLevel>>& plan,
+             const ReadOptions& options)
 {
-    open_checked(path, s, subimages, options);
-    return read_level(path, s, 0);
-}
-
-// The levels after the first of a subimage read by read_subimage: each is smaller than
-// the first, so the budget that admitted it covers them.
-std::vector<OIIO::ImageBuf> read_coarser_levels(const std::string& path, int s,
-                                                const OIIO::ImageBuf& first)
-{
-    // Each level halves the one before (rounded down or up). A rip map's levels do not
-    // (OIIO lists them as levels of the full size): written back as a MIP map they would
-    // not be what was read, so such a file is refused rather than changed.
-    auto halves = [](int size, int previous) {
-        return size == std::max(1, previous / 2) || size == std::max(1, (previous + 1) / 2);
-    };
-    std::vector<OIIO::ImageBuf> levels;
-    for (int m = 1; m < first.nmiplevels(); ++m) {
-        levels.push_back(read_level(path, s, m));
-        const OIIO::ImageSpec& previous = m == 1 ? first.spec() : levels[levels.size() - 2].spec();
-        const OIIO::ImageSpec& level = levels.back().spec();
-        if (!halves(level.width, previous.width) || !halves(level.height, previous.height))
-            throw FileError(path + ": subimage " + std::to_string(s) + " has levels that are " +
-                            "not a MIP map (a rip map?), which statmc cannot keep");
+    std::vector<std::vector<OIIO::ImageBuf>> images(plan.size());
+    const bool check = options.check_structure && is_openexr_file(path);
+    if (check) {
+        std::vector<DecodeLevel> levels;
+        for (const std::vector<DecodeLevel>& subimage : plan)
+            levels.insert(levels.end(), subimage.begin(), subimage.end());
+        if (auto decoded = decode_isolated(path, levels, options.decode_timeout)) {
+            std::size_t next = 0;
+            for (std::size_t s = 0; s < plan.size(); ++s)
+                for (std::size_t m = 0; m < plan[s].size(); ++m)
+                    images[s].push_back(std::move((*decoded)[next++]));
+            return images;
+        }
     }
-    return levels;
+    if (check)
+        check_openexr_structure(path);
+    for (std::size_t s = 0; s < plan.size(); ++s)
+        for (const DecodeLevel& level : plan[s])
+            images[s].push_back(read_level(path, level.subimage, level.miplevel));
+    return images;
 }
 
 void check_readable(const std::string& path)
@@ -185,42 +225,51 @@ void check_image_file(const std::string& path, const ReadOptions& options)
 {
     check_readable(path);
     int subimages = 0;
-    open_checked(path, 0, subimages, options);
+    open_checked(path, 0, subimages, options, options.check_structure);
 }
 
 OIIO::ImageSpec read_image_header(const std::string& path, const ReadOptions& options)
 {
     check_readable(path);
     const ForgetOnExit forget{path};
-    ReadOptions headers_only = options;
-    headers_only.check_structure = false;
     int subimages = 0;
-    return open_checked(path, 0, subimages, headers_only)->spec();
+    return open_checked(path, 0, subimages, options)->spec();
+}
+
+std::vector<OIIO::ImageSpec> read_image_headers(const std::string& path, const ReadOptions& options)
+{
+    check_readable(path);
+    const ForgetOnExit forget{path};
+    std::vector<OIIO::ImageSpec> specs;
+    for (const std::vector<DecodeLevel>& subimage : plan_read(path, options, true, false))
+        specs.push_back(subimage.front().spec);
+    return specs;
 }
 
 OIIO::ImageBuf read_image_file(const std::string& path, const ReadOptions& options)
 {
     check_readable(path);
     const ForgetOnExit forget{path};
-    int subimages = 0;
-    return read_subimage(path, 0, subimages, options);
+    return std::move(read_planned(path, plan_read(path, options, false, false), options)[0][0]);
 }
 
 std::vector<OIIO::ImageBuf> read_image_subimages(const std::string& path,
-                                                 const ReadOptions& options,
-                                                 MipLevels* mip_levels)
+                                                 const ReadOptions& options, MipLevels* mip_levels)
 {
     check_readable(path);
     const ForgetOnExit forget{path};
+    std::vector<std::vector<OIIO::ImageBuf>> levels =
+        read_planned(path, plan_read(path, options, true, mip_levels != nullptr), options);
     std::vector<OIIO::ImageBuf> images;
     if (mip_levels)
         mip_levels->clear();
-    int subimages = 1;
-    for (int s = 0; s < subimages; ++s) {
-        images.push_back(read_subimage(path, s, subimages, options));
+    for (std::vector<OIIO::ImageBuf>& subimage : levels) {
+        images.push_back(std::move(subimage.front()));
         if (mip_levels)
-            mip_levels->push_back(read_coarser_levels(path, s, images.back()));
+            mip_levels->emplace_back(std::make_move_iterator(subimage.begin() + 1),
+                                     std::make_move_iterator(subimage.end()));
     }
+    const int subimages = int(images.size());
     // The file's count, as OIIO reports it on a single-part file's spec.
     images[0].specmod().attribute("oiio:subimages", subimages);
     return images;

@@ -17,8 +17,13 @@ namespace {
 // oiiotool 2.4 counts both warnings and failures against 1e-6.
 constexpr float kDiffThreshold = 1e-6f;
 
-// The format the file stores (the stack holds float pixels; reports show the file's).
-const OIIO::ImageSpec& file_spec(const OIIO::ImageBuf& image) { return image.nativespec(); }
+// The format the file stores (the stack holds float pixels; reports show the file's): its
+// header as read, else what the ImageBuf knows.
+const OIIO::ImageSpec& file_spec(const StackImage& image, const FileSpecs& file_specs,
+                                 std::size_t s)
+{
+    return s < file_specs.size() ? file_specs[s] : image.subimages[s].nativespec();
+}
 
 // A file with per-channel types shows them all: "half/float/float".
 std::string type_text(const OIIO::ImageSpec& spec)
@@ -31,9 +36,8 @@ std::string type_text(const OIIO::ImageSpec& spec)
     return text;
 }
 
-std::string summary(const OIIO::ImageBuf& image)
+std::string summary(const OIIO::ImageBuf& image, const OIIO::ImageSpec& spec)
 {
-    const OIIO::ImageSpec& spec = file_spec(image);
     const std::string format = image.file_format_name().empty()
                                    ? std::string("openexr")
                                    : std::string(image.file_format_name());
@@ -65,10 +69,9 @@ void print_renderer_preset(std::ostream& out, const OIIO::ImageSpec& spec)
     }
 }
 
-void print_details(std::ostream& out, const OIIO::ImageBuf& image)
+void print_details(std::ostream& out, const OIIO::ImageBuf& image, const OIIO::ImageSpec& native)
 {
     const OIIO::ImageSpec& spec = image.spec();
-    const OIIO::ImageSpec& native = file_spec(image);
     out << "    channel list: ";
     for (int c = 0; c < spec.nchannels; ++c) {
         out << (c ? ", " : "") << spec.channelnames[c];
@@ -100,11 +103,11 @@ char format_letter(OIIO::TypeDesc t)
     return t == OIIO::TypeDesc::HALF ? 'h' : t == OIIO::TypeDesc::FLOAT ? 'f' : 'u';
 }
 
-void print_subimage_sizes(std::ostream& out, const StackImage& image)
+void print_subimage_sizes(std::ostream& out, const StackImage& image, const FileSpecs& file_specs)
 {
     out << "    " << image.subimages.size() << " subimages: ";
     for (std::size_t s = 0; s < image.subimages.size(); ++s) {
-        const OIIO::ImageSpec& spec = file_spec(image.subimages[s]);
+        const OIIO::ImageSpec& spec = file_spec(image, file_specs, s);
         out << (s ? ", " : "") << spec.width << "x" << spec.height << " [";
         for (int c = 0; c < spec.nchannels; ++c)
             out << (c ? "," : "") << format_letter(spec.channelformat(c));
@@ -129,9 +132,10 @@ std::string percent(std::size_t count, const OIIO::ImageBuf& image)
     return os.str();
 }
 
-std::string subimage_heading(std::size_t s, const OIIO::ImageBuf& image)
+std::string subimage_heading(const StackImage& image, const FileSpecs& file_specs, std::size_t s)
 {
-    return OIIO::Strutil::sprintf(" subimage %2zu: ", s) + summary(image) + "\n";
+    return OIIO::Strutil::sprintf(" subimage %2zu: ", s) +
+           summary(image.subimages[s], file_spec(image, file_specs, s)) + "\n";
 }
 
 void print_stats(std::ostream& out, const OIIO::ImageBuf& image, int nthreads)
@@ -172,35 +176,38 @@ void print_stats(std::ostream& out, const OIIO::ImageBuf& image, int nthreads)
 
 }  // namespace
 
-void print_info(std::ostream& out, const StackImage& image, bool verbose, bool all_subimages)
+void print_info(std::ostream& out, const StackImage& image, const FileSpecs& file_specs,
+                bool verbose, bool all_subimages)
 {
     const bool several = image.subimages.size() > 1;
-    out << OIIO::Strutil::sprintf("%-20s : ", image.label) << summary(image.image())
+    out << OIIO::Strutil::sprintf("%-20s : ", image.label)
+        << summary(image.image(), file_spec(image, file_specs, 0))
         << (several && !verbose ? OIIO::Strutil::sprintf(" (%zu subimages)", image.subimages.size())
                                 : "")
         << "\n";
     if (!verbose)
         return;
     if (several)
-        print_subimage_sizes(out, image);
+        print_subimage_sizes(out, image, file_specs);
     if (!all_subimages || !several) {
-        print_details(out, image.image());
+        print_details(out, image.image(), file_spec(image, file_specs, 0));
         return;
     }
     for (std::size_t s = 0; s < image.subimages.size(); ++s) {
-        out << subimage_heading(s, image.subimages[s]);
-        print_details(out, image.subimages[s]);
+        out << subimage_heading(image, file_specs, s);
+        print_details(out, image.subimages[s], file_spec(image, file_specs, s));
     }
 }
 
-void print_all_stats(std::ostream& out, const StackImage& image, bool all_subimages, int nthreads)
+void print_all_stats(std::ostream& out, const StackImage& image, const FileSpecs& file_specs,
+                     bool all_subimages, int nthreads)
 {
     if (!all_subimages || image.subimages.size() == 1) {
         print_stats(out, image.image(), nthreads);
         return;
     }
     for (std::size_t s = 0; s < image.subimages.size(); ++s) {
-        out << subimage_heading(s, image.subimages[s]);
+        out << subimage_heading(image, file_specs, s);
         print_stats(out, image.subimages[s], nthreads);
     }
 }

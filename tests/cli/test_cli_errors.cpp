@@ -7,8 +7,12 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <thread>
 
+#include <fcntl.h>
 #include <sys/mount.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -470,6 +474,81 @@ TEST_F(CliError, BadSubimagesAndOperands)
     if (!std::getenv("OCIO"))
         expect_failure({in, "--ociodisplay", "", "", "-o", out()},
                        "--ociodisplay: needs an OCIO config (--colorconfig FILE or $OCIO)");
+}
+
+// The state letter of process `pid` (from /proc/PID/stat), or 0 when it is gone; its
+// parent's pid in `ppid`.
+char process_state(const std::string& pid, long* ppid = nullptr)
+{
+    std::ifstream stat("/proc/" + pid + "/stat");
+    std::string text;
+    std::getline(stat, text);
+    const std::size_t close = text.rfind(')');
+    if (close == std::string::npos || close + 4 > text.size())
+        return 0;
+    if (ppid)
+        *ppid = std::strtol(text.c_str() + close + 4, nullptr, 10);
+    return text[close + 2];
+}
+
+// A child process of `parent`, once one has started (up to `wait`); -1 if none did.
+long child_of(pid_t parent, std::chrono::seconds wait)
+{
+    const auto deadline = std::chrono::steady_clock::now() + wait;
+    while (std::chrono::steady_clock::now() < deadline) {
+        for (const auto& entry : std::filesystem::directory_iterator("/proc")) {
+            const std::string name = entry.path().filename().string();
+            long ppid = 0;
+            if (name.find_first_not_of("0123456789") == std::string::npos &&
+                process_state(name, &ppid) != 0 && ppid == parent)
+                return std::stol(name);
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return -1;
+}
+
+TEST_F(CliError, AnInterruptWhileTheDecoderRunsEndsTheDecoderToo)
+{
+    const std::string in =
+        input("in.exr", layers::make_statistics_image(noisy_statistics(32, 16, 8, 5), {"", 8, 5}));
+    const std::string target = out();
+    // Everything the child needs is made before fork: this process has threads.
+    std::vector<std::string> env_text = {"STATMC_DECODE_FAULT=hang"};
+    for (char** e = environ; *e; ++e)
+        env_text.emplace_back(*e);
+    std::vector<char*> env;
+    for (std::string& e : env_text)
+        env.push_back(e.data());
+    env.push_back(nullptr);
+    const int devnull = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    ASSERT_GE(devnull, 0);
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::dup2(devnull, 1);
+        ::dup2(devnull, 2);
+        ::execle(STATMC_CLI_PATH, STATMC_CLI_PATH, in.c_str(), "-o", target.c_str(),
+                 static_cast<char*>(nullptr), env.data());
+        ::_exit(127);
+    }
+    ::close(devnull);
+    const long decoder = child_of(pid, std::chrono::seconds(30));
+    ::kill(pid, SIGINT);
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    ASSERT_GT(decoder, 0) << "statmc started no decoder";
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << "status " << status;
+    // The decoder, which would hang for ever, ends with its parent (a zombie left to init
+    // counts as ended).
+    const std::string decoder_pid = std::to_string(decoder);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    char state = process_state(decoder_pid);
+    while (state != 0 && state != 'Z' && std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        state = process_state(decoder_pid);
+    }
+    EXPECT_TRUE(state == 0 || state == 'Z') << "decoder " << decoder << " is in state " << state;
+    EXPECT_FALSE(std::filesystem::exists(target));
 }
 
 }  // namespace

@@ -76,15 +76,29 @@ std::vector<OIIO::ImageBuf> read_subimages(const std::string& path)
     }
 }
 
+// The headers as stored (the pixel types); empty for an unreadable file.
+std::vector<OIIO::ImageSpec> read_headers(const std::string& path)
+{
+    try {
+        return layers::read_image_headers(path);
+    } catch (const std::exception&) {
+        return {};
+    }
+}
+
 void expect_same_file(const std::string& got_path, const std::string& want_path)
 {
     const std::vector<OIIO::ImageBuf> got = read_subimages(got_path);
     const std::vector<OIIO::ImageBuf> want = read_subimages(want_path);
+    const std::vector<OIIO::ImageSpec> got_headers = read_headers(got_path);
+    const std::vector<OIIO::ImageSpec> want_headers = read_headers(want_path);
     ASSERT_FALSE(want.empty()) << "oiiotool wrote no readable " << want_path;
     ASSERT_EQ(got.size(), want.size()) << "subimages";
+    ASSERT_EQ(got_headers.size(), got.size());
+    ASSERT_EQ(want_headers.size(), want.size());
     for (std::size_t s = 0; s < want.size(); ++s) {
         SCOPED_TRACE("subimage " + std::to_string(s));
-        const OIIO::ImageSpec &g = got[s].nativespec(), &w = want[s].nativespec();
+        const OIIO::ImageSpec &g = got_headers[s], &w = want_headers[s];
         EXPECT_EQ(g.channelnames, w.channelnames);
         for (int c = 0; c < std::min(g.nchannels, w.nchannels); ++c)
             EXPECT_EQ(g.channelformat(c), w.channelformat(c)) << w.channelnames[c];
@@ -285,9 +299,8 @@ TEST(OiiotoolDifference, HalfInputIsWrittenAsFloatUnlessAsked)
     ASSERT_EQ(oiiotool({dir.file("half.exr"), "--mulc", "2", "-o", dir.file("oiiotool.exr")}), 0);
     ASSERT_EQ(
         run_cli({dir.file("half.exr"), "--mulc", "2", "-o", dir.file("statmc.exr")}).exit_code, 0);
-    EXPECT_EQ(read_subimages(dir.file("oiiotool.exr"))[0].nativespec().format,
-              OIIO::TypeDesc::HALF);
-    EXPECT_EQ(read_subimages(dir.file("statmc.exr"))[0].nativespec().format, OIIO::TypeDesc::FLOAT);
+    EXPECT_EQ(read_headers(dir.file("oiiotool.exr")).at(0).format, OIIO::TypeDesc::HALF);
+    EXPECT_EQ(read_headers(dir.file("statmc.exr")).at(0).format, OIIO::TypeDesc::FLOAT);
     // The values are the same: doubling a half is exact.
     const auto cr =
         OIIO::ImageBufAlgo::compare(read_subimages(dir.file("statmc.exr"))[0],

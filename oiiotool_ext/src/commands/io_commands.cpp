@@ -146,11 +146,14 @@ Command input_command()
         layers::MipLevels mip_levels;
         StackImage image{layers::read_image_subimages(path, ctx.input, &mip_levels), path};
         image.mip_levels = std::move(mip_levels);
+        const FileSpecs file_specs = ctx.print_info || ctx.print_stats
+                                         ? layers::read_image_headers(path, ctx.input)
+                                         : FileSpecs();
         if (ctx.print_info || ctx.print_stats)
-            print_info(ctx.out, image, ctx.print_info && (ctx.verbose || ctx.info_verbose),
-                       ctx.all_subimages);
+            print_info(ctx.out, image, file_specs,
+                       ctx.print_info && (ctx.verbose || ctx.info_verbose), ctx.all_subimages);
         if (ctx.print_stats)
-            print_all_stats(ctx.out, image, ctx.all_subimages, ctx.nthreads);
+            print_all_stats(ctx.out, image, file_specs, ctx.all_subimages, ctx.nthreads);
         // Linked to its sequence only as read: a channel selection would differ from the
         // neighbours an operator reads.
         if (const auto it = ctx.sequence_inputs.find(path);

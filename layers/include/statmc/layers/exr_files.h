@@ -19,24 +19,35 @@ void silence_library_debug_messages();
 struct ReadOptions {
     /// The most bytes one subimage may take as float pixels; 0: half of physical memory.
     std::uint64_t max_memory = 0;
-    /// Check an OpenEXR file with OpenEXR's own checker before reading its pixels. It costs
-    /// about 3.5 times the read (docs/reliability.md); turn it off for trusted files only.
+    /// Guard against OpenEXR's decoder on a damaged file: decode it in the isolated
+    /// decoder (isolated_decode.h), or where none ships, check it with OpenEXR's own
+    /// checker first (about 3.5 times the read). Off: decode in this process, for files the
+    /// pipeline wrote itself (docs/reliability.md).
     bool check_structure = true;
+    /// Seconds the isolated decoder may take; 0: a minute plus a second per 16 MB.
+    double decode_timeout = 0;
 };
 
-/// Reads subimage 0 of `path` into local float pixels, after OpenEXR's own check of the
-/// file (an EXR) and the memory budget of `options` (openexr_check.h). Throws FileError
+/// Reads subimage 0 of `path` into local float pixels, after the header's checks and the
+/// memory budget of `options` (openexr_check.h), an EXR through the isolated decoder. Throws
+/// FileError
 /// "<path>: ...".
 OIIO::ImageBuf read_image_file(const std::string& path, const ReadOptions& options = {});
 
-/// The checks read_image_file makes before it reads pixels (subimage 0), for a host that
-/// reads the file another way (a texture through OIIO). Throws FileError "<path>: ...".
+/// The checks read_image_file makes of the headers (subimage 0) and, for an EXR with
+/// `check_structure`, OpenEXR's check of the whole file: for a host that decodes the file
+/// in its own process another way (a texture through OIIO). Throws FileError "<path>: ...".
 void check_image_file(const std::string& path, const ReadOptions& options = {});
 
 /// The header of subimage 0 of `path`, after the checks read_image_file makes of headers
 /// (OpenEXR's check of the whole file excepted): what a host compares across the frames
 /// of a sequence before reading their pixels. Throws FileError "<path>: ...".
 OIIO::ImageSpec read_image_header(const std::string& path, const ReadOptions& options = {});
+
+/// The headers of every subimage of `path` as stored (their pixel types: a float read's
+/// ImageBuf may not know them), after the same checks. Throws FileError "<path>: ...".
+std::vector<OIIO::ImageSpec> read_image_headers(const std::string& path,
+                                                const ReadOptions& options = {});
 
 /// The MIP levels below the full resolution, per subimage (empty for a subimage that has
 /// none): what a copy writes back so that a MIP-mapped file stays whole.

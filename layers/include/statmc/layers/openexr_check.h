@@ -1,7 +1,8 @@
-// Input files are checked before their pixels are read (docs/reliability.md): OpenEXR's own
-// fuzz-hardened checker on the file's structure, and a memory budget on what its header
-// declares, so that a damaged or hostile file ends in a clear error naming it, never in a
-// crash, a hang or an allocation of the declared 100 GB.
+// Input files are checked before their pixels are read (docs/reliability.md): their headers
+// as bytes, a memory budget on what a header declares, and, where the isolated decoder
+// (isolated_decode.h) cannot run, OpenEXR's own fuzz-hardened checker on the whole file, so
+// that a damaged or hostile file ends in a clear error naming it, never in a crash, a hang
+// or an allocation of the declared 100 GB.
 #pragma once
 
 #include <cstdint>

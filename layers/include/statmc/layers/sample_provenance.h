@@ -14,15 +14,12 @@ namespace statmc::layers {
 struct SampleRange {
     int begin = 0, end = 0;
     int count() const { return end - begin; }
-    bool overlaps(const SampleRange& other) const
-    {
-        return begin < other.end && other.begin < end;
-    }
+    bool overlaps(const SampleRange& other) const { return begin < other.end && other.begin < end; }
 };
 
 struct SampleProvenance {
-    std::optional<int> seed;          ///< statmc:seed
-    std::optional<SampleRange> range; ///< statmc:sampleBegin/End; else [0, statmc:spp)
+    std::optional<int> seed;                    ///< statmc:seed
+    std::optional<SampleRange> range;           ///< statmc:sampleBegin/End; else [0, statmc:spp)
     std::optional<int> task_index, task_count;  ///< statmc:taskIndex/taskCount
 
     bool is_task() const { return task_count.has_value(); }
