@@ -129,8 +129,9 @@ int main(int argc, char** argv)
     add_adaptive_options(app, adaptive);
     app.add_flag(
         "--bounce-layers", job.bounce_layers,
-        "track and write every per-bounce layer (L and win counts) even with classic RR and "
-        "standard MIS [default: only those --rr/--mis use]");
+        "track every per-bounce quantity (L and win counts) in full statistics and write them "
+        "as layers, whatever --rr and --mis [default: none written; ACRR and SMIS keep what "
+        "they steer by to themselves]");
     app.add_flag("--higher-moments", job.higher_moments,
                  "also write M3, M4 and boxcoxM4 (docs/exr-layers.md): no statmc stage reads "
                  "them; they merge exactly, for research [default: off]");
@@ -234,8 +235,8 @@ int main(int argc, char** argv)
                 std::to_string(adaptive.min_spp) +
                 " uniformly (--adaptive-min-spp); give --spp above that");
         // Before anything is allocated: the same limits for --resolution and the Film.
-        require_renderable_resolution(width, height,
-                                      bounce_layout_for(integrator, job.bounce_layers),
+        require_renderable_resolution(width, height, bounce_layout_for(integrator),
+                                      bounce_layers_for(integrator, job.bounce_layers),
                                       resolution.empty() ? desc.film_where : "--resolution");
         settings.progress = !job.quiet && Progress::stderr_is_terminal();
 

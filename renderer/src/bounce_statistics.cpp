@@ -4,7 +4,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "statmc/core/estimator_image.h"
 #include "statmc/layers/layer_names.h"
 
 namespace statmc::render {
@@ -100,28 +99,6 @@ StatisticsView BounceStatistics::quantity_view(const std::vector<StatisticsPlane
     v.moment4 = {group.moment4[c]};
     v.bc_moment4 = {group.bc_moment4[c]};
     return v;
-}
-
-BounceEstimates BounceStatistics::denoise(const Guides& guides, const DenoiseOptions& options,
-                                          int threads) const
-{
-    const int q_total = layout_.quantities();
-    const std::size_t npix = std::size_t(width_) * height_;
-    BounceEstimates est{layout_, std::vector<float>(npix * std::size_t(q_total))};
-    for (std::size_t g = 0; g < groups_.size(); ++g) {
-        const int first = int(g) * kGroup, channels = std::min(kGroup, q_total - first);
-        const StatisticsPlanes planes = groups_[g].planes();
-        StatisticsView view = planes.view();
-        view.channels = channels;  // the last group's spare channels would only cost time
-        const EstimatorImage e = estimators_from_statistics(view, TestDomain::BoxCox);
-        // The filter writes each channel straight into its slot of the pixel-major values.
-        std::vector<Plane> out;
-        for (int c = 0; c < channels; ++c)
-            out.push_back(
-                Plane{est.values.data() + first + c, q_total, std::ptrdiff_t(width_) * q_total});
-        filter(e, guides, options, out, {}, threads);
-    }
-    return est;
 }
 
 }  // namespace statmc::render

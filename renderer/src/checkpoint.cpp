@@ -19,10 +19,12 @@ namespace statmc::render {
 namespace {
 
 constexpr char kMagic[8] = {'S', 'T', 'A', 'T', 'M', 'C', 'C', 'K'};
-constexpr int kVersion = 3;  // 2: the guides' squares; 3: no position co-moments
+constexpr int kVersion = 4;  // 2: the guides' squares; 3: no position co-moments;
+                             // 4: steering's compact statistics
 
 static_assert(std::is_trivially_copyable_v<StatisticsImage<3>::Pixel> &&
-                  std::is_trivially_copyable_v<StatisticsImage<BounceStatistics::kGroup>::Pixel>,
+                  std::is_trivially_copyable_v<StatisticsImage<BounceStatistics::kGroup>::Pixel> &&
+                  std::is_trivially_copyable_v<SteeringStatistics::Moments>,
               "checkpoints copy the accumulators as bytes");
 
 // Every buffer of the film, in the one order checkpoints store them. `FilmRef` is Film or
@@ -36,6 +38,10 @@ void for_each_buffer(FilmRef& film, Visit&& visit)
     visit(film.depth_sum);
     visit(film.albedo_squares);
     visit(film.normal_squares);
+    if (film.steering) {
+        visit(film.steering->counts());
+        visit(film.steering->moments());
+    }
     if (film.bounces)
         for (auto& group : film.bounces->groups())
             visit(group.accumulators());
@@ -57,7 +63,9 @@ std::uint32_t crc_of(std::uint32_t crc, const void* data, std::size_t bytes)
 std::string memory_layout(const Film& film)
 {
     using Stats4 = StatisticsImage<BounceStatistics::kGroup>;
-    return "pixel " + std::to_string(sizeof(StatisticsImage<3>::Pixel)) + ", bounce groups " +
+    return "pixel " + std::to_string(sizeof(StatisticsImage<3>::Pixel)) + ", steering " +
+           std::to_string(film.steering ? film.steering->layout().quantities() : 0) + " of " +
+           std::to_string(sizeof(SteeringStatistics::Moments)) + ", bounce groups " +
            std::to_string(film.bounces ? film.bounces->groups().size() : 0) + " of " +
            std::to_string(sizeof(Stats4::Pixel));
 }

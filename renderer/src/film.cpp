@@ -9,13 +9,15 @@
 
 namespace statmc::render {
 
-Film::Film(int w, int h, BounceLayout bounce_layout)
+Film::Film(int w, int h, BounceLayout steering_layout, BounceLayout layers)
     : width(w), height(h), stats(w, h), albedo_sum(std::size_t(w) * h * 3),
       normal_sum(std::size_t(w) * h * 3), depth_sum(std::size_t(w) * h),
       albedo_squares(std::size_t(w) * h), normal_squares(std::size_t(w) * h)
 {
-    if (!bounce_layout.empty())
-        bounces = std::make_unique<BounceStatistics>(w, h, bounce_layout);
+    if (!steering_layout.empty())
+        steering = std::make_unique<SteeringStatistics>(w, h, steering_layout);
+    if (!layers.empty())
+        bounces = std::make_unique<BounceStatistics>(w, h, layers);
 }
 
 namespace {
@@ -91,29 +93,34 @@ Film::SampleCounts Film::sample_counts() const
     return counts;
 }
 
-double Film::bytes_needed(int width, int height, const BounceLayout& bounce_layout)
+double Film::bytes_needed(int width, int height, const BounceLayout& steering,
+                          const BounceLayout& layers)
 {
     using Stats3 = StatisticsImage<3>;
     using Stats4 = StatisticsImage<BounceStatistics::kGroup>;
     const int groups =
-        (bounce_layout.quantities() + BounceStatistics::kGroup - 1) / BounceStatistics::kGroup;
-    // Every accumulated double, and the output's float planes (at most one of each per
-    // statistic and channel, written once).
-    const double per_pixel = sizeof(Stats3::Pixel) + 9 * sizeof(double) +
-                             groups * (sizeof(Stats4::Pixel) + 16 * 4.0 * sizeof(float)) +
-                             64 * sizeof(float);
+        (layers.quantities() + BounceStatistics::kGroup - 1) / BounceStatistics::kGroup;
+    // Every accumulated double, the estimates' floats, and the output's float planes (at
+    // most one of each per statistic and channel, written once).
+    const double per_pixel =
+        sizeof(Stats3::Pixel) + 9 * sizeof(double) +
+        (steering.empty()
+             ? 0.0
+             : sizeof(double) + steering.quantities() *
+                                    (sizeof(SteeringStatistics::Moments) + 6.0 * sizeof(float))) +
+        groups * (sizeof(Stats4::Pixel) + 16 * 4.0 * sizeof(float)) + 64 * sizeof(float);
     return double(width) * double(height) * per_pixel;
 }
 
-void require_renderable_resolution(int width, int height, const BounceLayout& bounce_layout,
-                                   const std::string& source)
+void require_renderable_resolution(int width, int height, const BounceLayout& steering,
+                                   const BounceLayout& layers, const std::string& source)
 {
     if (width < 1 || height < 1 || width > 65536 || height > 65536)
         throw std::runtime_error(source + ": width and height must be in 1..65536, got " +
                                  std::to_string(width) + "x" + std::to_string(height));
     const double memory_limit =
         0.75 * double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-    const double needed = Film::bytes_needed(width, height, bounce_layout);
+    const double needed = Film::bytes_needed(width, height, steering, layers);
     if (needed > memory_limit) {
         char text[160];
         std::snprintf(text, sizeof text,

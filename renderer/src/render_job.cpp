@@ -42,7 +42,8 @@ public:
           settings_(job.settings),
           camera_(job.scene.camera.at_time(frame.time), settings_.width, settings_.height),
           frame_spp_(int(schedule_samples(job.settings.schedule))),
-          layout_(bounce_layout_for(job.settings.integrator, job.bounce_layers))
+          steering_(bounce_layout_for(job.settings.integrator)),
+          layers_(bounce_layers_for(job.settings.integrator, job.bounce_layers))
     {
         settings_.seed = std::uint64_t(frame.seed);
         if (frame.number)
@@ -129,7 +130,7 @@ private:
             share.schedule = schedule_for_spp(range.count());
         share.first_sample = std::uint64_t(range.begin);
         share.checkpoint_seconds = job_.checkpoint_seconds;
-        auto film = std::make_unique<Film>(share.width, share.height, layout_);
+        auto film = std::make_unique<Film>(share.width, share.height, steering_, layers_);
         if (share.previous_camera)
             film->track_motion();
         const CheckpointIdentity identity{
@@ -267,7 +268,7 @@ private:
     Camera camera_;
     const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
     int frame_spp_;
-    BounceLayout layout_;
+    BounceLayout steering_, layers_;
 };
 
 }  // namespace
@@ -281,7 +282,7 @@ std::string settings_text(const RenderSettings& s, bool bounce_layers)
                   "%s, %s, schedule",
                   i.maxdepth, int(i.roulette.mode), i.roulette.start_bounce,
                   i.roulette.tracked_bounces, int(i.mis.mode), i.mis.tracked_bounces,
-                  double(i.mis.threshold), s.bounce_filter.radius, bounce_layers ? "all" : "used",
+                  double(i.mis.threshold), s.bounce_filter.radius, bounce_layers ? "all" : "none",
                   s.adaptive.text().c_str());
     std::string out = text;
     for (int n : s.schedule)

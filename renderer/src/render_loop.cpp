@@ -57,6 +57,11 @@ BounceLayout bounce_layout_for(const IntegratorSettings& settings, bool record_a
     return layout;
 }
 
+BounceLayout bounce_layers_for(const IntegratorSettings& settings, bool bounce_layers)
+{
+    return bounce_layers ? bounce_layout_for(settings, true) : BounceLayout{};
+}
+
 namespace {
 
 // How many samples per pixel the next pass takes when the render checkpoints: about a
@@ -162,9 +167,9 @@ private:
         }
         const BounceLayout needed = bounce_layout_for(settings_.integrator);
         if (tracks_bounces_ &&
-            (!film_.bounces ||
-             film_.bounces->layout().luminance_bounces < needed.luminance_bounces ||
-             film_.bounces->layout().mis_bounces < needed.mis_bounces))
+            (!film_.steering ||
+             film_.steering->layout().luminance_bounces < needed.luminance_bounces ||
+             film_.steering->layout().mis_bounces < needed.mis_bounces))
             throw std::invalid_argument(
                 "render: the film does not track the bounces ACRR/SMIS need");
     }
@@ -183,7 +188,7 @@ private:
             // guided kernel costs about 4× (docs/performance.md); on Veach Ajar the
             // unguided estimates were as good (relative variance 86.9 vs 88.4) and ACRR's
             // cost 15% lower.
-            estimates_ = film_.bounces->denoise({}, settings_.bounce_filter, settings_.threads);
+            estimates_ = film_.steering->denoise(settings_.bounce_filter, settings_.threads);
             pass_.estimates = &*estimates_;
             is.denoise_seconds =
                 std::chrono::duration<double>(Clock::now() - denoise_start).count();

@@ -69,6 +69,9 @@ PassCounts render_pass(const TilePass& pass, std::uint64_t first, int spp,
         const int x1 = std::min(x0 + kTile, settings.width),
                   y1 = std::min(y0 + kTile, settings.height);
         PathRecord record;
+        const bool records = film.steering || film.bounces;
+        std::vector<float> steering_values(
+            film.steering ? std::size_t(film.steering->layout().quantities()) : 0);
         std::vector<float> bounce_values(
             film.bounces ? std::size_t(film.bounces->layout().quantities()) : 0);
         std::uint64_t n = 0, bounce_cycles_local = 0;
@@ -88,13 +91,19 @@ PassCounts render_pass(const TilePass& pass, std::uint64_t first, int spp,
                     const Ray ray = pass.camera.generate(float(x) + jx, float(y) + jy);
                     GuideSample guide;
                     const Rgb L = pass.integrator.radiance(
-                        ray, sampler, guide, film.bounces ? &record : nullptr, &pixel_estimates);
+                        ray, sampler, guide, records ? &record : nullptr, &pixel_estimates);
                     const float value[3] = {L.r, L.g, L.b};
                     film.stats.add(x, y, value);
-                    if (film.bounces) {
+                    if (records) {
                         const std::uint64_t b0 = pass.profiling ? __rdtsc() : 0;
-                        bounce_sample(record, film.bounces->layout(), bounce_values.data());
-                        film.bounces->add(x, y, bounce_values.data());
+                        if (film.steering) {
+                            bounce_sample(record, film.steering->layout(), steering_values.data());
+                            film.steering->add(x, y, steering_values.data());
+                        }
+                        if (film.bounces) {
+                            bounce_sample(record, film.bounces->layout(), bounce_values.data());
+                            film.bounces->add(x, y, bounce_values.data());
+                        }
                         if (pass.profiling)
                             bounce_cycles_local += __rdtsc() - b0;
                     }

@@ -106,10 +106,10 @@ struct Rendered {
 
 /// Renders `desc` at w×h with the progressive schedule to `spp` (adaptively with
 /// `adaptive`); the integrator takes the scene's maxdepth, and the film tracks what
-/// `integrator` needs.
+/// `integrator` needs, with `bounce_layers` every per-bounce quantity in full too.
 inline Rendered render_scene(const SceneDescription& desc, int w, int h, int spp,
                              std::uint64_t seed, int threads, IntegratorSettings integrator = {},
-                             const AdaptiveSettings& adaptive = {})
+                             const AdaptiveSettings& adaptive = {}, bool bounce_layers = false)
 {
     Scene scene(desc);
     scene.enable_profiling(true);
@@ -123,7 +123,10 @@ inline Rendered render_scene(const SceneDescription& desc, int w, int h, int spp
     integrator.maxdepth = desc.maxdepth;
     rs.integrator = integrator;
     rs.adaptive = adaptive;
-    Rendered r{std::make_unique<Film>(w, h, bounce_layout_for(integrator)), {}, 0};
+    Rendered r{std::make_unique<Film>(w, h, bounce_layout_for(integrator),
+                                      bounce_layers_for(integrator, bounce_layers)),
+               {},
+               0};
     r.stats = render(scene, camera, rs, *r.film);
     r.rays = scene.traversal_counters().rays;
     return r;

@@ -29,14 +29,15 @@ namespace {
 
 constexpr int kW = 24, kH = 16, kSpp = 16, kSeed = 7;
 
-// The in-process twin of `statmc-render room.pbrt --spp 16 --seed 7 --rr acrr --mis selective`.
+// The in-process twin of `statmc-render room.pbrt --spp 16 --seed 7 --rr acrr --mis selective
+// --bounce-layers`.
 std::unique_ptr<Film> render_room(const std::string& text)
 {
     IntegratorSettings integrator;
     integrator.roulette.mode = RouletteMode::Acrr;
     integrator.mis.mode = MisMode::Selective;
     return statmc::render::test::render_scene(parse_scene_string(text, "room.pbrt"), kW, kH, kSpp,
-                                              kSeed, 0, integrator)
+                                              kSeed, 0, integrator, {}, true)
         .film;
 }
 
@@ -59,7 +60,7 @@ TEST(BounceLayers, RoundTripThroughTheExrAndStatmcDenoise)
     const std::string out = dir.file("out.exr"), den = dir.file("den.exr");
     ASSERT_EQ(run(std::string("\"") + STATMC_RENDER_EXE + "\" \"" + scene + "\" -o \"" + out +
                   "\" --resolution " + std::to_string(kW) + "x" + std::to_string(kH) +
-                  " --spp 16 --seed 7 --rr acrr --mis selective -q"),
+                  " --spp 16 --seed 7 --rr acrr --mis selective --bounce-layers -q"),
               0);
     const auto film = render_room(text);
     const BounceLayout& layout = film->bounces->layout();

@@ -301,13 +301,14 @@ TEST(Farm, CheckpointsOfOtherRendersAndDamagedOnesAreRefused)
         EXPECT_EQ(file_bytes(checkpoint), good) << "a refused checkpoint is left as it was";
     }
     const std::string same = base + " --resolution 24x16 --seed 3";
-    // One of format 2, whose film held the position co-moments: refused, and kept.
-    const std::string older = with_checkpoint_version(good, "2");
+    // One of format 3, whose film held steering's quantities in full statistics: refused,
+    // and kept.
+    const std::string older = with_checkpoint_version(good, "3");
     std::ofstream(checkpoint, std::ios::binary | std::ios::trunc) << older;
     ProgramRun r = render_cli(same, f.dir);
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.output.find("checkpoint " + checkpoint +
-                            ": version 2, this statmc-render reads version 3"),
+                            ": version 3, this statmc-render reads version 4"),
               std::string::npos)
         << r.output;
     EXPECT_EQ(file_bytes(checkpoint), older);

@@ -133,7 +133,7 @@ TEST(Unbiased, SelectiveMisAgreesWithStandardMis)
     // lights' cone sampling on the plates).
     const Film& f = *b.film;
     const BounceEstimates est =
-        f.bounces->denoise({}, RenderSettings{}.bounce_filter);  // as the render denoised them
+        f.steering->denoise(RenderSettings{}.bounce_filter);  // as the render denoised them
     int skipped = 0;
     for (std::size_t i = 0; i < std::size_t(f.width) * f.height; ++i) {
         const PixelEstimates p = est.pixel(i);

@@ -1,13 +1,15 @@
 // Per-pixel statistics (docs/method.md §2, core's accumulators) of the per-bounce quantities of
-// a BounceLayout, and their batched denoising after each iteration (§5, core's filter).
+// a BounceLayout, in full, for a file's per-bounce layers (--bounce-layers); steering keeps
+// only what it reads (steering_statistics.h). The quantities are packed as channels, four to
+// a StatisticsImage<4> group.
 //
-// Batching: the quantities are packed as channels, four to a StatisticsImage<4> group
-// (core's filter takes 1..4 channels), so each iteration costs ceil(Q/4) filter calls,
-// i.e. one pass over the image per group, instead of Q. The filter's membership test
-// then requires all channels of a group to pass (docs/method.md §3), so the groups are
-// filtered a little more conservatively than one quantity alone would be: the price of
-// batching, which can only make an estimate noisier, never the render biased (the
-// estimates only steer sampling).
+// Denoising them for steering is batched the same way: four quantities to a filter call
+// (core's filter takes 1..4 channels), so each iteration costs ceil(Q/4) filter calls, i.e.
+// one pass over the image per group, instead of Q. The filter's membership test then
+// requires all channels of a group to pass (docs/method.md §3), so the groups are filtered
+// a little more conservatively than one quantity alone would be: the price of batching,
+// which can only make an estimate noisier, never the render biased (the estimates only
+// steer sampling).
 #pragma once
 
 #include <vector>
@@ -65,10 +67,6 @@ public:
     /// The accumulators, four quantities to a group: what a checkpoint saves and restores.
     std::vector<StatisticsImage<kGroup>>& groups() { return groups_; }
     const std::vector<StatisticsImage<kGroup>>& groups() const { return groups_; }
-
-    /// Denoises every quantity, one filter call per group, Box-Cox test (§3).
-    BounceEstimates denoise(const Guides& guides, const DenoiseOptions& options,
-                            int threads = 0) const;
 
 private:
     int width_, height_;

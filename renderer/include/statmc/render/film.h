@@ -1,6 +1,8 @@
 // The film: what a render accumulates per pixel. The beauty goes into core's online
-// statistics (exact, mergeable), the guides into plain sums averaged on output, and the
-// per-bounce quantities of ACRR and SMIS into their own statistics.
+// statistics (exact, mergeable), the guides into plain sums averaged on output, the
+// per-bounce quantities that ACRR and SMIS steer by into a compact buffer of what their
+// estimates read, and, for a file that asks for per-bounce layers, every per-bounce
+// quantity into full statistics.
 #pragma once
 
 #include <memory>
@@ -9,12 +11,15 @@
 
 #include "statmc/core/statistics_image.h"
 #include "statmc/render/bounce_statistics.h"
+#include "statmc/render/steering_statistics.h"
 
 namespace statmc::render {
 
 /// Per-pixel accumulators for the beauty, the guide sums and the per-bounce quantities.
 struct Film {
-    Film(int width, int height, BounceLayout bounce_layout = {});
+    /// `steering`: the quantities ACRR and SMIS read; `layers`: those written as per-bounce
+    /// layers (empty: none is tracked).
+    Film(int width, int height, BounceLayout steering = {}, BounceLayout layers = {});
     int width, height;
     StatisticsImage<3> stats;
     std::vector<double> albedo_sum, normal_sum, depth_sum;  ///< channel-major sums
@@ -22,7 +27,8 @@ struct Film {
     std::vector<double> albedo_squares, normal_squares;
     /// Σ of the samples' motion to the previous frame (X then Y), empty unless tracked.
     std::vector<double> motion_sum;
-    std::unique_ptr<BounceStatistics> bounces;  ///< null when nothing is tracked
+    std::unique_ptr<SteeringStatistics> steering;  ///< null when nothing steers
+    std::unique_ptr<BounceStatistics> bounces;     ///< null when no file asks for them
 
     /// Guide averages as dense channel-major float planes (3, 3 and 1 channels).
     std::vector<float> albedo() const;
@@ -47,13 +53,14 @@ struct Film {
 
     /// What a film of this size holds while rendering, plus the float planes written out at
     /// the end: the figure the resolution limit checks before anything is allocated.
-    static double bytes_needed(int width, int height, const BounceLayout& bounce_layout);
+    static double bytes_needed(int width, int height, const BounceLayout& steering,
+                               const BounceLayout& layers);
 };
 
 /// Throws std::runtime_error naming `source` (a Film directive's file:line, or
 /// "--resolution") when width × height is not a resolution statmc-render can hold: each side
 /// in 1..65536, and Film::bytes_needed within three quarters of this machine's physical memory.
-void require_renderable_resolution(int width, int height, const BounceLayout& bounce_layout,
-                                   const std::string& source);
+void require_renderable_resolution(int width, int height, const BounceLayout& steering,
+                                   const BounceLayout& layers, const std::string& source);
 
 }  // namespace statmc::render

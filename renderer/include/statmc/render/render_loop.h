@@ -35,6 +35,10 @@ std::vector<int> schedule_for_iterations(int iterations);
 /// them in the EXR).
 BounceLayout bounce_layout_for(const IntegratorSettings& settings, bool record_all = false);
 
+/// The per-bounce layers a file of a render with `settings` carries: every quantity with
+/// `bounce_layers` (--bounce-layers), else none (steering keeps its own, compact).
+BounceLayout bounce_layers_for(const IntegratorSettings& settings, bool bounce_layers);
+
 /// The filter that denoises the per-bounce estimates ACRR and SMIS steer by.
 inline DenoiseOptions estimates_filter()
 {
@@ -105,8 +109,8 @@ using CheckpointCallback = std::function<void(const Film&, std::uint64_t samples
 /// Renders into `film`. When `cancel` becomes true, the iteration in progress finishes
 /// the tiles already started and skips the rest (never during the first iteration, so
 /// every pixel has samples), then the render stops. `after_iteration` runs after each
-/// iteration (the hook for per-iteration denoising). The film's layout must be
-/// bounce_layout_for(settings.integrator) or a superset of it (record_all). With
+/// iteration (the hook for per-iteration denoising). The film's steering layout must be
+/// bounce_layout_for(settings.integrator) or a superset of it. With
 /// settings.checkpoint_seconds, a cancel stops the render at the next pass boundary
 /// instead, in any iteration, after `checkpoint` has saved the film.
 RenderStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings,
