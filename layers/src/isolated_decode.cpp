@@ -96,6 +96,8 @@ pid_t spawn_decoder(const std::string& path, const std::vector<DecodeLevel>& lev
     ::posix_spawn_file_actions_adddup2(&actions, memfd, protocol::kChildFd);
     ::posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
     ::posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    // Nothing else of the host's (its outputs' temporaries, a Python session's files).
+    ::posix_spawn_file_actions_addclosefrom_np(&actions, protocol::kChildFd + 1);
     // Default signal actions and no blocked signal, whatever the host set (Python catches
     // SIGINT): an interrupt from the terminal ends the decoder with its parent.
     sigset_t all, none;
