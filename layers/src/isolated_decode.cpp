@@ -247,8 +247,9 @@ std::optional<std::vector<OIIO::ImageBuf>> decode_isolated(const std::string& pa
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     if (code == protocol::kDecodeFailed)
         fail(path, "damaged OpenEXR file: " + read_message(memory.fd, offsets.back()));
-    if (code != 0)
-        fail(path, "the decoder " + decoder + " stopped with exit status " + std::to_string(code));
+    if (code != 0)  // a sanitizer's report, say: a death all the same
+        fail(path, "damaged OpenEXR file: the decoder stopped with exit status " +
+                       std::to_string(code) + " while reading it (" + decoder + ")");
 
     std::vector<OIIO::ImageBuf> images;
     for (std::size_t i = 0; i < levels.size(); ++i)
