@@ -51,7 +51,7 @@ void bounce_sample(const PathRecord& record, const BounceLayout& layout, float* 
 }
 
 BounceStatistics::BounceStatistics(int width, int height, BounceLayout layout)
-    : width_(width), height_(height), layout_(layout)
+    : layout_(layout)
 {
     if (layout.luminance_bounces < 0 || layout.luminance_bounces > BounceLayout::kMaxLuminances ||
         layout.mis_bounces < 0)

@@ -69,7 +69,6 @@ public:
     const std::vector<StatisticsImage<kGroup>>& groups() const { return groups_; }
 
 private:
-    int width_, height_;
     BounceLayout layout_;
     std::vector<StatisticsImage<kGroup>> groups_;
 };
