@@ -70,10 +70,14 @@ PassCounts render_pass(const TilePass& pass, std::uint64_t first, int spp,
                   y1 = std::min(y0 + kTile, settings.height);
         PathRecord record;
         const bool records = film.steering || film.bounces;
+        // With --bounce-layers and both roulette and MIS steered, the layers' quantities
+        // are steering's: computed once for both.
+        const bool shared_values =
+            film.steering && film.bounces && film.steering->layout() == film.bounces->layout();
         std::vector<float> steering_values(
             film.steering ? std::size_t(film.steering->layout().quantities()) : 0);
         std::vector<float> bounce_values(
-            film.bounces ? std::size_t(film.bounces->layout().quantities()) : 0);
+            film.bounces && !shared_values ? std::size_t(film.bounces->layout().quantities()) : 0);
         std::uint64_t n = 0, bounce_cycles_local = 0;
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
@@ -100,7 +104,9 @@ PassCounts render_pass(const TilePass& pass, std::uint64_t first, int spp,
                             bounce_sample(record, film.steering->layout(), steering_values.data());
                             film.steering->add(x, y, steering_values.data());
                         }
-                        if (film.bounces) {
+                        if (film.bounces && shared_values) {
+                            film.bounces->add(x, y, steering_values.data());
+                        } else if (film.bounces) {
                             bounce_sample(record, film.bounces->layout(), bounce_values.data());
                             film.bounces->add(x, y, bounce_values.data());
                         }

@@ -3,8 +3,8 @@
 // declares, and deep images refused before their pixels are touched.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <csignal>
+#include <filesystem>
 #include <fstream>
 
 #include <sys/wait.h>
@@ -15,6 +15,7 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenImageIO/imagebuf.h>
 
+#include "read_error.h"
 #include "statmc/layers/atomic_file.h"
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/file_error.h"
@@ -25,16 +26,6 @@
 namespace statmc::test {
 namespace {
 
-std::string error_of(const std::string& path, const layers::ReadOptions& options = {})
-{
-    try {
-        layers::read_image_file(path, options);
-    } catch (const layers::FileError& e) {
-        return e.what();
-    }
-    return "";
-}
-
 TEST(DamagedFiles, TruncatedAnywhereIsAnErrorNamingTheFile)
 {
     TempDir dir;
@@ -42,17 +33,17 @@ TEST(DamagedFiles, TruncatedAnywhereIsAnErrorNamingTheFile)
     layers::write_image_file(
         layers::make_statistics_image(noisy_statistics(40, 30, 8, 3), {"", 8, 1}), good);
     const std::string bytes = file_bytes(good);
-    ASSERT_TRUE(error_of(good).empty()) << error_of(good);
+    ASSERT_TRUE(read_error(good).empty()) << read_error(good);
     for (double fraction : {0.0, 0.001, 0.01, 0.1, 0.5, 0.9, 0.999}) {
         const std::string cut = dir.file("cut.exr");
         std::ofstream(cut, std::ios::binary | std::ios::trunc)
             << bytes.substr(0, std::size_t(fraction * double(bytes.size())));
-        const std::string e = error_of(cut);
+        const std::string e = read_error(cut);
         EXPECT_EQ(e.rfind(cut + ": ", 0), 0u) << fraction << ": " << e;
         // Without OpenEXR's check, the reader itself still fails cleanly.
         layers::ReadOptions trusting;
         trusting.check_structure = false;
-        EXPECT_EQ(error_of(cut, trusting).rfind(cut + ": ", 0), 0u) << fraction;
+        EXPECT_EQ(read_error(cut, trusting).rfind(cut + ": ", 0), 0u) << fraction;
     }
 }
 
@@ -69,12 +60,12 @@ TEST(DamagedFiles, AHugeDeclaredImageIsRefusedBeforeAnyPixelIsAllocated)
     }
     layers::ReadOptions options;
     options.max_memory = 1000000000;
-    EXPECT_EQ(error_of(huge, options),
+    EXPECT_EQ(read_error(huge, options),
               huge + ": subimage 0 declares 100000x100000 pixels x 3 channels, 120 GB as float, "
                      "more than the 1 GB one image may take (--max-memory)");
     // The default budget (half of this machine's memory) refuses it too, before OpenEXR's
     // check reads the file.
-    EXPECT_NE(error_of(huge).find("declares 100000x100000 pixels"), std::string::npos);
+    EXPECT_NE(read_error(huge).find("declares 100000x100000 pixels"), std::string::npos);
 }
 
 TEST(DamagedFiles, DeepImagesAreRefusedBeforeTheirSamplesAreRead)
@@ -85,7 +76,7 @@ TEST(DamagedFiles, DeepImagesAreRefusedBeforeTheirSamplesAreRead)
     spec.deep = true;
     OIIO::ImageBuf buf(spec);
     ASSERT_TRUE(buf.write(deep)) << buf.geterror();
-    EXPECT_EQ(error_of(deep), deep + ": deep images are not supported");
+    EXPECT_EQ(read_error(deep), deep + ": deep images are not supported");
 }
 
 TEST(InterruptedWrites, TemporariesOfKilledWritersAreRemovedByTheNextWrite)
@@ -99,8 +90,8 @@ TEST(InterruptedWrites, TemporariesOfKilledWritersAreRemovedByTheNextWrite)
     ::waitpid(child, nullptr, 0);
     char host[256] = {};
     ::gethostname(host, sizeof host - 1);
-    const std::string stale = dir.file(".out.exr.statmc-tmp-" + std::string(host) + "-" +
-                                       std::to_string(child) + "-0");
+    const std::string stale =
+        dir.file(".out.exr.statmc-tmp-" + std::string(host) + "-" + std::to_string(child) + "-0");
     const std::string alive = dir.file(".out.exr.statmc-tmp-" + std::string(host) + "-" +
                                        std::to_string(::getpid()) + "-99");
     std::ofstream(stale) << "half a file";
@@ -109,7 +100,7 @@ TEST(InterruptedWrites, TemporariesOfKilledWritersAreRemovedByTheNextWrite)
         layers::make_statistics_image(noisy_statistics(8, 6, 4, 1), {"", 4, 1}), out);
     EXPECT_FALSE(std::filesystem::exists(stale));
     EXPECT_TRUE(std::filesystem::exists(alive)) << "a live writer's temporary is left alone";
-    EXPECT_TRUE(error_of(out).empty()) << error_of(out);
+    EXPECT_TRUE(read_error(out).empty()) << read_error(out);
 }
 
 TEST(InterruptedWrites, ASignalDuringAWriteRemovesTheTemporaryAndKeepsTheTarget)

@@ -23,6 +23,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
+#include "read_error.h"
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/file_error.h"
 #include "statmc/layers/isolated_decode.h"
@@ -58,14 +59,14 @@ bool no_children()
     return ::waitpid(-1, nullptr, WNOHANG) == -1 && errno == ECHILD;
 }
 
-std::string error_of(const std::string& path, const layers::ReadOptions& options = {})
+// A small statistics frame, after checking that the decoder that will read it was built.
+std::string small_frame(const TempDir& dir)
 {
-    try {
-        layers::read_image_subimages(path, options);
-    } catch (const layers::FileError& e) {
-        return e.what();
-    }
-    return "";
+    const std::string path = dir.file("frame.exr");
+    layers::write_image_file(
+        layers::make_statistics_image(noisy_statistics(20, 10, 8, 3), {"", 8, 1}), path);
+    EXPECT_FALSE(layers::decoder_program().empty()) << "statmc-decode was not built";
+    return path;
 }
 
 // Every subimage and MIP level read through the decoder and in this process: the same
@@ -172,14 +173,11 @@ TEST(IsolatedDecode, TiledMipMapsAndSeveralPartsReadAsInProcess)
 TEST(IsolatedDecode, ADecoderCrashIsAnErrorNamingTheFileAndLeavesNothingBehind)
 {
     TempDir dir;
-    const std::string path = dir.file("frame.exr");
-    layers::write_image_file(
-        layers::make_statistics_image(noisy_statistics(20, 10, 8, 3), {"", 8, 1}), path);
-    ASSERT_FALSE(layers::decoder_program().empty()) << "statmc-decode was not built";
+    const std::string path = small_frame(dir);
     const std::size_t descriptors = open_descriptors();
     const ScopedEnv fault("STATMC_DECODE_FAULT", "crash");
     // A sanitized decoder reports the crash and exits with a status of its own instead.
-    const std::string e = error_of(path);
+    const std::string e = read_error(path);
     EXPECT_TRUE(
         e.rfind(path + ": damaged OpenEXR file: the decoder died of ", 0) == 0 ||
         e.rfind(path + ": damaged OpenEXR file: the decoder stopped with exit status ", 0) == 0)
@@ -191,16 +189,13 @@ TEST(IsolatedDecode, ADecoderCrashIsAnErrorNamingTheFileAndLeavesNothingBehind)
 TEST(IsolatedDecode, ADecoderHangIsStoppedAtItsTimeAndLeavesNothingBehind)
 {
     TempDir dir;
-    const std::string path = dir.file("frame.exr");
-    layers::write_image_file(
-        layers::make_statistics_image(noisy_statistics(20, 10, 8, 3), {"", 8, 1}), path);
-    ASSERT_FALSE(layers::decoder_program().empty()) << "statmc-decode was not built";
+    const std::string path = small_frame(dir);
     const std::size_t descriptors = open_descriptors();
     const ScopedEnv fault("STATMC_DECODE_FAULT", "hang");
     layers::ReadOptions options;
     options.decode_timeout = 1;
     const auto start = std::chrono::steady_clock::now();
-    EXPECT_EQ(error_of(path, options),
+    EXPECT_EQ(read_error(path, options),
               path + ": damaged OpenEXR file: the decoder did not finish in 1 s and was stopped");
     EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
     EXPECT_TRUE(no_children());
@@ -216,11 +211,11 @@ TEST(IsolatedDecode, ATruncatedFileIsDamagedThroughTheDecoderAndThroughTheChecke
     const std::string bytes = file_bytes(good);
     const std::string cut = dir.file("cut.exr");
     std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() * 3 / 4);
-    EXPECT_EQ(error_of(cut).rfind(cut + ": damaged OpenEXR file: ", 0), 0u) << error_of(cut);
+    EXPECT_EQ(read_error(cut).rfind(cut + ": damaged OpenEXR file: ", 0), 0u) << read_error(cut);
     // Without a decoder program (an empty $STATMC_DECODER), OpenEXR's checker guards.
     const ScopedEnv none("STATMC_DECODER", "");
-    EXPECT_EQ(error_of(cut), cut + ": damaged OpenEXR file: OpenEXR's file check fails on it "
-                                   "(truncated, or corrupted headers, offsets or pixel data)");
+    EXPECT_EQ(read_error(cut), cut + ": damaged OpenEXR file: OpenEXR's file check fails on it "
+                                     "(truncated, or corrupted headers, offsets or pixel data)");
 }
 
 }  // namespace

@@ -18,6 +18,10 @@ struct BounceLayout {
 
     int quantities() const { return luminance_bounces + 2 * mis_bounces; }
     bool empty() const { return quantities() == 0; }
+    bool operator==(const BounceLayout& o) const
+    {
+        return luminance_bounces == o.luminance_bounces && mis_bounces == o.mis_bounces;
+    }
     int luminance(int j) const { return j; }
     int light_wins(int b) const { return luminance_bounces + 2 * b; }
     int bsdf_wins(int b) const { return luminance_bounces + 2 * b + 1; }
