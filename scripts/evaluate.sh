@@ -10,6 +10,8 @@
 #   bash scripts/evaluate.sh            # REF_SPP=4096 SPPS="4 16 64 256" SEEDS="1 2"
 #   OUT=build/eval-quick REF_SPP=1024 SPPS="4 16" bash scripts/evaluate.sh   # a quick look
 #   OIDN=0 bash scripts/evaluate.sh     # without the OIDN columns
+#   RENDER_ONLY=1 bash scripts/evaluate.sh   # render and cache the frames, score later
+#                                            # (so that timing runs on a quiet machine)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -78,6 +80,7 @@ for entry in cornell-box:512x512:$scenes_dir/cornell-box/scene.pbrt \
       noisy+=("$f")
     done
   done
+  [ "${RENDER_ONLY:-0}" = 1 ] && continue
   if [ ${#externals[@]} -gt 0 ]; then
     echo "== $scene: OIDN"
     "$venv/bin/python" bench/evaluation/oidn_denoise.py "${noisy[@]}"
@@ -91,10 +94,15 @@ done
 for res in 320x180 640x360 1280x720; do
   f=$out/timing-$res.exr
   [ -f "$f" ] || "$render" "$scenes_dir/cornell-box/scene.pbrt" -o "$f" --spp 16 --resolution "$res" --seed 7 -q
+  [ "${RENDER_ONLY:-0}" = 1 ] && continue
   "$evaluate" --reference "$f" --scene cornell-box --csv "$timing" --runs "$runs" \
     --radius-sweep 2,5,10,20 "$f"
 done
 
+if [ "${RENDER_ONLY:-0}" = 1 ]; then
+  echo "frames cached in $out; run again without RENDER_ONLY to score them"
+  exit 0
+fi
 /usr/bin/python3 scripts/plot_evaluation.py "$csv" "$timing" --ref-spp "$ref_spp" --runs "$runs" \
   --tungsten "$out"/*/tungsten-check.txt --images "$images" --report "$report"
 echo "$report and $images/eval-*.png updated from $csv"

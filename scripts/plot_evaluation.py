@@ -6,7 +6,6 @@ Usage: plot_evaluation.py results.csv timing.csv --ref-spp N [--tungsten check.t
 """
 import argparse
 import csv
-import math
 import os
 import statistics
 from collections import defaultdict
@@ -21,7 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 METHODS = ["noisy", "statmc", "statmc-noguides", "statmc-classic", "statmc-paper", "classic+ici",
            "classic+guide-noise", "classic+context",
            "moon-ci", "nlm",
-           "cross-bilateral", "oidn", "oidn-guides"]
+           "cross-bilateral", "oidn", "oidn-guides", "verified-oidn-guides"]
 LABELS = {
     "noisy": "noisy input",
     "statmc": "statmc default (albedo + normal)",
@@ -36,15 +35,25 @@ LABELS = {
     "cross-bilateral": "cross-bilateral on albedo + normal",
     "oidn": "OIDN 2 (pyoidn, CPU, colour only)",
     "oidn-guides": "OIDN 2 (pyoidn, CPU, colour + albedo + normal)",
+    "verified-oidn-guides": "OIDN 2 with guides, verified by statmc (`--dup --oidn --verify`; "
+                            "its time is OIDN's and the verify step's)",
 }
 # The charts draw these; the tables list every method.
 CHART_METHODS = ["noisy", "statmc", "statmc-classic", "statmc-paper", "nlm", "cross-bilateral",
-                 "oidn-guides"]
+                 "oidn-guides", "verified-oidn-guides"]
 # Not a method: what the reference's own sampling noise adds to every row's error (its
 # variance of the mean, from the reference's statistics; bench/evaluation/evaluate.cpp).
 REFERENCE_NOISE = "reference-noise"
 STATMC = [m for m in METHODS if m.startswith("statmc") or m.startswith("classic+")]
-METRICS = [("relmse", "relMSE"), ("dssim", "DSSIM (Filmic view)"), ("rmse", "RMSE"), ("mae", "MAE")]
+METRICS = [("relmse", "relMSE, less the reference's share"), ("dssim", "DSSIM (Filmic view)"),
+           ("mse", "MSE, less the reference's share"),
+           ("energy", "light in the highlight windows, over the reference's"), ("mae", "MAE")]
+# Metrics from which the reference's own share (its variance of the mean) is taken out: the
+# noisy frames' seeds are not the reference's, so E[(x − ref)²] is the error against the
+# truth plus that share, and the difference is unbiased.
+LESS_SHARE = ("mse", "relmse")
+# Energy is kept where it is no more than this much further from 1 than the noisy input's.
+ENERGY_SLACK = 0.05
 
 
 def read(path):
@@ -64,6 +73,19 @@ def mean_of(rows, key):
     return statistics.fmean(float(r[key]) for r in rows)
 
 
+def value(g, scene, method, spp, metric):
+    """The mean over seeds of a cell's metric, less the reference's share for LESS_SHARE."""
+    v = mean_of(g[(scene, method, spp)], metric)
+    floor = g.get((scene, REFERENCE_NOISE, spp))
+    if metric in LESS_SHARE and floor:
+        v -= mean_of(floor, metric)
+    return v
+
+
+def best_of(vals, metric):
+    return min(vals, key=lambda m: abs(vals[m] - 1) if metric == "energy" else vals[m])
+
+
 def total_seconds(rows):
     return statistics.fmean(float(r["render_seconds"]) + float(r["denoise_seconds"]) for r in rows)
 
@@ -73,7 +95,7 @@ def error_vs_time(rows, scene, metric, label, path):
     spps = sorted({k[2] for k in g if k[0] == scene})
     plt.figure(figsize=(6.4, 4.2))
     for m in CHART_METHODS:
-        pts = [(total_seconds(g[(scene, m, s)]), mean_of(g[(scene, m, s)], metric))
+        pts = [(total_seconds(g[(scene, m, s)]), value(g, scene, m, s, metric))
                for s in spps if (scene, m, s) in g]
         if pts:
             xs, ys = zip(*pts)
@@ -120,16 +142,16 @@ def table(rows, scene, metric):
             continue
         best = []
         for s in spps:
-            vals = {mm: mean_of(g[(scene, mm, s)], metric) for mm in METHODS if mm != "noisy" and (scene, mm, s) in g}
-            best.append(min(vals, key=vals.get) if vals else None)
+            vals = {mm: value(g, scene, mm, s, metric) for mm in METHODS if mm != "noisy" and (scene, mm, s) in g}
+            best.append(best_of(vals, metric) if vals else None)
         cells = []
         for s, b in zip(spps, best):
-            v = mean_of(g[(scene, m, s)], metric)
+            v = value(g, scene, m, s, metric)
             cells.append(f"**{v:.4g}**" if m == b else f"{v:.4g}")
         lines.append(f"| {LABELS[m]} | " + " | ".join(cells) + " |")
     floor = [g.get((scene, REFERENCE_NOISE, s)) for s in spps]
-    if all(floor) and all(math.isfinite(mean_of(f, metric)) for f in floor):
-        lines.append("| *the reference's own noise, in every row above* | " +
+    if metric in LESS_SHARE and all(floor):
+        lines.append("| *the reference's share, taken out of every row above* | " +
                      " | ".join(f"*{mean_of(f, metric):.4g}*" for f in floor) + " |")
     return "\n".join(lines)
 
@@ -163,7 +185,7 @@ def equal_time(rows, scene, budget_spp):
             continue
         s_ = max(fits)
         r = g[(scene, m, s_)]
-        lines.append(f"| {LABELS[m]} | {s_} | {total_seconds(r):.2f} | {mean_of(r, 'relmse'):.4g} | {mean_of(r, 'dssim'):.4g} |")
+        lines.append(f"| {LABELS[m]} | {s_} | {total_seconds(r):.2f} | {value(g, scene, m, s_, 'relmse'):.4g} | {mean_of(r, 'dssim'):.4g} |")
     return "\n".join(lines)
 
 
@@ -181,7 +203,7 @@ def equal_time_chart(rows, scene, budget_spp, path):
         if fits:
             r = g[(scene, m, max(fits))]
             names.append(f"{m}\n{max(fits)} spp")
-            rel.append(mean_of(r, "relmse"))
+            rel.append(value(g, scene, m, max(fits), "relmse"))
             dssim.append(mean_of(r, "dssim"))
     fig, axes = plt.subplots(1, 2, figsize=(9, 3.6))
     for ax, vals, label in ((axes[0], rel, "relMSE"), (axes[1], dssim, "DSSIM")):
@@ -199,55 +221,77 @@ def equal_time_chart(rows, scene, budget_spp, path):
 
 
 def wins(rows):
-    """Per scene and spp, which method has the lowest relMSE and DSSIM."""
+    """Per scene, spp and metric, which method does best and the best of statmc's."""
     g = grouped(rows)
     out = []
     for scene in sorted({k[0] for k in g}):
         for s in sorted({k[2] for k in g if k[0] == scene}):
-            for metric, _ in METRICS[:2]:
-                vals = {m: mean_of(g[(scene, m, s)], metric) for m in METHODS if m != "noisy" and (scene, m, s) in g}
-                best = min(vals, key=vals.get)
-                st = min(vals.get(m, float("inf")) for m in STATMC)
-                out.append((scene, s, metric, best, vals[best], st))
+            for metric, _ in METRICS[:4]:
+                vals = {m: value(g, scene, m, s, metric) for m in METHODS
+                        if m != "noisy" and (scene, m, s) in g}
+                best = best_of(vals, metric)
+                ours = {m: vals[m] for m in STATMC if m in vals}
+                out.append((scene, s, metric, best, vals[best], vals[best_of(ours, metric)]))
     return out
 
 
+def verdict(g, scene, s, method, other, metric, factor=1.0):
+    """'yes (a / b)' where `method` is at least as good as `other` (× factor) in the cell."""
+    if (scene, other, s) not in g or (scene, method, s) not in g:
+        return "—"
+    a, b = value(g, scene, method, s, metric), value(g, scene, other, s, metric)
+    if metric == "energy":  # kept: no more than ENERGY_SLACK further from 1 than the other
+        ok = abs(a - 1) <= abs(b - 1) + ENERGY_SLACK
+    else:
+        ok = a <= factor * b
+    return f"{'yes' if ok else '**no**'} ({a:.3g} / {b:.3g})"
+
+
+def falls(g, scene, method, metric, spps):
+    vals = [value(g, scene, method, s, metric) for s in spps]
+    ok = all(b < a for a, b in zip(vals, vals[1:]))
+    return f"{metric} {'yes' if ok else '**no**'} ({' → '.join(f'{v:.3g}' for v in vals)})"
+
+
 def targets(rows):
-    """The accuracy targets of docs/method.md §11 per cell: the default against the noisy
-    input (relMSE, RMSE, DSSIM), against NL-means (relMSE), and whether its error falls with
-    spp."""
+    """The promise per cell (docs/evaluation-notes.md): the default against the noisy input
+    and OIDN, and whether its error falls with spp."""
     g = grouped(rows)
-    lines = ["| scene | spp | relMSE ≤ noisy | RMSE ≤ noisy | DSSIM ≤ noisy | relMSE ≤ NL-means | "
-             "relMSE ≤ OIDN (guides) |", "| --- | --- | --- | --- | --- | --- | --- |"]
+    lines = ["| scene | spp | relMSE ≤ noisy | MSE ≤ noisy | DSSIM ≤ noisy | energy kept | "
+             "MSE ≤ OIDN (guides) | relMSE ≤ OIDN (guides) |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     for scene in sorted({k[0] for k in g}):
         spps = sorted({k[2] for k in g if k[0] == scene and (scene, "statmc", k[2]) in g})
         for s in spps:
-            d = g[(scene, "statmc", s)]
+            cells = [verdict(g, scene, s, "statmc", "noisy", m)
+                     for m in ("relmse", "mse", "dssim", "energy")]
+            cells += [verdict(g, scene, s, "statmc", "oidn-guides", m) for m in ("mse", "relmse")]
+            lines.append(f"| {scene} | {s} | " + " | ".join(cells) + " |")
+        lines.append(f"| {scene} | all | falls with spp: " +
+                     "; ".join(falls(g, scene, "statmc", m, spps) for m in ("relmse", "mse", "dssim")) +
+                     " | | | | | |")
+    return "\n".join(lines)
 
-            def versus(other, metric):
-                if (scene, other, s) not in g:
-                    return "—"
-                a, b = mean_of(d, metric), mean_of(g[(scene, other, s)], metric)
-                return f"{'yes' if a <= b else '**no**'} ({a:.3g} / {b:.3g})"
 
-            lines.append(f"| {scene} | {s} | {versus('noisy', 'relmse')} | {versus('noisy', 'rmse')} | "
-                         f"{versus('noisy', 'dssim')} | {versus('nlm', 'relmse')} | "
-                         f"{versus('oidn-guides', 'relmse')} |")
-        rel = [mean_of(g[(scene, "statmc", s)], "relmse") for s in spps]
-        falls = all(b < a for a, b in zip(rel, rel[1:]))
-        line = (f"| {scene} | all | relMSE falls with spp: {'yes' if falls else '**no**'} "
-                f"({' → '.join(f'{v:.3g}' for v in rel)})")
-        floor = [g.get((scene, REFERENCE_NOISE, s)) for s in spps]
-        if all(floor):
-            # E[(x − ref)²] = MSE against the truth + the reference's variance (the noisy
-            # frames' seeds are not the reference's), so the difference is unbiased.
-            mse = [mean_of(g[(scene, "statmc", s)], "rmse") ** 2 - mean_of(f, "rmse") ** 2
-                   for s, f in zip(spps, floor)]
-            mse_falls = all(b < a for a, b in zip(mse, mse[1:]))
-            line += (f"; the reference's own noise adds about {mean_of(floor[0], 'relmse'):.3g} "
-                     f"to relMSE. MSE less the reference's variance falls: "
-                     f"{'yes' if mse_falls else '**no**'} ({' → '.join(f'{v:.3g}' for v in mse)})")
-        lines.append(line + " | | | | |")
+def verified_targets(rows):
+    """Verified OIDN's targets per cell (docs/evaluation-notes.md): relMSE within 5% of the
+    better of OIDN and the default, MSE at or below the noisy input's, the light kept."""
+    g = grouped(rows)
+    v = "verified-oidn-guides"
+    lines = ["| scene | spp | relMSE ≤ 1.05 × OIDN (guides) | relMSE ≤ 1.05 × default | "
+             "MSE ≤ noisy | energy kept |", "| --- | --- | --- | --- | --- | --- |"]
+    for scene in sorted({k[0] for k in g}):
+        spps = sorted({k[2] for k in g if k[0] == scene and (scene, v, k[2]) in g})
+        if not spps:
+            continue
+        for s in spps:
+            cells = [verdict(g, scene, s, v, "oidn-guides", "relmse", 1.05),
+                     verdict(g, scene, s, v, "statmc", "relmse", 1.05),
+                     verdict(g, scene, s, v, "noisy", "mse"),
+                     verdict(g, scene, s, v, "noisy", "energy")]
+            lines.append(f"| {scene} | {s} | " + " | ".join(cells) + " |")
+        lines.append(f"| {scene} | all | falls with spp: " +
+                     "; ".join(falls(g, scene, v, m, spps) for m in ("relmse", "mse")) + " | | | |")
     return "\n".join(lines)
 
 
@@ -293,20 +337,29 @@ def main():
         doc += ["", "Veach Ajar's pbrt file has a rough-metal floor where Tungsten's render shows a",
                 "diffuse one, so that comparison is expected to differ (renderer/README.md).", ""]
     doc += ["## The default against its targets", "",
-            "Each cell: yes/no, then (the default's value / the other's).", "", targets(rows), ""]
-    doc += ["## Who wins", "", "| scene | spp | metric | best method | its value | best statmc |",
+            "Each cell: yes/no, then (the default's value / the other's). MSE and relMSE are "
+            "less the reference's share; energy is kept where it is no more than "
+            f"{ENERGY_SLACK:g} further from 1 than the other's.", "", targets(rows), ""]
+    verified = verified_targets(rows)
+    if verified.count("\n") > 1:
+        doc += ["## Verified OIDN against its targets", "",
+                "Each cell: yes/no, then (verified OIDN's value / the other's).", "", verified, ""]
+    doc += ["## Who wins", "",
+            "Energy: nearest 1 wins. MSE and relMSE less the reference's share.", "",
+            "| scene | spp | metric | best method | its value | best statmc |",
             "| --- | --- | --- | --- | --- | --- |"]
     for scene, s, metric, best, v, st in wins(rows):
         doc.append(f"| {scene} | {s} | {metric} | {best} | {v:.4g} | {st:.4g} |")
     doc.append("")
     for scene in scenes:
         doc += [f"## {scene} ({res[scene]})", ""]
-        for metric, label in METRICS[:2]:
+        for metric, label in METRICS[:3]:
             img = f"eval-{scene}-{metric}.png"
             error_vs_time(rows, scene, metric, label, os.path.join(a.images, img))
             doc += [f"![{scene} {label}]({rel}/{img})", ""]
         for metric, label in METRICS:
-            doc += [f"{label} (lowest denoised value in bold):", "", table(rows, scene, metric), ""]
+            best = "nearest 1" if metric == "energy" else "lowest"
+            doc += [f"{label} ({best} denoised value in bold):", "", table(rows, scene, metric), ""]
         doc += ["Time:", "", time_table(rows, scene), ""]
         spps = sorted({int(r["spp"]) for r in rows if r["scene"] == scene})
         budget_spp = spps[len(spps) // 2]

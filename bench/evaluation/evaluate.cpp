@@ -20,12 +20,14 @@
 #include "baselines/baselines.h"
 #include "statmc/compare/compare.h"
 #include "statmc/core/estimator_image.h"
+#include "statmc/core/luminance.h"
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/float_pixels.h"
 #include "statmc/layers/guide_layers.h"
 #include "statmc/layers/layer_names.h"
 #include "statmc/layers/statistics_layers.h"
+#include "statmc/verify/verify.h"
 
 namespace {
 
@@ -162,6 +164,21 @@ std::vector<Denoiser> methods()
     };
 }
 
+/// The outside denoiser whose result is also verified (docs/method.md §15).
+constexpr const char* kVerifiedCandidate = "oidn-guides";
+
+/// `candidate` held to `in`'s statistics by the verify operator at its defaults, with the
+/// default denoise (albedo + normal) for the pixels it rejects.
+OIIO::ImageBuf run_verify(const OIIO::ImageBuf& in, const OIIO::ImageBuf& candidate)
+{
+    VerifyOptions o;
+    o.denoise = statmc_options(true);
+    OIIO::ImageBuf out;
+    if (!verify(out, in, candidate, o))
+        throw std::runtime_error(out.geterror());
+    return out;
+}
+
 // X.exr's result by an outside denoiser NAME, if it was run: X.NAME.exr, whose
 // statmc:denoiseSeconds attribute is its time (bench/evaluation/oidn_denoise.py writes it).
 std::string external_result(const std::string& input, const std::string& name)
@@ -198,6 +215,76 @@ std::optional<ReferenceNoise> reference_noise(const OIIO::ImageBuf& reference, d
     return noise;
 }
 
+/// The beauty's R,G,B as interleaved floats (channels found by name).
+std::vector<float> beauty_rgb(const OIIO::ImageBuf& image)
+{
+    const OIIO::ImageSpec& spec = image.spec();
+    std::vector<float> rgb(std::size_t(spec.width) * spec.height * 3);
+    for (int c = 0; c < 3; ++c) {
+        const int channel = spec.channelindex(std::string(1, "RGB"[c]));
+        if (channel < 0)
+            throw std::runtime_error(std::string(image.name()) + ": no " + "RGB"[c] + " channel");
+        OIIO::ROI roi = image.roi();
+        roi.chbegin = channel;
+        roi.chend = channel + 1;
+        image.get_pixels(roi, OIIO::TypeDesc::FLOAT, rgb.data() + c, 3 * sizeof(float),
+                         OIIO::AutoStride);
+    }
+    return rgb;
+}
+
+/// The windows around emitters and highlights where light is weighed (docs/evaluation-
+/// notes.md): pixels whose reference luminance is above both its 99.5th percentile and 4
+/// times its median, grown by 2 pixels within the image. The same rule as
+/// scripts/promise_check.py's.
+struct HighlightWindows {
+    std::vector<char> inside;
+    double reference_sum = 0;
+
+    HighlightWindows(const std::vector<float>& ref, int width, int height)
+        : inside(std::size_t(width) * height, 0)
+    {
+        const std::size_t n = inside.size();
+        std::vector<double> lum(n);
+        for (std::size_t i = 0; i < n; ++i)
+            lum[i] = luminance(double(ref[3 * i]), double(ref[3 * i + 1]), double(ref[3 * i + 2]));
+        std::vector<double> sorted = lum;
+        std::sort(sorted.begin(), sorted.end());
+        auto quantile = [&](double q) {  // linear interpolation, as numpy's percentile
+            const double at = q * double(n - 1);
+            const std::size_t lo = std::size_t(at);
+            const double frac = at - double(lo);
+            return lo + 1 < n ? sorted[lo] + frac * (sorted[lo + 1] - sorted[lo]) : sorted[lo];
+        };
+        const double threshold = std::max(quantile(0.995), 4 * quantile(0.5));
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                if (lum[std::size_t(y) * width + x] < threshold)
+                    continue;
+                for (int wy = std::max(0, y - 2); wy <= std::min(height - 1, y + 2); ++wy)
+                    for (int wx = std::max(0, x - 2); wx <= std::min(width - 1, x + 2); ++wx)
+                        inside[std::size_t(wy) * width + wx] = 1;
+            }
+        reference_sum = sum(ref);
+    }
+
+    /// The image's light in the windows over the reference's.
+    double energy(const std::vector<float>& rgb) const
+    {
+        return sum(rgb) / std::max(reference_sum, 1e-12);
+    }
+
+private:
+    double sum(const std::vector<float>& rgb) const
+    {
+        double total = 0;
+        for (std::size_t i = 0; i < inside.size(); ++i)
+            if (inside[i])
+                total += double(rgb[3 * i]) + rgb[3 * i + 1] + rgb[3 * i + 2];
+        return total;
+    }
+};
+
 int attribute(const OIIO::ImageBuf& in, const char* name)
 {
     return in.spec().get_int_attribute(name, -1);
@@ -221,7 +308,8 @@ int main(int argc, char** argv)
     app.add_option("--display-config", display_config, "OCIO config for DSSIM (Filmic view)");
     app.add_option("--external", externals,
                    "also score outside denoisers' results X.NAME.exr of each input X.exr, timed "
-                   "by their statmc:denoiseSeconds attribute (e.g. oidn,oidn-guides)")
+                   "by their statmc:denoiseSeconds attribute (e.g. oidn,oidn-guides; oidn-guides is "
+                   "verified too, as verified-oidn-guides)")
         ->delimiter(',')
         ->allow_extra_args(false);
     app.add_option("inputs", inputs, "noisy statistics EXRs")->required();
@@ -237,7 +325,9 @@ int main(int argc, char** argv)
         std::ofstream csv(csv_path, std::ios::app);
         if (fresh)
             csv << "scene,width,height,spp,seed,method,radius,render_seconds,denoise_seconds,rmse,"
-                   "mae,relmse,dssim\n";
+                   "mae,relmse,dssim,mse,energy\n";
+        const HighlightWindows windows(beauty_rgb(reference), reference.spec().width,
+                                       reference.spec().height);
         for (const std::string& path : inputs) {
             const OIIO::ImageBuf in = layers::read_image_file(path);
             const float render_seconds = in.spec().get_float_attribute("statmc:renderTime", -1.f);
@@ -250,7 +340,8 @@ int main(int argc, char** argv)
                 csv << scene << ',' << in.spec().width << ',' << in.spec().height << ','
                     << attribute(in, "statmc:spp") << ',' << attribute(in, "statmc:seed") << ','
                     << method << ',' << radius << ',' << render_seconds << ',' << seconds << ','
-                    << m.rmse << ',' << m.mae << ',' << m.relmse << ',' << m.dssim << '\n';
+                    << m.rmse << ',' << m.mae << ',' << m.relmse << ',' << m.dssim << ','
+                    << m.rmse * m.rmse << ',' << windows.energy(beauty_rgb(result)) << '\n';
                 std::printf("%s %s r=%d: %.3f s, RMSE %.4g relMSE %.4g DSSIM %.4g\n", path.c_str(),
                             method.c_str(), radius, seconds, m.rmse, m.relmse, m.dssim);
             };
@@ -268,7 +359,7 @@ int main(int argc, char** argv)
                 csv << scene << ',' << in.spec().width << ',' << in.spec().height << ','
                     << attribute(in, "statmc:spp") << ',' << attribute(in, "statmc:seed")
                     << ",reference-noise,0," << render_seconds << ",0," << std::sqrt(noise->mse)
-                    << ",nan," << noise->relmse << ",nan\n";
+                    << ",nan," << noise->relmse << ",nan," << noise->mse << ",nan\n";
             for (const Denoiser& method : methods()) {
                 if (!method.run) {
                     row(method.name, method.radius, 0.0, in);
@@ -283,8 +374,15 @@ int main(int argc, char** argv)
                 if (!std::ifstream(result_path).good())
                     throw std::runtime_error(result_path + ": missing (--external " + name + ")");
                 const OIIO::ImageBuf result = layers::read_image_file(result_path);
-                row(name, 0, result.spec().get_float_attribute("statmc:denoiseSeconds", -1.f),
-                    result);
+                const double seconds =
+                    result.spec().get_float_attribute("statmc:denoiseSeconds", -1.f);
+                row(name, 0, seconds, result);
+                if (name != kVerifiedCandidate)
+                    continue;
+                // Verified OIDN: its time is OIDN's and the verify step's together.
+                OIIO::ImageBuf verified;
+                const double s = median_seconds(runs, [&] { verified = run_verify(in, result); });
+                row("verified-" + name, 0, seconds + s, verified);
             }
         }
     } catch (const std::exception& e) {
