@@ -191,15 +191,16 @@ std::unique_ptr<detail::CudaFilter> gpu_for(const detail::FilterLayout& layout,
 
 void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
             const std::vector<Plane>& out, const FilterDiagnostics& diagnostics, int nthreads,
-            SimdLevel level)
+            SimdLevel level, const PixelMask& wanted)
 {
     check_arguments(est, options, out);
     const bool gpu = on_cuda(est, options);
     const detail::FilterKernel kernel = checked_kernel(level);
     run_with_threads(nthreads, [&] {
-        const detail::FilterLayout layout =
+        detail::FilterLayout layout =
             detail::make_filter_layout(est, guides, options, detail::guard_levels(est, options),
                                        nthreads, kernel, diagnostics.any());
+        detail::set_wanted(layout, wanted);
         if (const auto device = gpu_for(layout, options, gpu, false))
             device->run(layout, out, diagnostics);
         else
@@ -211,12 +212,15 @@ namespace detail {
 void filter_rungs(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
                   const std::vector<int>& radii, const std::vector<Plane>& out,
                   const FilterDiagnostics& diagnostics, int nthreads, SimdLevel level,
-                  const std::function<void(int radius)>& rung_done)
+                  const std::function<void(int radius)>& rung_done,
+                  const std::vector<PixelMask>& wanted)
 {
     check_arguments(est, options, out);
     for (std::size_t k = 0; k < radii.size(); ++k)
         if (radii[k] < 1 || radii[k] > options.radius || (k > 0 && radii[k] <= radii[k - 1]))
             throw std::invalid_argument("filter rungs: radii must ascend within [1, radius]");
+    if (!wanted.empty() && wanted.size() != radii.size())
+        throw std::invalid_argument("filter rungs: one pixel mask per rung, or none");
     const bool gpu = on_cuda(est, options);
     const FilterKernel kernel = checked_kernel(level);
     run_with_threads(nthreads, [&] {
@@ -231,8 +235,11 @@ void filter_rungs(const EstimatorImage& est, const Guides& guides, const Denoise
                 layout.carry[k] = sums.data() + k * layout.stride * std::size_t(est.height);
         }
         int inner = 0;
-        for (int radius : radii) {
+        for (std::size_t k = 0; k < radii.size(); ++k) {
+            const int radius = radii[k];
             set_window(layout, radius, inner);
+            if (!wanted.empty())
+                set_wanted(layout, wanted[k]);
             layout.carry_from_previous = inner > 0;
             if (device)
                 device->run(layout, out, diagnostics);

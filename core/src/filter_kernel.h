@@ -364,8 +364,16 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
     const bool carrying = kMayCarry && L.carry[4] != nullptr;
     for (int y = y0; y < y1; y += R) {
         const int rows = std::min(R, y1 - y);
+        // A chunk none of whose rows the call wants is skipped whole: its partial sums,
+        // carry and output are left as they are (PixelMask: unspecified there).
+        auto skipped = [&](int k) {
+            for (int r = 0; r < rows; ++r)
+                if (L.computes(y + r, k))
+                    return false;
+            return true;
+        };
         for (int k = chunk0; k < chunk1; ++k)
-            for (int r = 0; r < rows; ++r) {
+            for (int r = 0; r < rows && !skipped(k); ++r) {
                 Partial<V, NA>& p = partials[k - chunk0][r];
                 const std::ptrdiff_t at = std::ptrdiff_t(y + r) * L.stride + k * V::kWidth;
                 if constexpr (kMayCarry)
@@ -399,6 +407,8 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
         for (int wy0 = y - L.reach_y; wy0 <= last_row; wy0 += kBandRows) {
             const int wy1 = std::min(wy0 + kBandRows - 1, last_row);
             for (int k = chunk0; k < chunk1; ++k) {
+                if (skipped(k))
+                    continue;
                 if (rows == R)
                     add(Row<R>{}, k, wy0, wy1);
                 else
@@ -406,7 +416,7 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
             }
         }
         for (int k = chunk0; k < chunk1; ++k)
-            for (int r = 0; r < rows; ++r) {
+            for (int r = 0; r < rows && !skipped(k); ++r) {
                 const Partial<V, NA>& p = partials[k - chunk0][r];
                 if constexpr (kMayCarry)
                     if (carrying)

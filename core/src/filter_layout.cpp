@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <limits>
 #include <new>
+#include <stdexcept>
 #include <vector>
 
 #include <sys/mman.h>
@@ -151,6 +152,22 @@ void set_window(FilterLayout& L, int outer, int inner)
         L.half_width[dy + L.pad_y] = disk_half_width(L, outer, dy);
         L.inner_half_width[dy + L.pad_y] = disk_half_width(L, inner, dy);
     }
+}
+
+void set_wanted(FilterLayout& L, const PixelMask& mask)
+{
+    L.wanted.clear();
+    if (mask.empty())
+        return;
+    if (mask.size() != std::size_t(L.width) * L.height)
+        throw std::invalid_argument("filter: the pixel mask does not match the image");
+    L.wanted.assign(std::size_t(L.chunks) * L.height, 0);
+    tbb::parallel_for(0, L.height, [&](int y) {
+        const std::uint8_t* row = mask.data() + std::size_t(y) * L.width;
+        for (int x = 0; x < L.width; ++x)
+            if (row[x])
+                L.wanted[std::size_t(y) * L.chunks + x / L.lanes] = 1;
+    });
 }
 
 NoiseLevels guard_levels(const EstimatorImage& est, const DenoiseOptions& options)

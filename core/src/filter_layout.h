@@ -47,6 +47,13 @@ struct FilterLayout {
     {
         return guarded[std::size_t(y) * chunks + chunk] != 0;
     }
+    // Per output row and chunk: 0 where the call wants none of its pixels (PixelMask), and
+    // the kernel skips it. Empty: every chunk is computed.
+    std::vector<std::uint8_t> wanted;
+    bool computes(int y, int chunk) const
+    {
+        return wanted.empty() || wanted[std::size_t(y) * chunks + chunk] != 0;
+    }
     const float* value[kMaxEstimatorChannels] = {};  // F, what is averaged
     const float* inverse_count = nullptr;            // 1/n (0 in the padding), for diagnostics only
     int guide_count = 0;                             // 0, 3 (albedo or normal) or 6 (both)
@@ -118,6 +125,9 @@ FilterLayout make_filter_layout(const EstimatorImage& est, const Guides& guides,
                                 int nthreads, const FilterKernel& kernel,
                                 bool with_inverse_count = false);
 
+/// Marks the chunks holding a pixel of `mask` (empty: all of them) in layout.wanted.
+void set_wanted(FilterLayout& layout, const PixelMask& mask);
+
 /// Makes the layout walk the annulus inner < |d| ≤ outer (radii ≤ the layout's own; inner
 /// 0 is the whole disk less the centre).
 void set_window(FilterLayout& layout, int outer, int inner);
@@ -127,11 +137,13 @@ void set_window(FilterLayout& layout, int outer, int inner);
 /// pass of the largest radius. After each rung, `out` and `diagnostics` hold that rung's
 /// result and `rung_done(radius)` is called (serially). A rung sums its taps in another
 /// order than filter() at its radius, so it agrees with it to float rounding; bitwise the
-/// same for any thread count.
+/// same for any thread count. `wanted`: empty, or one PixelMask per rung, each a subset of
+/// the one before (a pixel's sums carry from rung to rung).
 void filter_rungs(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
                   const std::vector<int>& radii, const std::vector<Plane>& out,
                   const FilterDiagnostics& diagnostics, int nthreads, SimdLevel level,
-                  const std::function<void(int radius)>& rung_done);
+                  const std::function<void(int radius)>& rung_done,
+                  const std::vector<PixelMask>& wanted = {});
 
 /// The channel counts the kernels are built for: 1 to 4, and 6, 9 and 12 (joint AOVs).
 constexpr bool kernel_takes_channels(int channels)

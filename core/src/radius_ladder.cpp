@@ -25,12 +25,27 @@ std::vector<int> rungs(const RadiusLadderOptions& ladder, int radius)
     return r;
 }
 
+// `mask` grown by one pixel in every direction (to its 8-neighbours).
+PixelMask grown(const PixelMask& mask, int w, int h)
+{
+    PixelMask out(mask.size());
+    tbb::parallel_for(0, h, [&](int y) {
+        for (int yy = std::max(0, y - 1); yy <= std::min(h - 1, y + 1); ++yy) {
+            const std::uint8_t* in = mask.data() + std::size_t(yy) * w;
+            std::uint8_t* row = out.data() + std::size_t(y) * w;
+            for (int x = 0; x < w; ++x)
+                row[x] |= (in[x] != 0) | (x > 0 && in[x - 1] != 0) | (x + 1 < w && in[x + 1] != 0);
+        }
+    });
+    return out;
+}
+
 }  // namespace
 
 void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage& est,
                                const Guides& guides, const DenoiseOptions& options,
                                const std::vector<Plane>& out, const RadiusLadderOptions& ladder,
-                               int nthreads)
+                               int nthreads, const PixelMask& wanted)
 {
     if (!(ladder.alpha > 0 && ladder.alpha < 1))
         throw std::invalid_argument("radius ladder: alpha must be in (0, 1)");
@@ -40,11 +55,25 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
         throw std::invalid_argument("radius ladder: fewer output planes than channels");
     if (stats.width != est.width || stats.height != est.height || stats.channels > est.channels)
         throw std::invalid_argument("radius ladder: statistics and estimators differ in shape");
-    const std::vector<float> variance =
-        denoise_variances(stats, TestDomain::Untransformed, guides, ladder.variance, nthreads);
-    const double z = normal_critical_value(ladder.alpha);
+    if (!wanted.empty() && wanted.size() != est.pixels())
+        throw std::invalid_argument("radius ladder: the pixel mask does not match the image");
     const int w = est.width, h = est.height, channels = stats.channels;
     const std::size_t pixels = est.pixels();
+    const std::vector<int> radii = rungs(ladder, options.radius);
+    // A pixel's state after rung k depends on its own after rung k − 1 and on its
+    // 8-neighbours' rung-k values and states after rung k − 1 (the lone-stop rule). So of K
+    // rungs, rung k is walked for the pixels within K − k + 1 of a wanted one, and the
+    // first rung and the intervals cover those within K.
+    std::vector<PixelMask> walked(wanted.empty() ? 0 : radii.size());
+    if (!wanted.empty())
+        run_with_threads(nthreads, [&] {
+            for (std::size_t k = radii.size(); k-- > 0;)
+                walked[k] = grown(k + 1 < radii.size() ? walked[k + 1] : wanted, w, h);
+        });
+    const PixelMask near = walked.empty() ? PixelMask{} : walked.front();
+    const std::vector<float> variance = denoise_variances(
+        stats, TestDomain::Untransformed, guides, ladder.variance, nthreads, SimdLevel::Auto, near);
+    const double z = normal_critical_value(ladder.alpha);
 
     // Rung 0: the pixel's own mean and its interval. `lo`/`hi` hold the running
     // intersection; `open` says the pixel may still take a larger radius.
@@ -59,7 +88,7 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
             for (int x = 0; x < w; ++x) {
                 const std::size_t i = std::size_t(y) * w + x;
                 const double n = est.count[i];
-                open[i] = n >= 2;
+                open[i] = n >= 2 && (near.empty() || near[i]);
                 for (int c = 0; c < channels; ++c) {
                     const std::size_t k = c * pixels + i;
                     const double v = est.value[k];
@@ -136,8 +165,8 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
             }
         });
     };
-    detail::filter_rungs(est, guides, options, rungs(ladder, options.radius), rung_planes,
-                         diagnostics, nthreads, SimdLevel::Auto, take_rung);
+    detail::filter_rungs(est, guides, options, radii, rung_planes, diagnostics, nthreads,
+                         SimdLevel::Auto, take_rung, walked);
 }
 
 }  // namespace statmc

@@ -208,9 +208,11 @@ detail::VarianceKernel kernel_at(SimdLevel level)
 
 std::vector<float> denoise_variances(const StatisticsView& view, TestDomain domain,
                                      const Guides& guides, const VarianceFilterOptions& options,
-                                     int nthreads, SimdLevel level)
+                                     int nthreads, SimdLevel level, const PixelMask& wanted)
 {
     require_valid(view, domain, options);
+    if (!wanted.empty() && wanted.size() != std::size_t(view.width) * view.height)
+        throw std::invalid_argument("variance filter: the pixel mask does not match the image");
     const detail::VarianceKernel kernel = kernel_at(level);
     const DomainPlanes d = planes_of(view, domain);
     const double z = normal_critical_value(options.alpha);
@@ -234,6 +236,15 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
         fill_taps_and_guides(view, guides, options, L);
         fill_pixel_planes(view, d, z, moderate, L);
         tbb::parallel_for(0, L.height, [&](int y) {
+            // Unwanted pixels (PixelMask) are skipped, chunks of the kernel's width whole.
+            const std::uint8_t* want =
+                wanted.empty() ? nullptr : wanted.data() + std::size_t(y) * L.width;
+            auto any_wanted = [&](int from, int to) {
+                return !want || std::any_of(want + from, want + to,
+                                            [](std::uint8_t v) { return v != 0; });
+            };
+            if (!any_wanted(0, L.width))
+                return;
             std::vector<detail::VarianceSums> row(L.width);
             for (int x = 0; x < L.width; ++x)
                 row[x] = own_terms(L, std::size_t(y) * L.width + x);
@@ -242,11 +253,14 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
             int x = 0;
             if (kernel.add_disk && L.interior(L.radius, y))
                 for (x = L.radius; x + kernel.lanes <= L.width - L.radius; x += kernel.lanes)
-                    kernel.add_disk(L, x, y, &row[x]);
+                    if (any_wanted(x, x + kernel.lanes))
+                        kernel.add_disk(L, x, y, &row[x]);
             for (int rest = 0; rest < L.width; ++rest)
-                if (rest < L.radius || rest >= x)
+                if ((rest < L.radius || rest >= x) && any_wanted(rest, rest + 1))
                     add_disk_scalar(L, rest, y, row[rest]);
             for (int xx = 0; xx < L.width; ++xx) {
+                if (!any_wanted(xx, xx + 1))
+                    continue;
                 const std::size_t p = std::size_t(y) * L.width + xx;
                 const double count = view.count(xx, y);
                 const detail::VarianceSums& s = row[xx];

@@ -184,5 +184,104 @@ TEST(RadiusLadder, ALonePixelOfItsOwnIsNotAveragedAway)
     EXPECT_EQ(laddered(stats, DenoiseOptions{}, the_defaults_ladder())[p], stats.mean[p]);
 }
 
+// An image where the ladder stops often: an edge between two levels, heavy-tailed
+// (exponential) samples, few of them, and a size that is no multiple of a SIMD width.
+StatisticsPlanes edge_with_heavy_tails(int w, int h, std::uint64_t seed)
+{
+    std::mt19937_64 rng(seed);
+    std::exponential_distribution<float> unit(1.f);
+    StatisticsImage<1> img(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int s = 0; s < 8; ++s) {
+                const float v = (2 * x + y < w ? 0.5f : 2.f) * unit(rng);
+                img.add(x, y, &v);
+            }
+    return img.planes();
+}
+
+// The wanted pixels of `mask` out of the ladder (or, `ladder` null, the plain filter) with
+// and without the mask: the first must be the second's bits.
+void expect_masked_bits(const StatisticsPlanes& stats, int w, const PixelMask& mask,
+                        const DenoiseOptions& options, const RadiusLadderOptions* ladder)
+{
+    const EstimatorImage est = estimators_from_statistics(stats.view(), TestDomain::BoxCox);
+    auto run = [&](const PixelMask& wanted) {
+        std::vector<float> out(est.value.size(), -1.f);
+        const std::vector<Plane> planes = {dense_plane(out.data(), w)};
+        if (ladder)
+            filter_with_radius_ladder(stats.view(), est, {}, options, planes, *ladder, 0, wanted);
+        else
+            filter(est, {}, options, planes, {}, 0, SimdLevel::Auto, wanted);
+        return out;
+    };
+    const std::vector<float> full = run({}), masked = run(mask);
+    int compared = 0, moved = 0;
+    for (std::size_t i = 0; i < mask.size(); ++i)
+        if (mask[i]) {
+            ASSERT_EQ(masked[i], full[i]) << "pixel " << i % w << "," << i / w
+                                          << (ladder ? " (ladder)" : " (filter)");
+            ++compared;
+            moved += full[i] != stats.mean[i];
+        }
+    EXPECT_GT(moved, compared / 2);  // the pixels compared were denoised
+}
+
+TEST(RadiusLadder, AMaskedLadderGivesTheWantedPixelsTheFullLaddersBits)
+{
+    // An edge, heavy tails, few samples and a size no SIMD width divides: scattered
+    // pixels, both corners and a whole row, through the default's ladder and the filter.
+    constexpr int w = 61, h = 37;
+    const StatisticsPlanes edge = edge_with_heavy_tails(w, h, 7);
+    std::mt19937_64 rng(8);
+    std::bernoulli_distribution pick(0.03);
+    PixelMask wanted(std::size_t(w) * h, 0);
+    for (auto& v : wanted)
+        v = pick(rng);
+    wanted.front() = wanted.back() = 1;
+    std::fill(wanted.begin() + 20 * w, wanted.begin() + 21 * w, 1);
+    const RadiusLadderOptions ladder = the_defaults_ladder();
+    expect_masked_bits(edge, w, wanted, DenoiseOptions{}, &ladder);
+    expect_masked_bits(edge, w, wanted, DenoiseOptions{}, nullptr);
+    // The moderated variances the intervals read, likewise.
+    const std::vector<float> all = denoise_variances(edge.view(), TestDomain::Untransformed, {},
+                                                     ladder.variance),
+                             some = denoise_variances(edge.view(), TestDomain::Untransformed,
+                                                      {}, ladder.variance, 0, SimdLevel::Auto,
+                                                      wanted);
+    for (std::size_t i = 0; i < wanted.size(); ++i)
+        if (wanted[i]) {
+            ASSERT_EQ(some[i], all[i]) << "variance at " << i % w << "," << i / w;
+        }
+    const EstimatorImage est = estimators_from_statistics(edge.view(), TestDomain::BoxCox);
+    std::vector<float> out(est.value.size());
+    EXPECT_THROW(filter_with_radius_ladder(edge.view(), est, {}, DenoiseOptions{},
+                                           {dense_plane(out.data(), w)}, ladder, 0,
+                                           PixelMask(10, 1)),
+                 std::invalid_argument);
+}
+
+TEST(RadiusLadder, AMaskedLoneStopIsStillOverruledByTheNeighboursItDoesNotWant)
+{
+    // Steady pixels (ALoneStopWhereEveryNeighbourGoesOnIsOverruled) on a grid, the mask
+    // wanting them alone: each is overruled only because its unwanted neighbours go on, so
+    // the ladder must still walk and judge those.
+    StatisticsImage<1> img(kSize, kSize);
+    std::mt19937_64 rng(9);
+    std::normal_distribution<float> noise(kTruth, kSigma);
+    PixelMask steady(std::size_t(kSize) * kSize, 0);
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const bool own = x % 6 == 3 && y % 6 == 3;
+            steady[std::size_t(y) * kSize + x] = own;
+            for (int s = 0; s < kSpp; ++s) {
+                const float v = own ? kTruth + 0.3f * kSigma + (s % 2 ? 1e-4f : -1e-4f) : noise(rng);
+                img.add(x, y, &v);
+            }
+        }
+    const RadiusLadderOptions overruling = unmoderated(true);
+    expect_masked_bits(img.planes(), kSize, steady, DenoiseOptions::paper(), &overruling);
+}
+
 }  // namespace
 }  // namespace statmc

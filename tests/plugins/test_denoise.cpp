@@ -368,6 +368,50 @@ TEST(DenoiseOperator, RoiAtTheCornerAndDataWindowOffset)
               "the ROI does not overlap the data window");
 }
 
+TEST(DenoiseOperator, APixelMaskComputesItsPixelsAloneAndKeepsTheRest)
+{
+    // The default method (ladder, context test, guides) on a shifted data window: the
+    // pixels the mask wants inside the ROI come out as the full denoise's, bit for bit;
+    // every other pixel keeps its input. In place too.
+    Frame f;
+    OIIO::ImageBuf shifted = f.image;
+    shifted.set_origin(-7, 30);
+    DenoiseImageOptions o;
+    o.guides.albedo = o.guides.normal = GuideUse::Required;
+    const OIIO::ImageBuf full = denoise(shifted, o);
+    ASSERT_FALSE(full.has_error()) << full.geterror();
+    PixelMask where(std::size_t(kW) * kH, 0);
+    for (std::size_t i = 0; i < where.size(); i += 7)
+        where[i] = 1;
+    where.front() = where.back() = 1;
+    const OIIO::ROI roi(-7, -7 + kW - 3, 31, 30 + kH);  // all but a column strip and row 0
+    OIIO::ImageBuf in_place = shifted;
+    ASSERT_TRUE(denoise(in_place, in_place, where, o, roi)) << in_place.geterror();
+    OIIO::ImageBuf copy;
+    ASSERT_TRUE(denoise(copy, shifted, where, o, roi)) << copy.geterror();
+    for (const OIIO::ImageBuf* out : {&in_place, &copy}) {
+        int computed = 0, moved = 0;
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const bool wanted = where[std::size_t(y) * kW + x] && roi.contains(x - 7, y + 30);
+                computed += wanted;
+                moved += wanted && channel_value(full, "R", x - 7, y + 30) !=
+                                       channel_value(shifted, "R", x - 7, y + 30);
+                const OIIO::ImageBuf& expected = wanted ? full : shifted;
+                for (const char* c : {"R", "G", "B"})
+                    ASSERT_TRUE(same_bits(channel_value(*out, c, x - 7, y + 30),
+                                          channel_value(expected, c, x - 7, y + 30)))
+                        << c << " at (" << x << ", " << y << ") wanted=" << wanted;
+            }
+        EXPECT_GT(computed, kW * kH / 8);
+        EXPECT_GT(moved, computed / 2);  // the pixels compared were denoised
+    }
+    OIIO::ImageBuf out;
+    EXPECT_FALSE(denoise(out, shifted, PixelMask(5, 1), o));
+    EXPECT_NE(out.geterror().find("the pixel mask has 5 entries"), std::string::npos)
+        << out.geterror();
+}
+
 TEST(DenoiseOperator, EveryOtherChannelAndAttributeIsKept)
 {
     Frame f;

@@ -61,7 +61,8 @@ void record(OIIO::ImageBuf& result, const DenoiseImageOptions& opt,
 }
 
 bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNeighbours& neighbours,
-                  const DenoiseImageOptions& opt, const OIIO::ROI& roi, int nthreads)
+                  const PixelMask& where, const DenoiseImageOptions& opt, const OIIO::ROI& roi,
+                  int nthreads)
 {
     denoising::check_input(src);
     if (const std::string why = opt.validate(); !why.empty())
@@ -88,9 +89,11 @@ bool denoise_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNei
     std::vector<std::string> skipped;
     for (const DenoiseImageOptions& run : runs_of(opt)) {
         if (work) {
-            add_notes(skipped, denoising::denoise_layer(*work, *work, frames, run, roi, nthreads));
+            add_notes(skipped,
+                      denoising::denoise_layer(*work, *work, frames, run, roi, where, nthreads));
         } else {
-            add_notes(skipped, denoising::denoise_layer(in, copy, frames, run, roi, nthreads));
+            add_notes(skipped,
+                      denoising::denoise_layer(in, copy, frames, run, roi, where, nthreads));
             work = &copy;
         }
     }
@@ -117,8 +120,17 @@ bool denoise(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseImageO
 bool denoise(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const FrameNeighbours& neighbours,
              const DenoiseImageOptions& opt, OIIO::ROI roi, int nthreads)
 {
-    return layers::errors_on(
-        dst, "denoise", [&] { return denoise_impl(dst, src, neighbours, opt, roi, nthreads); });
+    return layers::errors_on(dst, "denoise", [&] {
+        return denoise_impl(dst, src, neighbours, PixelMask{}, opt, roi, nthreads);
+    });
+}
+
+bool denoise(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const PixelMask& where,
+             const DenoiseImageOptions& opt, OIIO::ROI roi, int nthreads)
+{
+    return layers::errors_on(dst, "denoise", [&] {
+        return denoise_impl(dst, src, FrameNeighbours{}, where, opt, roi, nthreads);
+    });
 }
 
 OIIO::ImageBuf denoise(const OIIO::ImageBuf& src, const FrameNeighbours& neighbours,

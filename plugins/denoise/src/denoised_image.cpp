@@ -32,6 +32,8 @@ void write_channels(OIIO::ImageBuf& image, const OIIO::ImageBuf* source,
                 const std::ptrdiff_t row =
                     std::ptrdiff_t(y - input.ybegin) * input.width() - input.xbegin;
                 for (int x = out.xbegin; x < out.xend; ++x) {
+                    if (!regions.writes(x, y))
+                        continue;
                     float* pixel = to + std::size_t(x - spec.x) * spec.nchannels;
                     for (const ChannelWrite& w : writes)
                         pixel[w.channel] = w.dense[row + x];

@@ -46,7 +46,7 @@ layers::GuidePlanes guides_of(const OIIO::ImageBuf& in, const GuideSelection& us
 
 std::string denoise_layer(const OIIO::ImageBuf& in, OIIO::ImageBuf& out,
                           const FrameNeighbours& neighbours, const DenoiseImageOptions& run,
-                          const OIIO::ROI& roi, int nthreads)
+                          const OIIO::ROI& roi, const PixelMask& where, int nthreads)
 {
     const OIIO::ImageSpec& spec = in.spec();
     const StatisticsChannels all = layers::find_statistics(spec, run.aov);
@@ -54,7 +54,7 @@ std::string denoise_layer(const OIIO::ImageBuf& in, OIIO::ImageBuf& out,
     JointAovs joint = plan_joint_aovs(spec, all, domain, run);
     const Stages stages = stages_for(all, joint.side_by_side, run);
     const StatisticsChannels ch = used_channels(all, domain, stages.radius_ladder);
-    const Regions regions = regions_for(in, roi, run.filter.radius + stages.halo());
+    const Regions regions = regions_for(in, roi, run.filter.radius + stages.halo(), where);
     check_statistics(in, ch, run, regions.input);
     check_joint_aovs(in, joint, domain, run, regions.input);
     const layers::GuidePlanes guides = guides_of(in, run.guides);
@@ -85,7 +85,8 @@ std::string denoise_layer(const OIIO::ImageBuf& in, OIIO::ImageBuf& out,
         for (const StatisticsChannels& aov_ch : joint.channels)
             views.push_back(aov_window(aov_ch));
         std::vector<Filtered> together =
-            filter_joint_all(window, views, domain, window_guides, run.filter, nthreads);
+            filter_joint_all(window, views, domain, window_guides, run.filter, regions.wanted,
+                             nthreads);
         filtered = std::move(together[0]);
         joint_filtered.assign(std::make_move_iterator(together.begin() + 1),
                               std::make_move_iterator(together.end()));
@@ -94,10 +95,12 @@ std::string denoise_layer(const OIIO::ImageBuf& in, OIIO::ImageBuf& out,
         EstimatorImage lead =
             lead_estimators(window, domain, run.filter, stages.context_radius, nthreads);
         filtered = filter_region(window, lead, window_guides, run.filter, run.diagnostics,
-                                 stages.radius_ladder ? &stages.ladder : nullptr, nthreads);
+                                 stages.radius_ladder ? &stages.ladder : nullptr, regions.wanted,
+                                 nthreads);
         for (const StatisticsChannels& aov_ch : joint.channels)
             joint_filtered.push_back(
-                filter_joint_aov(lead, aov_window(aov_ch), window_guides, run.filter, nthreads));
+                filter_joint_aov(lead, aov_window(aov_ch), window_guides, run.filter,
+                                 regions.wanted, nthreads));
     }
 
     if (&out == &in)

@@ -13,9 +13,10 @@ namespace statmc::denoising {
 /// Denoises `run.aov` (and, with `run.joint`, the AOVs it lists) of `in`, local float
 /// pixels under the contract's names, into `out`: `in` itself (in place, ImageBufAlgo's
 /// dst == src) or an image that becomes a float copy of `in`. Returns the stages of the
-/// method left out, and why ("" when none). Throws on a missing layer or bad statistics.
+/// method left out, and why ("" when none). `where`: only those pixels of the data window
+/// (PixelMask; empty: all). Throws on a missing layer or bad statistics.
 std::string denoise_layer(const OIIO::ImageBuf& in, OIIO::ImageBuf& out,
                           const FrameNeighbours& neighbours, const DenoiseImageOptions& run,
-                          const OIIO::ROI& roi, int nthreads);
+                          const OIIO::ROI& roi, const PixelMask& where, int nthreads);
 
 }  // namespace statmc::denoising

@@ -20,7 +20,7 @@ EstimatorImage lead_estimators(const StatisticsView& stats, TestDomain domain,
 
 Filtered filter_region(const StatisticsView& stats, const EstimatorImage& est, const Guides& guides,
                        const DenoiseOptions& options, bool diagnostics,
-                       const RadiusLadderOptions* ladder, int nthreads)
+                       const RadiusLadderOptions* ladder, const PixelMask& wanted, int nthreads)
 {
     const std::size_t pixels = std::size_t(stats.width) * stats.height;
     Filtered f;
@@ -37,14 +37,15 @@ Filtered filter_region(const StatisticsView& stats, const EstimatorImage& est, c
     }
     if (ladder)
         filter_with_radius_ladder(stats, est, guides, options, out, *ladder,
-                                  layers::thread_count(nthreads));
+                                  layers::thread_count(nthreads), wanted);
     else
-        filter(est, guides, options, out, planes, layers::thread_count(nthreads));
+        filter(est, guides, options, out, planes, layers::thread_count(nthreads), SimdLevel::Auto,
+               wanted);
     return f;
 }
 
 Filtered filter_joint_aov(EstimatorImage& lead, const StatisticsView& aov, const Guides& guides,
-                          const DenoiseOptions& options, int nthreads)
+                          const DenoiseOptions& options, const PixelMask& wanted, int nthreads)
 {
     const int own = lead.channels - lead.context_channels;  // the context's are only tested
     for (int c = 0; c < own; ++c)
@@ -56,14 +57,14 @@ Filtered filter_joint_aov(EstimatorImage& lead, const StatisticsView& aov, const
     std::vector<Plane> out;
     for (int c = 0; c < own; ++c)
         out.push_back(dense_plane(f.means.data() + c * lead.pixels(), lead.width));
-    filter(lead, guides, options, out, {}, layers::thread_count(nthreads));
+    filter(lead, guides, options, out, {}, layers::thread_count(nthreads), SimdLevel::Auto, wanted);
     return f;
 }
 
 std::vector<Filtered> filter_joint_all(const StatisticsView& lead,
                                        const std::vector<StatisticsView>& aovs, TestDomain domain,
                                        const Guides& guides, const DenoiseOptions& options,
-                                       int nthreads)
+                                       const PixelMask& wanted, int nthreads)
 {
     std::vector<EstimatorImage> parts = {estimators_from_statistics(lead, domain)};
     for (const StatisticsView& aov : aovs)
@@ -79,7 +80,7 @@ std::vector<Filtered> filter_joint_all(const StatisticsView& lead,
     std::vector<Plane> out;
     for (int c = 0; c < all.channels; ++c)
         out.push_back(dense_plane(means.data() + c * all.pixels(), all.width));
-    filter(all, guides, options, out, {}, layers::thread_count(nthreads));
+    filter(all, guides, options, out, {}, layers::thread_count(nthreads), SimdLevel::Auto, wanted);
     std::vector<Filtered> result(parts.size());
     std::size_t at = 0;
     for (std::size_t k = 0; k < parts.size(); ++k) {

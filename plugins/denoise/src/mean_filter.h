@@ -26,17 +26,17 @@ EstimatorImage lead_estimators(const StatisticsView& stats, TestDomain domain,
 /// ICI radius (no diagnostics then).
 Filtered filter_region(const StatisticsView& stats, const EstimatorImage& est, const Guides& guides,
                        const DenoiseOptions& options, bool diagnostics,
-                       const RadiusLadderOptions* ladder, int nthreads);
+                       const RadiusLadderOptions* ladder, const PixelMask& wanted, int nthreads);
 /// An AOV averaged with the members and weights of the lead's test: `lead`, the lead's
 /// estimators, with the AOV's means put in as the values (docs/method.md §14).
 Filtered filter_joint_aov(EstimatorImage& lead, const StatisticsView& aov, const Guides& guides,
-                          const DenoiseOptions& options, int nthreads);
+                          const DenoiseOptions& options, const PixelMask& wanted, int nthreads);
 /// The lead and every joint AOV filtered as one image whose test is all of theirs
 /// (side_by_side): one membership and one set of weights for every channel, so sums hold.
 /// Returns the lead's output and each AOV's, in order.
 std::vector<Filtered> filter_joint_all(const StatisticsView& lead,
                                        const std::vector<StatisticsView>& aovs, TestDomain domain,
                                        const Guides& guides, const DenoiseOptions& options,
-                                       int nthreads);
+                                       const PixelMask& wanted, int nthreads);
 
 }  // namespace statmc::denoising

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 #include "statmc/layers/layer_error.h"
 #include "statmc/layers/layer_lookup.h"
@@ -13,7 +14,8 @@ using layers::LayerError;
 using layers::Statistic;
 using layers::StatisticsChannels;
 
-Regions regions_for(const OIIO::ImageBuf& src, const OIIO::ROI& roi, int radius)
+Regions regions_for(const OIIO::ImageBuf& src, const OIIO::ROI& roi, int radius,
+                    const PixelMask& where)
 {
     const OIIO::ROI data = src.roi();
     const OIIO::ROI output = roi.defined() ? OIIO::roi_intersection(roi, data) : data;
@@ -24,7 +26,20 @@ Regions regions_for(const OIIO::ImageBuf& src, const OIIO::ROI& roi, int radius)
     input.xend += radius;
     input.ybegin -= radius;
     input.yend += radius;
-    return {output, OIIO::roi_intersection(input, data)};
+    Regions r{output, OIIO::roi_intersection(input, data), {}};
+    if (where.empty())
+        return r;
+    const OIIO::ImageSpec& spec = src.spec();
+    if (where.size() != spec.image_pixels())
+        throw std::invalid_argument("the pixel mask has " + std::to_string(where.size()) +
+                                    " entries for a data window of " +
+                                    std::to_string(spec.image_pixels()) + " pixels");
+    r.wanted.assign(std::size_t(r.input.width()) * r.input.height(), 0);
+    for (int y = output.ybegin; y < output.yend; ++y)
+        for (int x = output.xbegin; x < output.xend; ++x)
+            r.wanted[std::size_t(y - r.input.ybegin) * r.input.width() + (x - r.input.xbegin)] =
+                where[std::size_t(y - spec.y) * spec.width + (x - spec.x)] != 0;
+    return r;
 }
 
 TestDomain choose_domain(const OIIO::ImageSpec& spec, const StatisticsChannels& ch,

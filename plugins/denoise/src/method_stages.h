@@ -16,12 +16,23 @@ namespace statmc::denoising {
 
 // What is written (the ROI within the data window) and what the filter reads: the ROI
 // grown by the radius, so that ROI pixels come out exactly as in a full-frame run.
+// `wanted`, over `input` (empty: all of `output`): the pixels of `output` that a masked
+// denoise computes and writes (PixelMask).
 struct Regions {
     OIIO::ROI output;
     OIIO::ROI input;
+    PixelMask wanted;
+
+    bool writes(int x, int y) const
+    {
+        return wanted.empty() ||
+               wanted[std::size_t(y - input.ybegin) * input.width() + (x - input.xbegin)];
+    }
 };
 
-Regions regions_for(const OIIO::ImageBuf& src, const OIIO::ROI& roi, int radius);
+/// `where`: the denoise's mask over `src`'s data window (empty: every pixel).
+Regions regions_for(const OIIO::ImageBuf& src, const OIIO::ROI& roi, int radius,
+                    const PixelMask& where);
 
 /// The domain `choice` resolves to for `ch`; a missing layer it needs is a LayerError.
 TestDomain choose_domain(const OIIO::ImageSpec& spec, const layers::StatisticsChannels& ch,

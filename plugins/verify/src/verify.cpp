@@ -189,7 +189,7 @@ bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in, const OIIO::
     if (box.defined() && opt.fallback == VerifyFallback::Denoise) {
         DenoiseImageOptions contract = opt.denoise;
         contract.from = "statmc";
-        if (!denoise(dst, dst, contract, box, nthreads))
+        if (!denoise(dst, dst, rejected, contract, box, nthreads))
             return false;
     }
     // Planes of dst over its data window, as cand's are: (0, 0) is (spec.x, spec.y).

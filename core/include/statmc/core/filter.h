@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "statmc/core/denoise_options.h"
@@ -39,6 +40,12 @@ struct FilterDiagnostics {
     bool any() const { return members || weight_sum || effective_samples; }
 };
 
+/// The pixels a call must compute when not all are needed (verify's fallback): one byte per
+/// pixel, row-major over the image, non-zero where wanted. Outputs elsewhere are
+/// unspecified; at the wanted pixels they are bitwise those of a call without the mask.
+/// Empty: every pixel.
+using PixelMask = std::vector<std::uint8_t>;
+
 /// Instruction sets the filter kernel is built for.
 enum class SimdLevel { Auto, Scalar, Avx2, Avx512 };
 
@@ -63,10 +70,11 @@ bool filter_takes_channels(int channels);
 /// refuses, too few output planes, or an unavailable SIMD level; std::runtime_error when
 /// device is Cuda and no GPU can run it (or the image has more than four channels), with
 /// the reason.
-/// nthreads: 0 = all, 1 = the calling thread only.
+/// nthreads: 0 = all, 1 = the calling thread only. `wanted`: only those pixels (PixelMask);
+/// the kernel skips chunks of its width without one.
 void filter(const EstimatorImage& est, const Guides& guides, const DenoiseOptions& options,
             const std::vector<Plane>& out, const FilterDiagnostics& diagnostics = {},
-            int nthreads = 0, SimdLevel level = SimdLevel::Auto);
+            int nthreads = 0, SimdLevel level = SimdLevel::Auto, const PixelMask& wanted = {});
 
 /// A plain, unoptimised double-precision implementation of docs/method.md §5, the yardstick
 /// that the fast filter is tested and benchmarked against. Single-threaded.

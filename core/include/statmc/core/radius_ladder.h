@@ -36,10 +36,13 @@ struct RadiusLadderOptions {
 /// (stats.has_moments()). `est` may hold channels beyond stats' (the context channel,
 /// context_channel.h): they take part in the test, while the intervals and `out` are
 /// stats' channels alone. Pixels with n < 2 keep their value. Bitwise identical for any
-/// thread count. Throws std::invalid_argument for bad options or missing planes.
+/// thread count. `wanted`: only those pixels (PixelMask); the walk and the intervals then
+/// cover them and the pixels within one per rung of them, which the lone-stop rule reads.
+/// Throws std::invalid_argument for bad options or missing planes.
 void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage& est,
                                const Guides& guides, const DenoiseOptions& options,
                                const std::vector<Plane>& out,
-                               const RadiusLadderOptions& ladder = {}, int nthreads = 0);
+                               const RadiusLadderOptions& ladder = {}, int nthreads = 0,
+                               const PixelMask& wanted = {});
 
 }  // namespace statmc

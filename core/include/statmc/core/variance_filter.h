@@ -42,11 +42,13 @@ struct VarianceFilterOptions {
 /// weights are the spatial Gaussian times the guides' Gaussians when `guides` has them, as
 /// in the mean filter (docs/method.md §5; the centre has weight 1). Deterministic: the same
 /// result for any `nthreads` (0 = all cores) and any `level` (the SIMD kernels add the same
-/// double products in the same order as the scalar loop). Throws std::invalid_argument for
-/// bad options, a view without those planes, or a level this CPU cannot run.
+/// double products in the same order as the scalar loop). `wanted`: only those pixels
+/// (PixelMask). Throws std::invalid_argument for bad options, a view without those planes,
+/// or a level this CPU cannot run.
 std::vector<float> denoise_variances(const StatisticsView& view, TestDomain domain,
                                      const Guides& guides = {},
                                      const VarianceFilterOptions& options = {}, int nthreads = 0,
-                                     SimdLevel level = SimdLevel::Auto);
+                                     SimdLevel level = SimdLevel::Auto,
+                                     const PixelMask& wanted = {});
 
 }  // namespace statmc

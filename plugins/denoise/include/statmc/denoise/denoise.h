@@ -6,6 +6,7 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include "statmc/core/filter.h"
 #include "statmc/denoise/denoise_image_options.h"
 
 namespace statmc {
@@ -38,6 +39,14 @@ bool denoise(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const DenoiseImageO
 /// The return-value form: check `has_error()` on the result.
 OIIO::ImageBuf denoise(const OIIO::ImageBuf& src, const DenoiseImageOptions& opt,
                        OIIO::ROI roi = {}, int nthreads = 0);
+
+/// The same over the pixels of `roi` where `where` is non-zero (PixelMask: one byte per
+/// pixel of `src`'s data window, row-major; empty: every pixel). Those come out bitwise as
+/// in the full denoise; every other pixel keeps its input values, as outside `roi`. The
+/// filter skips what no wanted pixel needs; the image's preparation (estimators, variances)
+/// is still whole. verify's fallback runs it on the pixels it rejects.
+bool denoise(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const PixelMask& where,
+             const DenoiseImageOptions& opt, OIIO::ROI roi = {}, int nthreads = 0);
 
 /// The frames around `src` in a sequence, nearest first: previous[0] is frame t − 1,
 /// next[0] frame t + 1. At a sequence's ends one side is shorter or empty.

@@ -38,9 +38,9 @@ struct VerifyOptions {
 ///
 /// `src` needs the AOV's variance and sample count (docs/exr-layers.md; a renderer's
 /// preset maps them); `candidate` the same data window and a three-channel layer, finite
-/// inside `roi`. The fallback's denoise runs only over the smallest box holding
-/// every rejected pixel (none when nothing is rejected). Bitwise the same for any `nthreads` (0 =
-/// OIIO's "threads").
+/// inside `roi`. The fallback's denoise computes the rejected pixels alone (a masked
+/// denoise, bitwise the full one's values there; none when nothing is rejected). Bitwise
+/// the same for any `nthreads` (0 = OIIO's "threads").
 ///
 /// Returns false after `dst.errorfmt(...)` naming the image, layer or pixel; never throws.
 bool verify(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const OIIO::ImageBuf& candidate,
