@@ -308,8 +308,8 @@ int main(int argc, char** argv)
     app.add_option("--display-config", display_config, "OCIO config for DSSIM (Filmic view)");
     app.add_option("--external", externals,
                    "also score outside denoisers' results X.NAME.exr of each input X.exr, timed "
-                   "by their statmc:denoiseSeconds attribute (e.g. oidn,oidn-guides; oidn-guides is "
-                   "verified too, as verified-oidn-guides)")
+                   "by their statmc:denoiseSeconds attribute (oidn,oidn-guides; the latter "
+                   "verified too)")
         ->delimiter(',')
         ->allow_extra_args(false);
     app.add_option("inputs", inputs, "noisy statistics EXRs")->required();

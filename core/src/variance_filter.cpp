@@ -240,8 +240,8 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
             const std::uint8_t* want =
                 wanted.empty() ? nullptr : wanted.data() + std::size_t(y) * L.width;
             auto any_wanted = [&](int from, int to) {
-                return !want || std::any_of(want + from, want + to,
-                                            [](std::uint8_t v) { return v != 0; });
+                return !want ||
+                       std::any_of(want + from, want + to, [](std::uint8_t v) { return v != 0; });
             };
             if (!any_wanted(0, L.width))
                 return;

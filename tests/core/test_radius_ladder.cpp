@@ -219,8 +219,8 @@ void expect_masked_bits(const StatisticsPlanes& stats, int w, const PixelMask& m
     int compared = 0, moved = 0;
     for (std::size_t i = 0; i < mask.size(); ++i)
         if (mask[i]) {
-            ASSERT_EQ(masked[i], full[i]) << "pixel " << i % w << "," << i / w
-                                          << (ladder ? " (ladder)" : " (filter)");
+            ASSERT_EQ(masked[i], full[i])
+                << "pixel " << i % w << "," << i / w << (ladder ? " (ladder)" : " (filter)");
             ++compared;
             moved += full[i] != stats.mean[i];
         }
@@ -246,9 +246,8 @@ TEST(RadiusLadder, AMaskedLadderGivesTheWantedPixelsTheFullLaddersBits)
     // The moderated variances the intervals read, likewise.
     const std::vector<float> all = denoise_variances(edge.view(), TestDomain::Untransformed, {},
                                                      ladder.variance),
-                             some = denoise_variances(edge.view(), TestDomain::Untransformed,
-                                                      {}, ladder.variance, 0, SimdLevel::Auto,
-                                                      wanted);
+                             some = denoise_variances(edge.view(), TestDomain::Untransformed, {},
+                                                      ladder.variance, 0, SimdLevel::Auto, wanted);
     for (std::size_t i = 0; i < wanted.size(); ++i)
         if (wanted[i]) {
             ASSERT_EQ(some[i], all[i]) << "variance at " << i % w << "," << i / w;
@@ -275,7 +274,8 @@ TEST(RadiusLadder, AMaskedLoneStopIsStillOverruledByTheNeighboursItDoesNotWant)
             const bool own = x % 6 == 3 && y % 6 == 3;
             steady[std::size_t(y) * kSize + x] = own;
             for (int s = 0; s < kSpp; ++s) {
-                const float v = own ? kTruth + 0.3f * kSigma + (s % 2 ? 1e-4f : -1e-4f) : noise(rng);
+                const float v =
+                    own ? kTruth + 0.3f * kSigma + (s % 2 ? 1e-4f : -1e-4f) : noise(rng);
                 img.add(x, y, &v);
             }
         }

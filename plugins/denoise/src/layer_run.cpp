@@ -84,9 +84,8 @@ std::string denoise_layer(const OIIO::ImageBuf& in, OIIO::ImageBuf& out,
         std::vector<StatisticsView> views;
         for (const StatisticsChannels& aov_ch : joint.channels)
             views.push_back(aov_window(aov_ch));
-        std::vector<Filtered> together =
-            filter_joint_all(window, views, domain, window_guides, run.filter, regions.wanted,
-                             nthreads);
+        std::vector<Filtered> together = filter_joint_all(window, views, domain, window_guides,
+                                                          run.filter, regions.wanted, nthreads);
         filtered = std::move(together[0]);
         joint_filtered.assign(std::make_move_iterator(together.begin() + 1),
                               std::make_move_iterator(together.end()));
@@ -98,9 +97,8 @@ std::string denoise_layer(const OIIO::ImageBuf& in, OIIO::ImageBuf& out,
                                  stages.radius_ladder ? &stages.ladder : nullptr, regions.wanted,
                                  nthreads);
         for (const StatisticsChannels& aov_ch : joint.channels)
-            joint_filtered.push_back(
-                filter_joint_aov(lead, aov_window(aov_ch), window_guides, run.filter,
-                                 regions.wanted, nthreads));
+            joint_filtered.push_back(filter_joint_aov(lead, aov_window(aov_ch), window_guides,
+                                                      run.filter, regions.wanted, nthreads));
     }
 
     if (&out == &in)
