@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # The evaluation of docs/evaluation.md, refreshed with one command (not part of CI; on this
 # project's 2-core machine about 3 hours at the defaults, most of it the references, which
-# are cached in OUT and reused; the committed report used REF_SPP=2048 SPPS="4 16 64"
-# RUNS=1, about 1 hour). Renders a reference and noisy frames per scene with
-# statmc-render, runs OIDN on them when pyoidn can be installed (an evaluation-only
-# dependency, in a virtual environment under the build directory), scores every method with
-# statmc-evaluate, and redraws the charts and the report with scripts/plot_evaluation.py.
+# are cached in OUT and reused; the committed report used REF_SPP=2048 RUNS=1, the
+# references rendered first with SPPS=" " RENDER_ONLY=1, about 2 hours). Renders a
+# reference and noisy frames per scene with statmc-render, runs OIDN on them when pyoidn
+# can be installed (an evaluation-only dependency, in a virtual environment under the
+# build directory), scores every method (verified OIDN too) with statmc-evaluate, and
+# redraws the charts and the report with scripts/plot_evaluation.py. The noisy frames'
+# render times and the denoise times feed the equal-time charts: let nothing else run then.
 #
 #   bash scripts/evaluate.sh            # REF_SPP=4096 SPPS="4 16 64 256" SEEDS="1 2"
 #   OUT=build/eval-quick REF_SPP=1024 SPPS="4 16" bash scripts/evaluate.sh   # a quick look
