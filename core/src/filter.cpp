@@ -104,6 +104,14 @@ FilterKernel filter_kernel(SimdLevel level)
 
 bool filter_takes_channels(int channels) { return detail::kernel_takes_channels(channels); }
 
+void require_mask_fits(const PixelMask& mask, int width, int height)
+{
+    if (!mask.empty() && mask.size() != std::size_t(width) * std::size_t(height))
+        throw std::invalid_argument("the pixel mask has " + std::to_string(mask.size()) +
+                                    " entries for a " + std::to_string(width) + "x" +
+                                    std::to_string(height) + " image");
+}
+
 namespace {
 
 void check_arguments(const EstimatorImage& est, const DenoiseOptions& options,

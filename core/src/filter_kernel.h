@@ -372,8 +372,10 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
                     return false;
             return true;
         };
-        for (int k = chunk0; k < chunk1; ++k)
-            for (int r = 0; r < rows && !skipped(k); ++r) {
+        for (int k = chunk0; k < chunk1; ++k) {
+            if (skipped(k))
+                continue;
+            for (int r = 0; r < rows; ++r) {
                 Partial<V, NA>& p = partials[k - chunk0][r];
                 const std::ptrdiff_t at = std::ptrdiff_t(y + r) * L.stride + k * V::kWidth;
                 if constexpr (kMayCarry)
@@ -387,6 +389,7 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
                 p.member_count = V::set1(1.f);
                 p.inverse_sum = kDiagnostics ? V::load(L.inverse_count + at) : V::zero();
             }
+        }
         auto add = [&](auto centre_rows, int k, int wy0, int wy1) {
             constexpr int kRows = decltype(centre_rows)::value;
             Partial<V, NA>* p = partials[k - chunk0].data();
@@ -415,14 +418,17 @@ void filter_rows_impl(const FilterLayout& L, const std::vector<Plane>& out,
                     add(Row<1>{}, k, wy0, wy1);
             }
         }
-        for (int k = chunk0; k < chunk1; ++k)
-            for (int r = 0; r < rows && !skipped(k); ++r) {
+        for (int k = chunk0; k < chunk1; ++k) {
+            if (skipped(k))
+                continue;
+            for (int r = 0; r < rows; ++r) {
                 const Partial<V, NA>& p = partials[k - chunk0][r];
                 if constexpr (kMayCarry)
                     if (carrying)
                         store_carry(L, std::ptrdiff_t(y + r) * L.stride + k * V::kWidth, p);
                 write_chunk<V, NA, kDiagnostics>(L, out, diag, y + r, k * V::kWidth, p);
             }
+        }
     }
 }
 

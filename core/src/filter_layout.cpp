@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <limits>
 #include <new>
-#include <stdexcept>
 #include <vector>
 
 #include <sys/mman.h>
@@ -156,11 +155,10 @@ void set_window(FilterLayout& L, int outer, int inner)
 
 void set_wanted(FilterLayout& L, const PixelMask& mask)
 {
+    require_mask_fits(mask, L.width, L.height);
     L.wanted.clear();
     if (mask.empty())
         return;
-    if (mask.size() != std::size_t(L.width) * L.height)
-        throw std::invalid_argument("filter: the pixel mask does not match the image");
     L.wanted.assign(std::size_t(L.chunks) * L.height, 0);
     tbb::parallel_for(0, L.height, [&](int y) {
         const std::uint8_t* row = mask.data() + std::size_t(y) * L.width;

@@ -55,8 +55,7 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
         throw std::invalid_argument("radius ladder: fewer output planes than channels");
     if (stats.width != est.width || stats.height != est.height || stats.channels > est.channels)
         throw std::invalid_argument("radius ladder: statistics and estimators differ in shape");
-    if (!wanted.empty() && wanted.size() != est.pixels())
-        throw std::invalid_argument("radius ladder: the pixel mask does not match the image");
+    require_mask_fits(wanted, est.width, est.height);
     const int w = est.width, h = est.height, channels = stats.channels;
     const std::size_t pixels = est.pixels();
     const std::vector<int> radii = rungs(ladder, options.radius);
@@ -70,7 +69,8 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
             for (std::size_t k = radii.size(); k-- > 0;)
                 walked[k] = grown(k + 1 < radii.size() ? walked[k + 1] : wanted, w, h);
         });
-    const PixelMask near = walked.empty() ? PixelMask{} : walked.front();
+    static const PixelMask kEvery;
+    const PixelMask& near = walked.empty() ? kEvery : walked.front();
     const std::vector<float> variance = denoise_variances(
         stats, TestDomain::Untransformed, guides, ladder.variance, nthreads, SimdLevel::Auto, near);
     const double z = normal_critical_value(ladder.alpha);

@@ -211,8 +211,7 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
                                      int nthreads, SimdLevel level, const PixelMask& wanted)
 {
     require_valid(view, domain, options);
-    if (!wanted.empty() && wanted.size() != std::size_t(view.width) * view.height)
-        throw std::invalid_argument("variance filter: the pixel mask does not match the image");
+    require_mask_fits(wanted, view.width, view.height);
     const detail::VarianceKernel kernel = kernel_at(level);
     const DomainPlanes d = planes_of(view, domain);
     const double z = normal_critical_value(options.alpha);
@@ -256,10 +255,10 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
                     if (any_wanted(x, x + kernel.lanes))
                         kernel.add_disk(L, x, y, &row[x]);
             for (int rest = 0; rest < L.width; ++rest)
-                if ((rest < L.radius || rest >= x) && any_wanted(rest, rest + 1))
+                if ((rest < L.radius || rest >= x) && (!want || want[rest]))
                     add_disk_scalar(L, rest, y, row[rest]);
             for (int xx = 0; xx < L.width; ++xx) {
-                if (!any_wanted(xx, xx + 1))
+                if (want && !want[xx])
                     continue;
                 const std::size_t p = std::size_t(y) * L.width + xx;
                 const double count = view.count(xx, y);

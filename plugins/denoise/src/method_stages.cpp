@@ -30,10 +30,7 @@ Regions regions_for(const OIIO::ImageBuf& src, const OIIO::ROI& roi, int radius,
     if (where.empty())
         return r;
     const OIIO::ImageSpec& spec = src.spec();
-    if (where.size() != spec.image_pixels())
-        throw std::invalid_argument("the pixel mask has " + std::to_string(where.size()) +
-                                    " entries for a data window of " +
-                                    std::to_string(spec.image_pixels()) + " pixels");
+    require_mask_fits(where, spec.width, spec.height);
     r.wanted.assign(std::size_t(r.input.width()) * r.input.height(), 0);
     for (int y = output.ybegin; y < output.yend; ++y)
         for (int x = output.xbegin; x < output.xend; ++x)

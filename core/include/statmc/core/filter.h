@@ -46,6 +46,10 @@ struct FilterDiagnostics {
 /// Empty: every pixel.
 using PixelMask = std::vector<std::uint8_t>;
 
+/// Throws std::invalid_argument ("the pixel mask has N entries for a W×H image") unless
+/// `mask` is empty or has one entry per pixel.
+void require_mask_fits(const PixelMask& mask, int width, int height);
+
 /// Instruction sets the filter kernel is built for.
 enum class SimdLevel { Auto, Scalar, Avx2, Avx512 };
 
