@@ -8,6 +8,7 @@ Not part of CI: renders are cached in OUT and reused.
 
     python3 scripts/promise_check.py                       # this build's default and classic
     python3 scripts/promise_check.py --method before=OTHER_BUILD/oiiotool_ext/statmc   # another build too
+    python3 scripts/promise_check.py --report --against default   # each method over the default
 
 A method is NAME=STATMC[:MODIFIERS]; the default list is default=build's statmc,
 classic=build's statmc with method=classic. A chain is NAME=COMMANDS, the build's statmc
@@ -100,6 +101,39 @@ def report(path):
                 print(f"| {spp} | {cell} | " + " | ".join(out) + " |")
 
 
+def report_against(path, base):
+    """results.csv against method `base`: per other method and cell, its MSE, relMSE and DSSIM
+    over base's, each cell's figures flagged where more than 3% above base's or newly above
+    the noisy input's (the accuracy rule for a faster variant, issue 44), and the worst."""
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    cells = {}
+    for r in rows:
+        cells.setdefault((r["scene"], int(r["spp"]), r["cell"]), {})[r["method"]] = r
+    metrics = ("mse", "relmse", "dssim")
+    for method in dict.fromkeys(r["method"] for r in rows):
+        if method in (base, "noisy"):
+            continue
+        print(f"\n{method} / {base}\n")
+        print("| scene | spp | cell | MSE | relMSE | DSSIM | flags |")
+        print("|---|---|---|---|---|---|---|")
+        worst, flagged = dict.fromkeys(metrics, 0.0), 0
+        for key, c in sorted(cells.items()):
+            if method not in c or base not in c:
+                continue
+            ratio = {m: float(c[method][m]) / float(c[base][m]) for m in metrics}
+            flags = [f"{m} > 1.03" for m in metrics if ratio[m] > 1.03]
+            flags += [f"{m} newly above noisy" for m in metrics
+                      if float(c[method][m]) > float(c["noisy"][m]) >= float(c[base][m])]
+            flagged += bool(flags)
+            for m in metrics:
+                worst[m] = max(worst[m], ratio[m])
+            print(f"| {key[0]} | {key[1]} | {key[2]} | " +
+                  " | ".join(f"{ratio[m]:.4f}" for m in metrics) + f" | {', '.join(flags)} |")
+        print(f"\nworst: " + ", ".join(f"{m} {worst[m]:.4f}" for m in metrics) +
+              f"; cells flagged: {flagged}")
+
+
 def method_list(args, statmc_cli):
     """(name, statmc, the commands between the noisy frame and -o) for every method asked."""
     methods = [("default", statmc_cli, ["--denoise"]),
@@ -133,6 +167,8 @@ def add_common_arguments(parser, out_name):
                         help="leave out the default and classic methods")
     parser.add_argument("--report", action="store_true",
                         help="print OUT/results.csv as markdown tables and stop")
+    parser.add_argument("--against", metavar="METHOD",
+                        help="with --report: every other method's figures over METHOD's")
 
 
 def tools(args):
@@ -194,7 +230,10 @@ def main():
     parser.add_argument("--scenes", default=" ".join(SCENES))
     args = parser.parse_args()
     if args.report:
-        report(os.path.join(args.out, "results.csv"))
+        if args.against:
+            report_against(os.path.join(args.out, "results.csv"), args.against)
+        else:
+            report(os.path.join(args.out, "results.csv"))
         return
     args.render = os.path.join(args.build, "renderer", "statmc-render")
     statmc, _, methods = tools(args)
