@@ -22,8 +22,8 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from promise_check import (Reference, add_common_arguments, report, report_against,  # noqa: E402
-                           score_frame, tools, write_rows)
+from promise_check import (Reference, add_common_arguments, report, score_frame,  # noqa: E402
+                           tools, write_rows)
 
 SCENES = ("glints", "caustic", "dof")
 
@@ -79,10 +79,7 @@ def main():
     parser.add_argument("--scenes", default=" ".join(SCENES))
     args = parser.parse_args()
     if args.report:
-        if args.against:
-            report_against(os.path.join(args.out, "results.csv"), args.against)
-        else:
-            report(os.path.join(args.out, "results.csv"))
+        report(os.path.join(args.out, "results.csv"), args.against)
         return
     if not shutil.which("blender"):
         sys.exit("cycles_check: blender is not installed (apt-get install blender)")

@@ -72,12 +72,15 @@ def scores(x, ref, ref_share, window):
     return mse, rel, energy
 
 
-def report(path):
+def report(path, against=None):
     """results.csv as markdown: per scene and metric, a row per cell (sample count and seed,
     or passes), a column per method; a method's figure is starred where it is above the noisy
-    input's (energy: more than 5% further from 1)."""
+    input's (energy: more than 5% further from 1). With `against`, report_against instead."""
     with open(path) as f:
         rows = list(csv.DictReader(f))
+    if against:
+        report_against(rows, against)
+        return
     methods = list(dict.fromkeys(r["method"] for r in rows))
     cells = {(r["scene"], int(r["spp"]), r["cell"], r["method"]): r for r in rows}
     for scene in dict.fromkeys(r["scene"] for r in rows):
@@ -101,12 +104,11 @@ def report(path):
                 print(f"| {spp} | {cell} | " + " | ".join(out) + " |")
 
 
-def report_against(path, base):
-    """results.csv against method `base`: per other method and cell, its MSE, relMSE and DSSIM
-    over base's, each cell's figures flagged where more than 3% above base's or newly above
-    the noisy input's (the accuracy rule for a faster variant, issue 44), and the worst."""
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
+def report_against(rows, base):
+    """results.csv's rows against method `base`: per other method and cell, its MSE, relMSE
+    and DSSIM over base's, each cell's figures flagged where more than 3% above base's or
+    newly above the noisy input's (the accuracy rule for a faster variant, issue 44), and
+    the worst."""
     cells = {}
     for r in rows:
         cells.setdefault((r["scene"], int(r["spp"]), r["cell"]), {})[r["method"]] = r
@@ -130,7 +132,7 @@ def report_against(path, base):
                 worst[m] = max(worst[m], ratio[m])
             print(f"| {key[0]} | {key[1]} | {key[2]} | " +
                   " | ".join(f"{ratio[m]:.4f}" for m in metrics) + f" | {', '.join(flags)} |")
-        print(f"\nworst: " + ", ".join(f"{m} {worst[m]:.4f}" for m in metrics) +
+        print("\nworst: " + ", ".join(f"{m} {worst[m]:.4f}" for m in metrics) +
               f"; cells flagged: {flagged}")
 
 
@@ -230,10 +232,7 @@ def main():
     parser.add_argument("--scenes", default=" ".join(SCENES))
     args = parser.parse_args()
     if args.report:
-        if args.against:
-            report_against(os.path.join(args.out, "results.csv"), args.against)
-        else:
-            report(os.path.join(args.out, "results.csv"))
+        report(os.path.join(args.out, "results.csv"), args.against)
         return
     args.render = os.path.join(args.build, "renderer", "statmc-render")
     statmc, _, methods = tools(args)
