@@ -39,8 +39,8 @@ def main():
     d = os.path.join(args.promise, args.scene)
     tag = f"{args.spp}-{args.seed}"
     noisy = statmc.read_statistics(os.path.join(d, f"noisy-{args.resolution}-{tag}.exr"))
-    oidn = statmc.read_statistics(os.path.join(d, f"oidn-{tag}.exr"))
-    verified = statmc.read_statistics(os.path.join(d, f"{args.verified}-{tag}.exr"))
+    oidn = statmc.read_statistics(os.path.join(d, f"{tag}-oidn.exr"))
+    verified = statmc.read_statistics(os.path.join(d, f"{tag}-{args.verified}.exr"))
     ref = statmc.read_statistics(os.path.join(d, f"reference-4096-{args.resolution}.exr"))
     rejected = verified["diagnostics"][:, :, 0]
     panels = [("noisy", noisy), ("OIDN", oidn), ("verified OIDN", verified), ("reference", ref)]

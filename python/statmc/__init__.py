@@ -210,7 +210,8 @@ def merge(sources, nthreads=0, **options):
 def verify(source, candidate, nthreads=0, **options):
     """The verify operator (statmc --help verify): `candidate`, another denoiser's output of
     the frame `source` (a path, an Image, or an H x W x 3 array over its data window), kept
-    where the pixels' own statistics cannot reject it and statmc's estimate where they can;
+    where the pixels' own statistics cannot reject it and statmc's estimate where they and
+    that estimate both can (docs/method.md §15);
     the map of rejections is the result's "diagnostics" layer (1: the pixel's test, 2: its
     box's, 3: both)."""
     source = _image(source)

@@ -1,7 +1,8 @@
 // The verify operator (docs/method.md §15) on synthetic statistics of known truth: a
 // correct candidate is rejected at no more than the stated rate, a biased region and an
 // invented edge are rejected with the power the test predicts, kept pixels are the
-// candidate's bits and rejected ones the fallback's, and bad input is refused by name.
+// candidate's bits and rejected ones the fallback's, a candidate that statmc's own
+// estimate cannot reject is kept, and bad input is refused by name.
 #include <cmath>
 #include <random>
 #include <string>
@@ -187,6 +188,34 @@ TEST(Verify, KeptPixelsAreTheCandidatesBitsAndRejectedOnesTheFallbacks)
         // Every statistics channel is kept, with one more.
         EXPECT_EQ(out.nchannels(), stats.nchannels() + 1);
     }
+}
+
+TEST(Verify, ACandidateThatStatmcsEstimateCannotRejectIsKept)
+{
+    // statmc's own default estimate as the candidate, tested at a level of 0.2: the smooth
+    // estimate is close to the truth, so the samples alone (fallback=mean) reject it in
+    // about a fifth of the pixels, as they would the truth. verify replaces a candidate only
+    // where that estimate rejects it too, which it never does itself: the candidate comes
+    // back whole, bit for bit.
+    const OIIO::ImageBuf stats = statistics(16, Samples::Exponential, 17);
+    VerifyOptions opt;
+    opt.test.alpha = 0.2;
+    const OIIO::ImageBuf estimate = denoise(stats, opt.denoise);
+    ASSERT_FALSE(estimate.has_error()) << estimate.geterror();
+
+    const OIIO::ImageBuf out = verify(stats, estimate, opt);
+    ASSERT_FALSE(out.has_error()) << out.geterror();
+    EXPECT_EQ(out.spec().get_float_attribute(layers::attr::kVerifyRejected), 0.f);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(out.getchannel(x, y, 0, c), estimate.getchannel(x, y, 0, c))
+                    << x << "," << y;
+
+    opt.fallback = VerifyFallback::Mean;
+    const OIIO::ImageBuf by_samples = verify(stats, estimate, opt);
+    ASSERT_FALSE(by_samples.has_error()) << by_samples.geterror();
+    EXPECT_GT(by_samples.spec().get_float_attribute(layers::attr::kVerifyRejected), 0.05f);
 }
 
 TEST(Verify, BadInputIsRefusedByName)

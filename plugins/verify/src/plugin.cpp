@@ -43,8 +43,11 @@ void register_verify(statmc::PluginRegistry& registry)
               "sqrt(v/n), v the moderated variance of the default method, df = n - 1 + 16; "
               "and the same for the mean difference over the (2 box + 1)^2 pixels around it "
               "(Welch-Satterthwaite df). A correct candidate is rejected at a pixel with "
-              "probability at most alpha. Rejected pixels take the default --denoise (or "
-              "their own mean); diagnostics.rejected maps them (1 pixel, 2 box, 3 both). "
+              "probability at most alpha. With the default fallback a rejected candidate is "
+              "tested again with the default --denoise's estimate in place of the mean, and "
+              "takes that estimate only where this test rejects it too (with "
+              "fallback=mean: its own mean); diagnostics.rejected maps the pixels replaced "
+              "(1 pixel, 2 box, 3 both). "
               "Candidate and statistics must cover one data window. Chain a denoiser with "
               "--dup: statmc f.exr --dup --oidn --verify -o out.exr";
     op.parameters = {

@@ -110,6 +110,34 @@ OIIO::ROI rejected_box(const std::vector<std::uint8_t>& rejected, const OIIO::RO
     return box;
 }
 
+// The pixels within `radius` (a box) of a set pixel of `mask`, inside `roi`: every box the
+// test reads around a rejected pixel, so that the fallback's estimate fills it.
+PixelMask grown(const std::vector<std::uint8_t>& mask, int radius, const OIIO::ROI& roi,
+                const OIIO::ImageSpec& spec)
+{
+    const auto at = [&](int x, int y) {
+        return std::size_t(y - spec.y) * spec.width + (x - spec.x);
+    };
+    PixelMask rows(mask.size(), 0), out(mask.size(), 0);
+    for (int y = roi.ybegin; y < roi.yend; ++y)
+        for (int x = roi.xbegin; x < roi.xend; ++x)
+            for (int dx = std::max(roi.xbegin, x - radius);
+                 dx <= std::min(roi.xend - 1, x + radius); ++dx)
+                if (mask[at(dx, y)]) {
+                    rows[at(x, y)] = 1;
+                    break;
+                }
+    for (int y = roi.ybegin; y < roi.yend; ++y)
+        for (int x = roi.xbegin; x < roi.xend; ++x)
+            for (int dy = std::max(roi.ybegin, y - radius);
+                 dy <= std::min(roi.yend - 1, y + radius); ++dy)
+                if (rows[at(x, dy)]) {
+                    out[at(x, y)] = 1;
+                    break;
+                }
+    return out;
+}
+
 // `in` copied into `dst` as float, with the channel `name` after its own (zero), unless it
 // has one already (an image verified before): one copy of the image, not two.
 void copy_with_map_channel(OIIO::ImageBuf& dst, const OIIO::ImageBuf& in, const std::string& name)
@@ -178,7 +206,7 @@ bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in, const OIIO::
     test.prior_dof = moderation.prior_dof;  // the moderated variances' degrees of freedom
     const std::vector<float> variances = denoise_variances(
         view, TestDomain::Untransformed, {}, moderation, layers::thread_count(nthreads));
-    const std::vector<std::uint8_t> rejected =
+    std::vector<std::uint8_t> rejected =
         test_candidate(view, variances, cand, test, layers::thread_count(nthreads));
 
     // A renderer's file comes out under the contract's names, as --passes writes them. The
@@ -189,8 +217,20 @@ bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in, const OIIO::
     if (box.defined() && opt.fallback == VerifyFallback::Denoise) {
         DenoiseImageOptions contract = opt.denoise;
         contract.from = "statmc";
-        if (!denoise(dst, dst, rejected, contract, box, nthreads))
+        const int b = test.box_radius;
+        const OIIO::ROI boxes = OIIO::roi_intersection(
+            OIIO::ROI(box.xbegin - b, box.xend + b, box.ybegin - b, box.yend + b), roi);
+        if (!denoise(dst, dst, grown(rejected, b, roi, spec), contract, boxes, nthreads))
             return false;
+        // A rejected candidate is replaced only where the fallback's estimate, tested as the
+        // pixel's mean would be, rejects it too: elsewhere the two differ by less than the
+        // samples resolve, and switching would buy nothing they can justify (§15).
+        const std::vector<std::uint8_t> against_fallback =
+            test_candidate(layers::statistics_view(dst, ch), variances, cand, test,
+                           layers::thread_count(nthreads));
+        for (std::size_t i = 0; i < rejected.size(); ++i)
+            if (!against_fallback[i])
+                rejected[i] = 0;
     }
     // Planes of dst over its data window, as cand's are: (0, 0) is (spec.x, spec.y).
     Plane means[3];

@@ -1,7 +1,7 @@
 // The verify operator in the style of OIIO's ImageBufAlgo: a statistics image and another
 // denoiser's output of the same frame (the candidate) in; out, the candidate wherever the
-// pixels' own samples cannot reject it and statmc's estimate where they can, with a map
-// of where (docs/method.md §15).
+// pixels' own samples cannot reject it, and statmc's estimate where they can and that
+// estimate can too, with a map of where (docs/method.md §15).
 #pragma once
 
 #include <string>
@@ -36,11 +36,14 @@ struct VerifyOptions {
 /// CandidateRejection bits (1: by the pixel, 2: by its box, 3: both). The header records
 /// statmc:denoised = 1 and statmc:verifyRejected (the rejected share of the roi's pixels).
 ///
+/// With VerifyFallback::Denoise a pixel the samples reject is tested again with the
+/// denoise's estimate in place of its mean, and replaced only where that rejects it too.
+///
 /// `src` needs the AOV's variance and sample count (docs/exr-layers.md; a renderer's
 /// preset maps them); `candidate` the same data window and a three-channel layer, finite
-/// inside `roi`. The fallback's denoise computes the rejected pixels alone (a masked
-/// denoise, bitwise the full one's values there; none when nothing is rejected). Bitwise
-/// the same for any `nthreads` (0 = OIIO's "threads").
+/// inside `roi`. The fallback's denoise computes the rejected pixels and their boxes (a
+/// masked denoise, bitwise the full one's values there; none when nothing is rejected).
+/// Bitwise the same for any `nthreads` (0 = OIIO's "threads").
 ///
 /// Returns false after `dst.errorfmt(...)` naming the image, layer or pixel; never throws.
 bool verify(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src, const OIIO::ImageBuf& candidate,
