@@ -110,32 +110,33 @@ OIIO::ROI rejected_box(const std::vector<std::uint8_t>& rejected, const OIIO::RO
     return box;
 }
 
-// The pixels within `radius` (a box) of a set pixel of `mask`, inside `roi`: every box the
-// test reads around a rejected pixel, so that the fallback's estimate fills it.
-PixelMask grown(const std::vector<std::uint8_t>& mask, int radius, const OIIO::ROI& roi,
+// The pixels within `radius` of a set pixel of `mask` along one axis (x, or y when
+// `down`), inside `roi`.
+PixelMask dilated(const PixelMask& mask, int radius, bool down, const OIIO::ROI& roi,
+                  const OIIO::ImageSpec& spec)
+{
+    PixelMask out(mask.size(), 0);
+    for (int y = roi.ybegin; y < roi.yend; ++y)
+        for (int x = roi.xbegin; x < roi.xend; ++x) {
+            const int at = down ? y : x;
+            const int from = std::max(down ? roi.ybegin : roi.xbegin, at - radius);
+            const int to = std::min((down ? roi.yend : roi.xend) - 1, at + radius);
+            for (int t = from; t <= to; ++t)
+                if (mask[std::size_t((down ? t : y) - spec.y) * spec.width +
+                         ((down ? x : t) - spec.x)]) {
+                    out[std::size_t(y - spec.y) * spec.width + (x - spec.x)] = 1;
+                    break;
+                }
+        }
+    return out;
+}
+
+// Every box of `radius` the test reads around a set pixel of `mask`, inside `roi`, so that
+// the fallback's estimate fills it (outside `roi` the box reads the pixels' means).
+PixelMask grown(const PixelMask& mask, int radius, const OIIO::ROI& roi,
                 const OIIO::ImageSpec& spec)
 {
-    const auto at = [&](int x, int y) {
-        return std::size_t(y - spec.y) * spec.width + (x - spec.x);
-    };
-    PixelMask rows(mask.size(), 0), out(mask.size(), 0);
-    for (int y = roi.ybegin; y < roi.yend; ++y)
-        for (int x = roi.xbegin; x < roi.xend; ++x)
-            for (int dx = std::max(roi.xbegin, x - radius);
-                 dx <= std::min(roi.xend - 1, x + radius); ++dx)
-                if (mask[at(dx, y)]) {
-                    rows[at(x, y)] = 1;
-                    break;
-                }
-    for (int y = roi.ybegin; y < roi.yend; ++y)
-        for (int x = roi.xbegin; x < roi.xend; ++x)
-            for (int dy = std::max(roi.ybegin, y - radius);
-                 dy <= std::min(roi.yend - 1, y + radius); ++dy)
-                if (rows[at(x, dy)]) {
-                    out[at(x, y)] = 1;
-                    break;
-                }
-    return out;
+    return dilated(dilated(mask, radius, false, roi, spec), radius, true, roi, spec);
 }
 
 // `in` copied into `dst` as float, with the channel `name` after its own (zero), unless it
