@@ -101,7 +101,8 @@ def main():
                 noisy = merged(statmc_cli, files[:k], f"{pass_dir}-K{k}.exr")
                 rows += score_frame(statmc, methods, noisy, f"{pass_dir}-K{k}", reference,
                                     {"scene": scene, "spp": k * samples,
-                                     "cell": f"K={k} x {samples}"})
+                                     "cell": f"K={k} x {samples}"},
+                                    statmc_cli if args.oidn else None)
     write_rows(os.path.join(args.out, "results.csv"), rows)
 
 

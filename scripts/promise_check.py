@@ -14,7 +14,8 @@ A method is NAME=STATMC[:MODIFIERS]; the default list is default=build's statmc,
 classic=build's statmc with method=classic. A chain is NAME=COMMANDS, the build's statmc
 running them between the noisy frame and -o (e.g. oidn="--oidn:guides=0"); --oidn adds OIDN
 with guides, OIDN on the colour alone, and OIDN verified (--dup --oidn --verify), which need
-the OIDN library (STATMC_OIDN_LIBRARY, docs/method.md §15).
+the OIDN library (STATMC_OIDN_LIBRARY, docs/method.md §15), and verifies the reference itself
+in every cell: --report prints the share of pixels verify rejected of each.
 """
 
 import argparse
@@ -83,6 +84,7 @@ def report(path, against=None):
         return
     methods = list(dict.fromkeys(r["method"] for r in rows))
     cells = {(r["scene"], int(r["spp"]), r["cell"], r["method"]): r for r in rows}
+    report_rejections(rows)
     for scene in dict.fromkeys(r["scene"] for r in rows):
         keys = sorted({(k[1], k[2]) for k in cells if k[0] == scene})
         for metric in ("mse", "relmse", "dssim", "energy"):
@@ -102,6 +104,28 @@ def report(path, against=None):
                              else v > noisy)
                     out.append(f"{v:.4g}" + ("*" if worse and m != "noisy" else ""))
                 print(f"| {spp} | {cell} | " + " | ".join(out) + " |")
+
+
+def report_rejections(rows):
+    """Per cell, the share of pixels verify rejected of each verified output and, where it
+    was measured, of the reference itself as the candidate."""
+    verified = [m for m in dict.fromkeys(r["method"] for r in rows)
+                if any(r["method"] == m and r.get("rejected") for r in rows)]
+    null = any(r.get("reference_rejected") for r in rows)
+    if not verified and not null:
+        return
+    print("\nverify's rejections (share of pixels)\n")
+    print("| scene | spp | cell | " + " | ".join(verified + ["the reference"] * null) + " |")
+    print("|---" * (len(verified) + null + 3) + "|")
+    cells = {}
+    for r in rows:
+        cells.setdefault((r["scene"], int(r["spp"]), r["cell"]), {})[r["method"]] = r
+    for (scene, spp, cell), c in cells.items():
+        shares = [c[m].get("rejected", "") if m in c else "" for m in verified]
+        if null:
+            shares.append(next(iter(c.values())).get("reference_rejected", ""))
+        print(f"| {scene} | {spp} | {cell} | " +
+              " | ".join(f"{float(v):.3%}" if v != "" else "" for v in shares) + " |")
 
 
 def report_against(rows, base):
@@ -195,26 +219,41 @@ class Reference:
         self.window = highlight_windows(self.rgb)
 
 
-def score_frame(statmc, methods, noisy_path, prefix, reference, cell):
+def score_frame(statmc, methods, noisy_path, prefix, reference, cell, null_with=None):
     """Runs every method on one noisy frame (outputs PREFIX-NAME.exr) and scores them and the
-    noisy input against the reference; returns one row per method, `cell`'s keys first."""
+    noisy input against the reference; returns one row per method, `cell`'s keys first.
+    A verified output's row holds the share of pixels verify rejected (else ""). With
+    `null_with` (a statmc command), the reference itself is verified as the candidate too,
+    and every row of the cell holds the share of it rejected (verify's rate on a candidate
+    about as right as the frame can be checked against; docs/method.md §15)."""
     outputs = [("noisy", noisy_path)]
     for name, exe, commands in methods:
         out = f"{prefix}-{name}.exr"
         run([exe, noisy_path] + commands + ["-o", out])
         outputs.append((name, out))
+    if null_with:
+        out = f"{prefix}-reference-verified.exr"
+        run([null_with, noisy_path, reference.path, "--verify", "-o", out])
+        cell = {**cell, "reference_rejected": rejected_share(statmc.read_statistics(out))}
     rows = []
     for name, path in outputs:
-        x = statmc.read_statistics(path)["beauty"][:, :, :3].astype(np.float64)
+        image = statmc.read_statistics(path)
+        x = image["beauty"][:, :, :3].astype(np.float64)
         mse, rel, energy = scores(x, reference.rgb, reference.share, reference.window)
         dssim = statmc.compare(path, reference.path).metrics["DSSIM"]
         rows.append({**cell, "method": name, "mse": mse, "relmse": rel, "dssim": dssim,
                      "energy": energy, "ref_mse_share": reference.share["mse"],
-                     "ref_relmse_share": reference.share["relmse"]})
+                     "ref_relmse_share": reference.share["relmse"],
+                     "rejected": rejected_share(image)})
         print(f"{cell['scene']:15s} {cell['spp']:5d} {cell['cell']:14s} {name:11s} "
               f"MSE {mse:.4g} relMSE {rel:.4g} DSSIM {dssim:.4f} energy {energy:.3f}",
               flush=True)
     return rows
+
+
+def rejected_share(image):
+    """verify's statmc:verifyRejected of an output, "" where it was not verified."""
+    return image.attributes.get("statmc:verifyRejected", "")
 
 
 def write_rows(path, rows):
@@ -235,7 +274,7 @@ def main():
         report(os.path.join(args.out, "results.csv"), args.against)
         return
     args.render = os.path.join(args.build, "renderer", "statmc-render")
-    statmc, _, methods = tools(args)
+    statmc, statmc_cli, methods = tools(args)
     os.makedirs(args.out, exist_ok=True)
     rows = []
     for scene in args.scenes.split():
@@ -250,7 +289,8 @@ def main():
                                     os.path.join(d, f"noisy-{args.resolution}-{spp}-{seed}.exr"))
                 rows += score_frame(statmc, methods, noisy_path,
                                     os.path.join(d, f"{spp}-{seed}"), reference,
-                                    {"scene": scene, "spp": spp, "cell": f"seed {seed}"})
+                                    {"scene": scene, "spp": spp, "cell": f"seed {seed}"},
+                                    statmc_cli if args.oidn else None)
     write_rows(os.path.join(args.out, "results.csv"), rows)
 
 
