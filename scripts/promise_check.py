@@ -106,6 +106,14 @@ def report(path, against=None):
                 print(f"| {spp} | {cell} | " + " | ".join(out) + " |")
 
 
+def by_cell(rows):
+    """results.csv's rows by cell, (scene, spp, cell), then by method."""
+    cells = {}
+    for r in rows:
+        cells.setdefault((r["scene"], int(r["spp"]), r["cell"]), {})[r["method"]] = r
+    return cells
+
+
 def report_rejections(rows):
     """Per cell, the share of pixels verify rejected of each verified output and, where it
     was measured, of the reference itself as the candidate."""
@@ -117,10 +125,7 @@ def report_rejections(rows):
     print("\nverify's rejections (share of pixels)\n")
     print("| scene | spp | cell | " + " | ".join(verified + ["the reference"] * null) + " |")
     print("|---" * (len(verified) + null + 3) + "|")
-    cells = {}
-    for r in rows:
-        cells.setdefault((r["scene"], int(r["spp"]), r["cell"]), {})[r["method"]] = r
-    for (scene, spp, cell), c in cells.items():
+    for (scene, spp, cell), c in by_cell(rows).items():
         shares = [c[m].get("rejected", "") if m in c else "" for m in verified]
         if null:
             shares.append(next(iter(c.values())).get("reference_rejected", ""))
@@ -133,9 +138,7 @@ def report_against(rows, base):
     and DSSIM over base's, each cell's figures flagged where more than 3% above base's or
     newly above the noisy input's (the accuracy rule for a faster variant, issue 44), and
     the worst."""
-    cells = {}
-    for r in rows:
-        cells.setdefault((r["scene"], int(r["spp"]), r["cell"]), {})[r["method"]] = r
+    cells = by_cell(rows)
     metrics = ("mse", "relmse", "dssim")
     for method in dict.fromkeys(r["method"] for r in rows):
         if method in (base, "noisy"):

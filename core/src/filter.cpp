@@ -112,6 +112,31 @@ void require_mask_fits(const PixelMask& mask, int width, int height)
                                     std::to_string(height) + " image");
 }
 
+PixelMask grown_mask(const PixelMask& mask, int width, int height, int radius)
+{
+    // Across the rows, then down the columns: the box is the two spans' product.
+    PixelMask rows(mask.size()), out(mask.size());
+    tbb::parallel_for(0, height, [&](int y) {
+        const std::uint8_t* in = mask.data() + std::size_t(y) * width;
+        std::uint8_t* row = rows.data() + std::size_t(y) * width;
+        for (int x = 0; x < width; ++x)
+            for (int t = std::max(0, x - radius); t <= std::min(width - 1, x + radius); ++t)
+                if (in[t]) {
+                    row[x] = 1;
+                    break;
+                }
+    });
+    tbb::parallel_for(0, height, [&](int y) {
+        std::uint8_t* row = out.data() + std::size_t(y) * width;
+        for (int t = std::max(0, y - radius); t <= std::min(height - 1, y + radius); ++t) {
+            const std::uint8_t* in = rows.data() + std::size_t(t) * width;
+            for (int x = 0; x < width; ++x)
+                row[x] |= in[x];
+        }
+    });
+    return out;
+}
+
 namespace {
 
 void check_arguments(const EstimatorImage& est, const DenoiseOptions& options,

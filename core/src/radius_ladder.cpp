@@ -25,21 +25,6 @@ std::vector<int> rungs(const RadiusLadderOptions& ladder, int radius)
     return r;
 }
 
-// `mask` grown by one pixel in every direction (to its 8-neighbours).
-PixelMask grown(const PixelMask& mask, int w, int h)
-{
-    PixelMask out(mask.size());
-    tbb::parallel_for(0, h, [&](int y) {
-        for (int yy = std::max(0, y - 1); yy <= std::min(h - 1, y + 1); ++yy) {
-            const std::uint8_t* in = mask.data() + std::size_t(yy) * w;
-            std::uint8_t* row = out.data() + std::size_t(y) * w;
-            for (int x = 0; x < w; ++x)
-                row[x] |= (in[x] != 0) | (x > 0 && in[x - 1] != 0) | (x + 1 < w && in[x + 1] != 0);
-        }
-    });
-    return out;
-}
-
 }  // namespace
 
 void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage& est,
@@ -67,7 +52,7 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
     if (!wanted.empty())
         run_with_threads(nthreads, [&] {
             for (std::size_t k = radii.size(); k-- > 0;)
-                walked[k] = grown(k + 1 < radii.size() ? walked[k + 1] : wanted, w, h);
+                walked[k] = grown_mask(k + 1 < radii.size() ? walked[k + 1] : wanted, w, h, 1);
         });
     static const PixelMask kEvery;
     const PixelMask& near = walked.empty() ? kEvery : walked.front();

@@ -384,5 +384,29 @@ TEST(Filter, RejectsInvalidArguments)
     EXPECT_THROW(filter(est, {}, DenoiseOptions{}, too_few), std::invalid_argument);
 }
 
+TEST(PixelMask, GrownMaskIsEveryPixelWithASetPixelInItsBox)
+{
+    // Against the rule written out pixel by pixel, on random sparse masks of odd shapes,
+    // for radii 0 (a copy), 1, 2 and wider than the image.
+    std::mt19937 rng(5);
+    for (const auto& [w, h] : {std::pair{23, 17}, {1, 9}, {40, 3}})
+        for (int radius : {0, 1, 2, 50}) {
+            PixelMask mask(std::size_t(w) * h);
+            for (auto& m : mask)
+                m = std::uniform_int_distribution<int>(0, 9)(rng) == 0;
+            const PixelMask got = grown_mask(mask, w, h, radius);
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    bool any = false;
+                    for (int yy = std::max(0, y - radius); yy <= std::min(h - 1, y + radius); ++yy)
+                        for (int xx = std::max(0, x - radius); xx <= std::min(w - 1, x + radius);
+                             ++xx)
+                            any = any || mask[std::size_t(yy) * w + xx];
+                    ASSERT_EQ(got[std::size_t(y) * w + x] != 0, any)
+                        << w << "x" << h << ", radius " << radius << ", pixel " << x << "," << y;
+                }
+        }
+}
+
 }  // namespace
 }  // namespace statmc

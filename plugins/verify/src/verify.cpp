@@ -7,6 +7,7 @@
 
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "statmc/core/filter.h"
 #include "statmc/core/method.h"
 #include "statmc/core/variance_filter.h"
 #include "statmc/denoise/denoise.h"
@@ -110,35 +111,6 @@ OIIO::ROI rejected_box(const std::vector<std::uint8_t>& rejected, const OIIO::RO
     return box;
 }
 
-// The pixels within `radius` of a set pixel of `mask` along one axis (x, or y when
-// `down`), inside `roi`.
-PixelMask dilated(const PixelMask& mask, int radius, bool down, const OIIO::ROI& roi,
-                  const OIIO::ImageSpec& spec)
-{
-    PixelMask out(mask.size(), 0);
-    for (int y = roi.ybegin; y < roi.yend; ++y)
-        for (int x = roi.xbegin; x < roi.xend; ++x) {
-            const int at = down ? y : x;
-            const int from = std::max(down ? roi.ybegin : roi.xbegin, at - radius);
-            const int to = std::min((down ? roi.yend : roi.xend) - 1, at + radius);
-            for (int t = from; t <= to; ++t)
-                if (mask[std::size_t((down ? t : y) - spec.y) * spec.width +
-                         ((down ? x : t) - spec.x)]) {
-                    out[std::size_t(y - spec.y) * spec.width + (x - spec.x)] = 1;
-                    break;
-                }
-        }
-    return out;
-}
-
-// Every box of `radius` the test reads around a set pixel of `mask`, inside `roi`, so that
-// the fallback's estimate fills it (outside `roi` the box reads the pixels' means).
-PixelMask grown(const PixelMask& mask, int radius, const OIIO::ROI& roi,
-                const OIIO::ImageSpec& spec)
-{
-    return dilated(dilated(mask, radius, false, roi, spec), radius, true, roi, spec);
-}
-
 // `in` copied into `dst` as float, with the channel `name` after its own (zero), unless it
 // has one already (an image verified before): one copy of the image, not two.
 void copy_with_map_channel(OIIO::ImageBuf& dst, const OIIO::ImageBuf& in, const std::string& name)
@@ -221,7 +193,10 @@ bool verify_impl(OIIO::ImageBuf& dst, const OIIO::ImageBuf& src_in, const OIIO::
         const int b = test.box_radius;
         const OIIO::ROI boxes = OIIO::roi_intersection(
             OIIO::ROI(box.xbegin - b, box.xend + b, box.ybegin - b, box.yend + b), roi);
-        if (!denoise(dst, dst, grown(rejected, b, roi, spec), contract, boxes, nthreads))
+        // Every box the second test reads around a rejected pixel holds the fallback's
+        // estimate (outside `roi`, the pixels' means).
+        if (!denoise(dst, dst, grown_mask(rejected, spec.width, spec.height, b), contract, boxes,
+                     nthreads))
             return false;
         // A rejected candidate is replaced only where the fallback's estimate, tested as the
         // pixel's mean would be, rejects it too: elsewhere the two differ by less than the

@@ -50,6 +50,11 @@ using PixelMask = std::vector<std::uint8_t>;
 /// `mask` is empty or has one entry per pixel.
 void require_mask_fits(const PixelMask& mask, int width, int height);
 
+/// `mask` (width × height, non-empty) grown by `radius` ≥ 0 pixels in every direction: a
+/// pixel is set where any pixel of the (2·radius + 1)² box around it is, clipped at the
+/// image's edges.
+PixelMask grown_mask(const PixelMask& mask, int width, int height, int radius);
+
 /// Instruction sets the filter kernel is built for.
 enum class SimdLevel { Auto, Scalar, Avx2, Avx512 };
 
