@@ -14,6 +14,8 @@ MethodSettings method_settings(Method method)
         s.stages.ladder.variance.prior_dof = 16;
         s.stages.ladder.variance.prior_alpha = 0.05;
         s.stages.context_radius = 1;
+        // Windows of the moderation's size, tested at the ladder's level (§16).
+        s.stages.ladder.energy = {s.stages.ladder.variance.radius, s.stages.ladder.alpha};
         break;
     case Method::Classic:
         s.filter.guide_noise = false;

@@ -44,15 +44,22 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
     const int w = est.width, h = est.height, channels = stats.channels;
     const std::size_t pixels = est.pixels();
     const std::vector<int> radii = rungs(ladder, options.radius);
+    // The energy check reads the ladder's output within its reach of a wanted pixel.
+    PixelMask checked;
+    if (!wanted.empty() && ladder.energy.radius > 0)
+        run_with_threads(nthreads, [&] {
+            checked = grown_mask(wanted, w, h, energy_check_reach(ladder.energy));
+        });
+    const PixelMask& target = checked.empty() ? wanted : checked;
     // A pixel's state after rung k depends on its own after rung k − 1 and on its
     // 8-neighbours' rung-k values and states after rung k − 1 (the lone-stop rule). So of K
     // rungs, rung k is walked for the pixels within K − k + 1 of a wanted one, and the
     // first rung and the intervals cover those within K.
-    std::vector<PixelMask> walked(wanted.empty() ? 0 : radii.size());
-    if (!wanted.empty())
+    std::vector<PixelMask> walked(target.empty() ? 0 : radii.size());
+    if (!target.empty())
         run_with_threads(nthreads, [&] {
             for (std::size_t k = radii.size(); k-- > 0;)
-                walked[k] = grown_mask(k + 1 < radii.size() ? walked[k + 1] : wanted, w, h, 1);
+                walked[k] = grown_mask(k + 1 < radii.size() ? walked[k + 1] : target, w, h, 1);
         });
     static const PixelMask kEvery;
     const PixelMask& near = walked.empty() ? kEvery : walked.front();
@@ -152,6 +159,7 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
     };
     detail::filter_rungs(est, guides, options, radii, rung_planes, diagnostics, nthreads,
                          SimdLevel::Auto, take_rung, walked);
+    keep_window_energy(stats, out, ladder.energy, nthreads);
 }
 
 }  // namespace statmc

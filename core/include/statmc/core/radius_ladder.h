@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "statmc/core/denoise_options.h"
+#include "statmc/core/energy_check.h"
 #include "statmc/core/estimator_image.h"
 #include "statmc/core/filter.h"
 #include "statmc/core/statistics_view.h"
@@ -29,6 +30,8 @@ struct RadiusLadderOptions {
     bool overrule_lone_stops = true;
     /// How ṽ is estimated from the untransformed variance and its moments.
     VarianceFilterOptions variance{3, 0.05, 2.f, 0.02f, 0.1f, true};
+    /// The energy check run on the result (energy_check.h); radius 0: none.
+    EnergyCheckOptions energy;
 };
 
 /// Filters `est` (built from `stats`) into `out`, each pixel at its ICI radius. `stats`
@@ -37,8 +40,9 @@ struct RadiusLadderOptions {
 /// context_channel.h): they take part in the test, while the intervals and `out` are
 /// stats' channels alone. Pixels with n < 2 keep their value. Bitwise identical for any
 /// thread count. `wanted`: only those pixels (PixelMask); the walk and the intervals then
-/// cover them and the pixels within one per rung of them, which the lone-stop rule reads.
-/// Throws std::invalid_argument for bad options or missing planes.
+/// cover them and the pixels within one per rung of them, which the lone-stop rule reads,
+/// and first those within the energy check's reach of them, which it reads. Throws
+/// std::invalid_argument for bad options or missing planes.
 void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage& est,
                                const Guides& guides, const DenoiseOptions& options,
                                const std::vector<Plane>& out,

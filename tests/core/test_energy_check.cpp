@@ -1,0 +1,163 @@
+// The energy check (docs/method.md §16): where a window's output holds another amount of
+// light than its noisy means, beyond their noise, the output is scaled back; elsewhere it
+// keeps its bits.
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "statmc/core/energy_check.h"
+#include "statmc/core/statistics_image.h"
+
+namespace statmc {
+namespace {
+
+constexpr int kW = 64, kH = 48, kChannels = 3;
+constexpr float kCount = 16, kSigma2 = 1;  // per-sample variance; the mean's is kSigma2/kCount
+constexpr EnergyCheckOptions kCheck{3, 0.005};
+
+// Noisy means of a known truth: truth(x, y, c) plus a normal error of the mean's exact
+// variance, which the planes state, so that the check's test is exact.
+template <class Truth>
+StatisticsPlanes noisy_means(const Truth& truth, std::uint64_t seed)
+{
+    StatisticsPlanes s;
+    s.width = kW;
+    s.height = kH;
+    s.channels = kChannels;
+    const std::size_t n = std::size_t(kW) * kH;
+    s.count.assign(n, kCount);
+    s.mean.resize(n * kChannels);
+    s.variance.assign(n * kChannels, kSigma2);
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<float> error(0.f, std::sqrt(kSigma2 / kCount));
+    for (int c = 0; c < kChannels; ++c)
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                s.mean[c * n + std::size_t(y) * kW + x] = truth(x, y, c) + error(rng);
+    return s;
+}
+
+float flat(int, int, int c) { return 4.f + c; }
+
+std::vector<Plane> planes_of(std::vector<float>& data)
+{
+    std::vector<Plane> p;
+    for (int c = 0; c < kChannels; ++c)
+        p.push_back(dense_plane(data.data() + std::size_t(c) * kW * kH, kW));
+    return p;
+}
+
+bool in_patch(int x, int y, int margin)
+{
+    return x >= 20 + margin && x < 44 - margin && y >= 12 + margin && y < 36 - margin;
+}
+
+TEST(EnergyCheck, AnOutputThatKeepsEveryWindowsLightKeepsItsBits)
+{
+    const StatisticsPlanes s = noisy_means(flat, 1);
+    std::vector<float> out = s.mean;  // the noisy means themselves: every sum agrees
+    EXPECT_EQ(keep_window_energy(s.view(), planes_of(out), kCheck), 0u);
+    EXPECT_EQ(out, s.mean);
+}
+
+TEST(EnergyCheck, GivesBackLightAFilterLostAndTakesBackLightItInvented)
+{
+    // An output that halved a 24×24 patch (lost light) or doubled it (invented light). Deep
+    // inside it every window is off by far more than its noise (Σ 0.5·x̄ ≈ 98 against
+    // z·sqrt(49/16) ≈ 4.9), each factor is 2 (or 1/2) and so is their average: the noisy
+    // means come back, to rounding. Outside the patch's reach nothing changes.
+    const StatisticsPlanes s = noisy_means(flat, 2);
+    const std::size_t n = std::size_t(kW) * kH;
+    for (const float scale : {0.5f, 2.f}) {
+        std::vector<float> out = s.mean;
+        for (int c = 0; c < kChannels; ++c)
+            for (int y = 0; y < kH; ++y)
+                for (int x = 0; x < kW; ++x)
+                    if (in_patch(x, y, 0))
+                        out[c * n + std::size_t(y) * kW + x] *= scale;
+        EXPECT_GT(keep_window_energy(s.view(), planes_of(out), kCheck), 0u);
+        for (int c = 0; c < kChannels; ++c)
+            for (int y = 0; y < kH; ++y)
+                for (int x = 0; x < kW; ++x) {
+                    const std::size_t i = c * n + std::size_t(y) * kW + x;
+                    if (in_patch(x, y, 2 * kCheck.radius)) {
+                        ASSERT_NEAR(out[i], s.mean[i], 1e-5f * s.mean[i])
+                            << "scale " << scale << " at " << x << "," << y;
+                    }
+                    if (!in_patch(x, y, -2 * kCheck.radius)) {
+                        ASSERT_EQ(out[i], s.mean[i])
+                            << "scale " << scale << " at " << x << "," << y;
+                    }
+                }
+    }
+}
+
+TEST(EnergyCheck, FindsAnUnbiasedOutputOffAtItsLevel)
+{
+    // The output is the truth itself, so each window's difference Σ x̄ − Σ μ is normal with
+    // exactly the variance the test uses: a window is found off with probability α, and
+    // over five seeds of 3 × 64 × 48 windows about α·N ≈ 230 are. Windows overlap, so
+    // their verdicts come in clusters of a few dozen at most: the count stays within
+    // [α·N/3, 2·α·N] but for a chance well below one in a thousand.
+    const double windows = 5.0 * kChannels * kW * kH;
+    double off = 0;
+    for (std::uint64_t seed = 10; seed < 15; ++seed) {
+        const StatisticsPlanes s = noisy_means(flat, seed);
+        std::vector<float> out(s.mean.size());
+        for (int c = 0; c < kChannels; ++c)
+            std::fill(out.begin() + std::size_t(c) * kW * kH,
+                      out.begin() + std::size_t(c + 1) * kW * kH, flat(0, 0, c));
+        off += double(keep_window_energy(s.view(), planes_of(out), kCheck));
+    }
+    EXPECT_LE(off, 2 * kCheck.alpha * windows);
+    EXPECT_GE(off, kCheck.alpha * windows / 3);
+}
+
+TEST(EnergyCheck, IsTheSameForAnyThreadCountAndReadsTheOutputWithinTwiceItsRadius)
+{
+    const StatisticsPlanes s =
+        noisy_means([](int x, int, int c) { return x < 30 ? 1.f + c : 8.f; }, 3);
+    std::vector<float> blurred(s.mean.size());
+    const std::size_t n = std::size_t(kW) * kH;
+    for (std::size_t i = 0; i < blurred.size(); ++i)
+        blurred[i] = 0.7f * s.mean[i] + 0.3f * s.mean[(i / n) * n + (i % n + 1) % n];
+    std::vector<float> one = blurred, two = blurred;
+    keep_window_energy(s.view(), planes_of(one), kCheck, 1);
+    keep_window_energy(s.view(), planes_of(two), kCheck, 2);
+    EXPECT_EQ(one, two);
+    // Change the output at every pixel further than 2R from (40, 20): that pixel's result
+    // stays the same bits.
+    std::vector<float> far = blurred;
+    for (int c = 0; c < kChannels; ++c)
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                if (std::max(std::abs(x - 40), std::abs(y - 20)) > 2 * kCheck.radius)
+                    far[c * n + std::size_t(y) * kW + x] *= 3.f;
+    keep_window_energy(s.view(), planes_of(far), kCheck, 2);
+    for (int c = 0; c < kChannels; ++c) {
+        const std::size_t i = c * n + 20 * kW + 40;
+        EXPECT_EQ(far[i], one[i]) << "channel " << c;
+    }
+}
+
+TEST(EnergyCheck, BadOptionsAndMissingPlanesAreErrors)
+{
+    const StatisticsPlanes s = noisy_means(flat, 4);
+    std::vector<float> out = s.mean;
+    EXPECT_THROW(keep_window_energy(s.view(), planes_of(out), {-1, 0.005}), std::invalid_argument);
+    EXPECT_THROW(keep_window_energy(s.view(), planes_of(out), {3, 0.0}), std::invalid_argument);
+    EXPECT_THROW(keep_window_energy(s.view(), planes_of(out), {3, 1.0}), std::invalid_argument);
+    EXPECT_THROW(keep_window_energy(s.view(), {planes_of(out)[0]}, kCheck), std::invalid_argument);
+    StatisticsPlanes no_variance = s;
+    no_variance.variance.clear();
+    EXPECT_THROW(keep_window_energy(no_variance.view(), planes_of(out), kCheck),
+                 std::invalid_argument);
+    EXPECT_EQ(keep_window_energy(no_variance.view(), planes_of(out), {0, 0.005}), 0u)
+        << "radius 0 is off and reads nothing";
+}
+
+}  // namespace
+}  // namespace statmc
