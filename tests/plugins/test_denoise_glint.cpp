@@ -1,8 +1,9 @@
 // A glint amid dark neighbours (docs/method.md §5, "The mutual guard"): a few bright hits
 // among misses, which the t-test at few samples cannot tell from the dark pixels around
 // it. Where its value rests on two samples' worth or more, the default keeps its light;
-// no neighbour is brightened or darkened beyond 3 standard errors of its own truth. And a
-// caustic-like region's error falls with every doubling of the sample count.
+// no neighbour is brightened or darkened beyond 3 standard errors of its own truth. A
+// caustic-like region's error falls with every doubling of the sample count, and where the
+// energy check acts on one at an ROI's edge, the ROI still gets the full run's pixels.
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -281,6 +282,44 @@ TEST(Consistency, ACausticPatchsErrorFallsWithEveryDoublingOfTheSamples)
         EXPECT_LT(error, previous) << "n = " << n;
         previous = error;
     }
+}
+
+TEST(EnergyCheck, AnRoiGetsTheFullRunsPixelsWhereTheCheckActsAtItsEdge)
+{
+    // A caustic through 4 passes of 4 samples (hits of 20 with p = 0.05 in the patch), where
+    // the default's energy check (docs/method.md §16) changes pixels near the ROI's edge:
+    // a run over the ROI must read the filter's halo and the check's reach beyond it, and
+    // give the full run's bits. A small radius, so that the halo does not cover the frame.
+    DenoiseImageOptions o;
+    o.filter.radius = 3;
+    DenoiseImageOptions unchecked = o;
+    unchecked.stages.ladder.energy.radius = 0;
+    Glint unused;
+    const OIIO::ImageBuf in = through_passes(
+        4, 4, {"R", "G", "B"},
+        [](std::mt19937_64& rng, int x, int y, float* s) {
+            const bool patch = x >= 10 && x < 22 && y >= 10 && y < 22;
+            const float e = std::exponential_distribution<float>(1.f)(rng);
+            const bool hit = std::uniform_real_distribution<float>(0, 1)(rng) < 0.05f;
+            for (int c = 0; c < 3; ++c)
+                s[c] = patch ? (hit ? 20.f : 0.f) : 0.02f * e;
+        },
+        unused);
+    const OIIO::ImageBuf full = denoise(in, o), plain = denoise(in, unchecked);
+    ASSERT_FALSE(full.has_error()) << full.geterror();
+    const OIIO::ROI roi(16, 33, 0, 33);
+    int changed_near_edge = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 16; x < 16 + 6; ++x)
+            changed_near_edge += full.getchannel(x, y, 0, 0) != plain.getchannel(x, y, 0, 0);
+    EXPECT_GT(changed_near_edge, 0) << "the check must act inside the ROI, near its edge";
+    OIIO::ImageBuf part;
+    ASSERT_TRUE(denoise(part, in, o, roi)) << part.geterror();
+    for (int y = roi.ybegin; y < roi.yend; ++y)
+        for (int x = roi.xbegin; x < roi.xend; ++x)
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(part.getchannel(x, y, 0, c), full.getchannel(x, y, 0, c))
+                    << "channel " << c << " at (" << x << ", " << y << ")";
 }
 
 }  // namespace
