@@ -104,11 +104,16 @@ std::size_t keep_window_energy(const StatisticsView& noisy, const std::vector<Pl
                 },
                 [](std::size_t a, std::size_t b) { return a + b; });
             box_sums(excess, w, h, r, column, sum_mean);
+            // Only a pixel that moved the way its windows' light did (down where they lost
+            // light, up where they invented it) is scaled back; one that moved the other way
+            // took the light that went missing elsewhere, and scaling it would add to that.
             tbb::parallel_for(0, h, [&](int y) {
                 for (int x = 0; x < w; ++x) {
                     const double g = sum_mean[std::size_t(y) * w + x] / window;
-                    if (g != 0)
-                        out[c](x, y) = float(out[c](x, y) * (1 + g));
+                    const double o = out[c](x, y), m = noisy.mean[c](x, y);
+                    const bool usable = noisy.count(x, y) >= 2 && std::isfinite(m);
+                    if (g != 0 && usable && (g > 0 ? o < m : o > m))
+                        out[c](x, y) = float(o * (1 + g));
                 }
             });
         }

@@ -95,6 +95,30 @@ TEST(EnergyCheck, GivesBackLightAFilterLostAndTakesBackLightItInvented)
     }
 }
 
+TEST(EnergyCheck, APixelThatMovedTheOtherWayKeepsItsBits)
+{
+    // The patch lost half its light, but one pixel in it took light (1.5·x̄): the windows
+    // around it give factors near 2, which would scale that pixel further from its mean.
+    // It keeps its bits; its neighbours, which lost light, are scaled back up.
+    const StatisticsPlanes s = noisy_means(flat, 5);
+    const std::size_t n = std::size_t(kW) * kH;
+    std::vector<float> out = s.mean;
+    for (int c = 0; c < kChannels; ++c)
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                if (in_patch(x, y, 0))
+                    out[c * n + std::size_t(y) * kW + x] *= 0.5f;
+    const std::size_t took = 24 * kW + 32, beside = took + 1;
+    for (int c = 0; c < kChannels; ++c)
+        out[c * n + took] = 1.5f * s.mean[c * n + took];
+    const std::vector<float> before = out;
+    keep_window_energy(s.view(), planes_of(out), kCheck);
+    for (int c = 0; c < kChannels; ++c) {
+        EXPECT_EQ(out[c * n + took], before[c * n + took]) << "channel " << c;
+        EXPECT_GT(out[c * n + beside], 1.5f * before[c * n + beside]) << "channel " << c;
+    }
+}
+
 TEST(EnergyCheck, FindsAnUnbiasedOutputOffAtItsLevel)
 {
     // The output is the truth itself, so each window's difference Σ x̄ − Σ μ is normal with
