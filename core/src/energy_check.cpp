@@ -84,8 +84,10 @@ std::size_t keep_window_energy(const StatisticsView& noisy, const std::vector<Pl
             box_sums(mean, w, h, r, column, sum_mean);
             box_sums(output, w, h, r, column, sum_output);
             box_sums(variance, w, h, r, column, sum_variance);
-            // Each window's factor less 1 where its test finds it off (reusing `mean`).
-            std::vector<double>& excess = mean;
+            // Each window's factor less 1 where its test finds it off, and its box mean
+            // (in buffers whose sums are read by then).
+            std::vector<double>& excess = variance;
+            std::vector<double>& smoothed = sum_variance;
             off += tbb::parallel_reduce(
                 tbb::blocked_range<int>(0, h), std::size_t(0),
                 [&](const tbb::blocked_range<int>& rows, std::size_t found) {
@@ -103,17 +105,17 @@ std::size_t keep_window_energy(const StatisticsView& noisy, const std::vector<Pl
                     return found;
                 },
                 [](std::size_t a, std::size_t b) { return a + b; });
-            box_sums(excess, w, h, r, column, sum_mean);
+            box_sums(excess, w, h, r, column, smoothed);
             // Only a pixel that moved the way its windows' light did (down where they lost
             // light, up where they invented it) is scaled back; one that moved the other way
             // took the light that went missing elsewhere, and scaling it would add to that.
+            // A pixel without a usable mean lent its output as its mean, so it moved neither.
             tbb::parallel_for(0, h, [&](int y) {
                 for (int x = 0; x < w; ++x) {
-                    const double g = sum_mean[std::size_t(y) * w + x] / window;
-                    const double o = out[c](x, y), m = noisy.mean[c](x, y);
-                    const bool usable = noisy.count(x, y) >= 2 && std::isfinite(m);
-                    if (g != 0 && usable && (g > 0 ? o < m : o > m))
-                        out[c](x, y) = float(o * (1 + g));
+                    const std::size_t i = std::size_t(y) * w + x;
+                    const double g = smoothed[i] / window;
+                    if (g != 0 && (g > 0 ? output[i] < mean[i] : output[i] > mean[i]))
+                        out[c](x, y) = float(out[c](x, y) * (1 + g));
                 }
             });
         }
