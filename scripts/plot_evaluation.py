@@ -319,7 +319,7 @@ def main():
            "Methods: " + "; ".join(f"**{m}** — {LABELS[m]}" for m in METHODS) + ". statmc's filter runs",
            "at its defaults (r = 20, α = 0.005, σ_s = 10, firefly guard κ = 256; the default adds the",
            "ICI ladder at α = 0.005 with variances moderated at d₀ = 16 towards neighbours of the same mean (t-test at α = 0.05),",
-           "the guide-noise correction, the context test over 3×3 boxes and the energy check over 7×7 windows, docs/method.md §5, §10–11, §16); the baselines at the",
+           "the guide-noise correction, the context test over 3×3 boxes and the energy and residual checks over 7×7 windows, docs/method.md §5, §10–11, §16–17); the baselines at the",
            "parameters in `bench/evaluation/baselines/baselines.h` (NL-means: search 10, patch 3, k = 0.45;",
            "cross-bilateral: r = 10, σ_s = 4, σ_a = 0.1, σ_n = 0.2). Render time is statmc-render's",
            f"(2 threads); denoise time is the median of {a.runs} run(s) of the whole operator on this 2-core",

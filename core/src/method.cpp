@@ -14,8 +14,9 @@ MethodSettings method_settings(Method method)
         s.stages.ladder.variance.prior_dof = 16;
         s.stages.ladder.variance.prior_alpha = 0.05;
         s.stages.context_radius = 1;
-        // Windows of the moderation's size, tested at the ladder's level (§16).
+        // Windows of the moderation's size, tested at the ladder's level (§16, §17).
         s.stages.ladder.energy = {s.stages.ladder.variance.radius, s.stages.ladder.alpha};
+        s.stages.ladder.residual = {s.stages.ladder.variance.radius, s.stages.ladder.alpha};
         break;
     case Method::Classic:
         s.filter.guide_noise = false;

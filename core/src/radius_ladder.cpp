@@ -44,12 +44,11 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
     const int w = est.width, h = est.height, channels = stats.channels;
     const std::size_t pixels = est.pixels();
     const std::vector<int> radii = rungs(ladder, options.radius);
-    // The energy check reads the ladder's output within its reach of a wanted pixel.
+    // The checks read the ladder's output within their reach of a wanted pixel.
     PixelMask checked;
-    if (!wanted.empty() && ladder.energy.radius > 0)
-        run_with_threads(nthreads, [&] {
-            checked = grown_mask(wanted, w, h, energy_check_reach(ladder.energy));
-        });
+    if (!wanted.empty() && checks_reach(ladder) > 0)
+        run_with_threads(nthreads,
+                         [&] { checked = grown_mask(wanted, w, h, checks_reach(ladder)); });
     const PixelMask& target = checked.empty() ? wanted : checked;
     // A pixel's state after rung k depends on its own after rung k − 1 and on its
     // 8-neighbours' rung-k values and states after rung k − 1 (the lone-stop rule). So of K
@@ -160,6 +159,7 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
     detail::filter_rungs(est, guides, options, radii, rung_planes, diagnostics, nthreads,
                          SimdLevel::Auto, take_rung, walked);
     keep_window_energy(stats, out, ladder.energy, nthreads);
+    keep_window_residual(stats, out, ladder.residual, nthreads);
 }
 
 }  // namespace statmc

@@ -10,45 +10,14 @@
 
 #include "statmc/core/energy_check.h"
 #include "statmc/core/statistics_image.h"
+#include "window_fixtures.h"
 
 namespace statmc {
 namespace {
 
-constexpr int kW = 64, kH = 48, kChannels = 3;
-constexpr float kCount = 16, kSigma2 = 1;  // per-sample variance; the mean's is kSigma2/kCount
+using namespace window_fixtures;
+
 constexpr EnergyCheckOptions kCheck{3, 0.005};
-
-// Noisy means of a known truth: truth(x, y, c) plus a normal error of the mean's exact
-// variance, which the planes state, so that the check's test is exact.
-template <class Truth>
-StatisticsPlanes noisy_means(const Truth& truth, std::uint64_t seed)
-{
-    StatisticsPlanes s;
-    s.width = kW;
-    s.height = kH;
-    s.channels = kChannels;
-    const std::size_t n = std::size_t(kW) * kH;
-    s.count.assign(n, kCount);
-    s.mean.resize(n * kChannels);
-    s.variance.assign(n * kChannels, kSigma2);
-    std::mt19937_64 rng(seed);
-    std::normal_distribution<float> error(0.f, std::sqrt(kSigma2 / kCount));
-    for (int c = 0; c < kChannels; ++c)
-        for (int y = 0; y < kH; ++y)
-            for (int x = 0; x < kW; ++x)
-                s.mean[c * n + std::size_t(y) * kW + x] = truth(x, y, c) + error(rng);
-    return s;
-}
-
-float flat(int, int, int c) { return 4.f + c; }
-
-std::vector<Plane> planes_of(std::vector<float>& data)
-{
-    std::vector<Plane> p;
-    for (int c = 0; c < kChannels; ++c)
-        p.push_back(dense_plane(data.data() + std::size_t(c) * kW * kH, kW));
-    return p;
-}
 
 bool in_patch(int x, int y, int margin)
 {

@@ -242,6 +242,14 @@ TEST(RadiusLadder, AMaskedLadderGivesTheWantedPixelsTheFullLaddersBits)
     std::fill(wanted.begin() + 20 * w, wanted.begin() + 21 * w, 1);
     const RadiusLadderOptions ladder = the_defaults_ladder();
     expect_masked_bits(edge, w, wanted, DenoiseOptions{}, &ladder);
+    // One pixel by the edge, and a residual check that acts in about half the windows, so
+    // that what it reads around the pixel (the energy check's output, within both checks'
+    // reach) matters and lies inside the frame.
+    RadiusLadderOptions eager = ladder;
+    eager.residual.alpha = 0.9;
+    PixelMask one(wanted.size(), 0);
+    one[std::size_t(h / 2) * w + w / 2] = 1;
+    expect_masked_bits(edge, w, one, DenoiseOptions{}, &eager);
     expect_masked_bits(edge, w, wanted, DenoiseOptions{}, nullptr);
     // The moderated variances the intervals read, likewise.
     const std::vector<float> all = denoise_variances(edge.view(), TestDomain::Untransformed, {},

@@ -246,6 +246,7 @@ std::vector<float> default_in_core(const Frame& f, const std::vector<int>& radii
     ladder.variance.prior_dof = 16;
     ladder.variance.prior_alpha = 0.05;
     ladder.energy = {3, 0.005};
+    ladder.residual = {3, 0.005};
     filter_with_radius_ladder(f.stats.view(), est, {}, small_filter(), rgb_planes(expected),
                               ladder);
     return expected;

@@ -70,21 +70,22 @@ OIIO::ImageBuf full_statistics(int n, std::uint64_t seed, Glint& glint)
     return layers::make_statistics_image(img.planes());
 }
 
-// K renders of 4 samples per pixel with the channels `names`, through --passes: each
-// render is one sample. `draw` writes one sample of pixel (x, y), a value per channel.
+// K renders of 4 samples per pixel with the channels `names`, `width` × kH, through
+// --passes: each render is one sample. `draw` writes one sample of pixel (x, y), a value per
+// channel.
 using SampleDraw = std::function<void(std::mt19937_64&, int x, int y, float* sample)>;
 OIIO::ImageBuf through_passes(int K, std::uint64_t seed, const std::vector<std::string>& names,
-                              const SampleDraw& draw, Glint& glint)
+                              const SampleDraw& draw, Glint& glint, int width = kW)
 {
     std::mt19937_64 rng(seed);
     const int n = int(names.size());
     std::vector<OIIO::ImageBuf> renders;
     for (int k = 0; k < K; ++k) {
-        OIIO::ImageSpec spec(kW, kH, n, OIIO::TypeFloat);
+        OIIO::ImageSpec spec(width, kH, n, OIIO::TypeFloat);
         spec.channelnames = names;
         OIIO::ImageBuf r(spec);
         for (int y = 0; y < kH; ++y)
-            for (int x = 0; x < kW; ++x) {
+            for (int x = 0; x < width; ++x) {
                 std::vector<float> px(n, 0.f), s(n);
                 for (int i = 0; i < 4; ++i) {
                     draw(rng, x, y, s.data());
@@ -284,33 +285,35 @@ TEST(Consistency, ACausticPatchsErrorFallsWithEveryDoublingOfTheSamples)
     }
 }
 
-TEST(EnergyCheck, AnRoiGetsTheFullRunsPixelsWhereTheCheckActsAtItsEdge)
+// A caustic through 4 passes of 4 samples (hits of 20 with p = 0.05 in a patch across the
+// ROI's left edge), where the check that `off` turns off changes pixels near that edge: a
+// run over the ROI must read the filter's halo and the checks' reach beyond it, and give
+// the full run's bits. A small radius and a frame twice the ROI's width, so that the halo
+// does not cover the frame.
+void expect_roi_gets_full_runs_pixels(const std::function<void(DenoiseImageOptions&)>& off)
 {
-    // A caustic through 4 passes of 4 samples (hits of 20 with p = 0.05 in the patch), where
-    // the default's energy check (docs/method.md §16) changes pixels near the ROI's edge:
-    // a run over the ROI must read the filter's halo and the check's reach beyond it, and
-    // give the full run's bits. A small radius, so that the halo does not cover the frame.
+    constexpr int kWide = 64, kEdge = 32;
     DenoiseImageOptions o;
     o.filter.radius = 3;
     DenoiseImageOptions unchecked = o;
-    unchecked.stages.ladder.energy.radius = 0;
+    off(unchecked);
     Glint unused;
     const OIIO::ImageBuf in = through_passes(
         4, 4, {"R", "G", "B"},
         [](std::mt19937_64& rng, int x, int y, float* s) {
-            const bool patch = x >= 10 && x < 22 && y >= 10 && y < 22;
+            const bool patch = x >= kEdge - 6 && x < kEdge + 6 && y >= 10 && y < 22;
             const float e = std::exponential_distribution<float>(1.f)(rng);
             const bool hit = std::uniform_real_distribution<float>(0, 1)(rng) < 0.05f;
             for (int c = 0; c < 3; ++c)
                 s[c] = patch ? (hit ? 20.f : 0.f) : 0.02f * e;
         },
-        unused);
+        unused, kWide);
     const OIIO::ImageBuf full = denoise(in, o), plain = denoise(in, unchecked);
     ASSERT_FALSE(full.has_error()) << full.geterror();
-    const OIIO::ROI roi(16, 33, 0, 33);
+    const OIIO::ROI roi(kEdge, kWide, 0, kH);
     int changed_near_edge = 0;
     for (int y = 0; y < kH; ++y)
-        for (int x = 16; x < 16 + 6; ++x)
+        for (int x = kEdge; x < kEdge + 6; ++x)
             changed_near_edge += full.getchannel(x, y, 0, 0) != plain.getchannel(x, y, 0, 0);
     EXPECT_GT(changed_near_edge, 0) << "the check must act inside the ROI, near its edge";
     OIIO::ImageBuf part;
@@ -320,6 +323,20 @@ TEST(EnergyCheck, AnRoiGetsTheFullRunsPixelsWhereTheCheckActsAtItsEdge)
             for (int c = 0; c < 3; ++c)
                 ASSERT_EQ(part.getchannel(x, y, 0, c), full.getchannel(x, y, 0, c))
                     << "channel " << c << " at (" << x << ", " << y << ")";
+}
+
+TEST(EnergyCheck, AnRoiGetsTheFullRunsPixelsWhereTheCheckActsAtItsEdge)
+{
+    // The default's energy check (docs/method.md §16).
+    expect_roi_gets_full_runs_pixels(
+        [](DenoiseImageOptions& o) { o.stages.ladder.energy.radius = 0; });
+}
+
+TEST(ResidualCheck, AnRoiGetsTheFullRunsPixelsWhereTheCheckActsAtItsEdge)
+{
+    // The default's residual check (§17), which reads the energy check's output.
+    expect_roi_gets_full_runs_pixels(
+        [](DenoiseImageOptions& o) { o.stages.ladder.residual.radius = 0; });
 }
 
 }  // namespace

@@ -55,11 +55,11 @@ struct Stages {
     std::string skipped;  ///< the stages left out, and why ("" when none)
 
     // The ladder's variance filter and the context boxes read beyond the mean filter's
-    // halo, and the ladder's energy check reads the output that far around a pixel.
+    // halo, and the ladder's checks read the output that far around a pixel.
     int halo() const
     {
         return std::max(radius_ladder ? ladder.variance.radius : 0, context_radius) +
-               (radius_ladder ? energy_check_reach(ladder.energy) : 0);
+               (radius_ladder ? checks_reach(ladder) : 0);
     }
 };
 

@@ -118,9 +118,9 @@ std::vector<statmc::ParameterSpec> parameters()
     return {
         choice_parameter("method", spellings(kMethods), "default",
                          "default: the classic filter with each pixel at its own radius (the "
-                         "ICI ladder and its energy check, left out with a note on a file "
-                         "without the variance layer) and the context test (docs/method.md "
-                         "§11, §16); classic: the 2024 "
+                         "ICI ladder and its energy and residual checks, left out with a note "
+                         "on a file without the variance layer) and the context test "
+                         "(docs/method.md §11, §16, §17); classic: the 2024 "
                          "filter with the firefly guard; paper: Sakai et al. 2024 bit for bit. "
                          "The parameters below apply over any method"),
         int_parameter("radius", f.radius, "filter disk radius in pixels").between(0, 1000),

@@ -1,6 +1,7 @@
-// The energy check (docs/method.md §16): the default method's last step. A denoise may move
-// light between pixels, but over a small window its output should hold the light the
-// noisy means hold, which are unbiased. Where a window's two sums differ by more than the
+// The energy check (docs/method.md §16), run on the default method's radius ladder's result
+// before the residual check (residual_check.h). A denoise may move light between pixels,
+// but over a small window its output should hold the light the noisy means hold, which
+// are unbiased. Where a window's two sums differ by more than the
 // noise of the noisy sum explains (a normal test at level α), the filter has lost or
 // invented light there; the pixels that moved that way are scaled back towards the noisy
 // sum, by a factor smoothed over the same window so that no seam is drawn at the test's

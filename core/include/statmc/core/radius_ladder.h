@@ -12,6 +12,7 @@
 #include "statmc/core/energy_check.h"
 #include "statmc/core/estimator_image.h"
 #include "statmc/core/filter.h"
+#include "statmc/core/residual_check.h"
 #include "statmc/core/statistics_view.h"
 #include "statmc/core/variance_filter.h"
 
@@ -32,7 +33,16 @@ struct RadiusLadderOptions {
     VarianceFilterOptions variance{3, 0.05, 2.f, 0.02f, 0.1f, true};
     /// The energy check run on the result (energy_check.h); radius 0: none.
     EnergyCheckOptions energy;
+    /// The residual check run after it (residual_check.h); radius 0: none.
+    ResidualCheckOptions residual;
 };
+
+/// How far the ladder's checks read its output around a pixel: the energy check's reach,
+/// then the residual check's on the energy check's output.
+inline int checks_reach(const RadiusLadderOptions& ladder)
+{
+    return energy_check_reach(ladder.energy) + residual_check_reach(ladder.residual);
+}
 
 /// Filters `est` (built from `stats`) into `out`, each pixel at its ICI radius. `stats`
 /// needs the untransformed variance, and M3 and M4 when `ladder.variance` tests intervals
@@ -41,7 +51,7 @@ struct RadiusLadderOptions {
 /// stats' channels alone. Pixels with n < 2 keep their value. Bitwise identical for any
 /// thread count. `wanted`: only those pixels (PixelMask); the walk and the intervals then
 /// cover them and the pixels within one per rung of them, which the lone-stop rule reads,
-/// and first those within the energy check's reach of them, which it reads. Throws
+/// and first those within the checks' reach of them (checks_reach), which they read. Throws
 /// std::invalid_argument for bad options or missing planes.
 void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage& est,
                                const Guides& guides, const DenoiseOptions& options,
