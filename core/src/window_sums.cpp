@@ -8,6 +8,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "statmc/core/critical_values.h"
+
 namespace statmc::detail {
 
 bool window_check_runs(const char* check, const StatisticsView& noisy,
@@ -25,6 +27,18 @@ bool window_check_runs(const char* check, const StatisticsView& noisy,
     if (int(out.size()) < noisy.channels)
         throw std::invalid_argument(name + ": fewer output planes than channels");
     return true;
+}
+
+Windows windows_of(const StatisticsView& noisy, int radius, double alpha)
+{
+    Windows win;
+    win.w = noisy.width;
+    win.h = noisy.height;
+    win.r = radius;
+    win.pixels = std::size_t(win.w) * win.h;
+    win.area = double(2 * radius + 1) * (2 * radius + 1);
+    win.z = normal_critical_value(alpha);
+    return win;
 }
 
 bool usable_mean(const StatisticsView& noisy, int c, int x, int y)

@@ -2,7 +2,12 @@
 // their sums over windows.
 #pragma once
 
+#include <cstddef>
 #include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "statmc/core/plane.h"
 #include "statmc/core/statistics_view.h"
@@ -13,6 +18,40 @@ namespace statmc::detail {
 /// names `check`; false when `radius` is 0 (the check is off and reads nothing).
 bool window_check_runs(const char* check, const StatisticsView& noisy,
                        const std::vector<Plane>& out, int radius, double alpha);
+
+/// The windows a check tests: the image's size, their half width R, their area (2R + 1)²
+/// and the test's critical value z at 1 − α/2.
+struct Windows {
+    int w = 0, h = 0, r = 0;
+    std::size_t pixels = 0;
+    double area = 0, z = 0;
+};
+Windows windows_of(const StatisticsView& noisy, int radius, double alpha);
+
+/// Calls f(i, x, y) for every pixel, i = y·w + x, rows in parallel.
+template <class F>
+void for_each_pixel(const Windows& win, F&& f)
+{
+    tbb::parallel_for(0, win.h, [&](int y) {
+        for (int x = 0; x < win.w; ++x)
+            f(std::size_t(y) * win.w + x, x, y);
+    });
+}
+
+/// How many pixels `off(i)` is true for, calling it once for every pixel, rows in parallel.
+template <class F>
+std::size_t count_pixels(const Windows& win, F&& off)
+{
+    return tbb::parallel_reduce(
+        tbb::blocked_range<int>(0, win.h), std::size_t(0),
+        [&](const tbb::blocked_range<int>& rows, std::size_t found) {
+            for (int y = rows.begin(); y < rows.end(); ++y)
+                for (int x = 0; x < win.w; ++x)
+                    found += off(std::size_t(y) * win.w + x) ? 1 : 0;
+            return found;
+        },
+        [](std::size_t a, std::size_t b) { return a + b; });
+}
 
 /// Whether the pixel's mean can be checked against: n ≥ 2 and a finite mean.
 bool usable_mean(const StatisticsView& noisy, int c, int x, int y);
@@ -27,5 +66,10 @@ double variance_of_mean(const StatisticsView& noisy, int c, int x, int y);
 /// `column` is scratch of w × h. Call inside the caller's thread limit.
 void box_sums(const std::vector<double>& in, int w, int h, int r, std::vector<double>& column,
               std::vector<double>& out);
+inline void box_sums(const std::vector<double>& in, const Windows& win, std::vector<double>& column,
+                     std::vector<double>& out)
+{
+    box_sums(in, win.w, win.h, win.r, column, out);
+}
 
 }  // namespace statmc::detail
