@@ -53,9 +53,10 @@ double variance_of_mean(const StatisticsView& noisy, int c, int x, int y)
     return std::isfinite(v) && v > 0 ? v : 0.0;
 }
 
-void box_sums(const std::vector<double>& in, int w, int h, int r, std::vector<double>& column,
+void box_sums(const std::vector<double>& in, const Windows& win, std::vector<double>& column,
               std::vector<double>& out)
 {
+    const int w = win.w, h = win.h, r = win.r;
     tbb::parallel_for(0, h, [&](int y) {
         const int y0 = std::max(0, y - r), y1 = std::min(h - 1, y + r);
         double* row = column.data() + std::size_t(y) * w;

@@ -64,12 +64,7 @@ double variance_of_mean(const StatisticsView& noisy, int c, int x, int y);
 /// clipped to the image: a column pass, then a row pass, each adding its 2R + 1 terms in
 /// the same order for every pixel, so that a sum depends on its window's values alone.
 /// `column` is scratch of w × h. Call inside the caller's thread limit.
-void box_sums(const std::vector<double>& in, int w, int h, int r, std::vector<double>& column,
+void box_sums(const std::vector<double>& in, const Windows& win, std::vector<double>& column,
               std::vector<double>& out);
-inline void box_sums(const std::vector<double>& in, const Windows& win, std::vector<double>& column,
-                     std::vector<double>& out)
-{
-    box_sums(in, win.w, win.h, win.r, column, out);
-}
 
 }  // namespace statmc::detail

@@ -113,22 +113,15 @@ TEST(EnergyCheck, IsTheSameForAnyThreadCountAndReadsTheOutputWithinTwiceItsRadiu
 {
     const StatisticsPlanes s =
         noisy_means([](int x, int, int c) { return x < 30 ? 1.f + c : 8.f; }, 3);
-    std::vector<float> blurred(s.mean.size());
+    const std::vector<float> blurred = blended_with_shift(s.mean, 0.7f, 1);
     const std::size_t n = std::size_t(kW) * kH;
-    for (std::size_t i = 0; i < blurred.size(); ++i)
-        blurred[i] = 0.7f * s.mean[i] + 0.3f * s.mean[(i / n) * n + (i % n + 1) % n];
     std::vector<float> one = blurred, two = blurred;
     keep_window_energy(s.view(), planes_of(one), kCheck, 1);
     keep_window_energy(s.view(), planes_of(two), kCheck, 2);
     EXPECT_EQ(one, two);
     // Change the output at every pixel further than 2R from (40, 20): that pixel's result
     // stays the same bits.
-    std::vector<float> far = blurred;
-    for (int c = 0; c < kChannels; ++c)
-        for (int y = 0; y < kH; ++y)
-            for (int x = 0; x < kW; ++x)
-                if (std::max(std::abs(x - 40), std::abs(y - 20)) > 2 * kCheck.radius)
-                    far[c * n + std::size_t(y) * kW + x] *= 3.f;
+    std::vector<float> far = changed_beyond(blurred, 40, 20, 2 * kCheck.radius);
     keep_window_energy(s.view(), planes_of(far), kCheck, 2);
     for (int c = 0; c < kChannels; ++c) {
         const std::size_t i = c * n + 20 * kW + 40;
@@ -138,18 +131,10 @@ TEST(EnergyCheck, IsTheSameForAnyThreadCountAndReadsTheOutputWithinTwiceItsRadiu
 
 TEST(EnergyCheck, BadOptionsAndMissingPlanesAreErrors)
 {
-    const StatisticsPlanes s = noisy_means(flat, 4);
-    std::vector<float> out = s.mean;
-    EXPECT_THROW(keep_window_energy(s.view(), planes_of(out), {-1, 0.005}), std::invalid_argument);
-    EXPECT_THROW(keep_window_energy(s.view(), planes_of(out), {3, 0.0}), std::invalid_argument);
-    EXPECT_THROW(keep_window_energy(s.view(), planes_of(out), {3, 1.0}), std::invalid_argument);
-    EXPECT_THROW(keep_window_energy(s.view(), {planes_of(out)[0]}, kCheck), std::invalid_argument);
-    StatisticsPlanes no_variance = s;
-    no_variance.variance.clear();
-    EXPECT_THROW(keep_window_energy(no_variance.view(), planes_of(out), kCheck),
-                 std::invalid_argument);
-    EXPECT_EQ(keep_window_energy(no_variance.view(), planes_of(out), {0, 0.005}), 0u)
-        << "radius 0 is off and reads nothing";
+    expect_bad_options_and_missing_planes_are_errors(
+        [](const StatisticsView& view, const std::vector<Plane>& planes, int radius, double alpha) {
+            return keep_window_energy(view, planes, {radius, alpha});
+        });
 }
 
 }  // namespace

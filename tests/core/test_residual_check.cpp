@@ -186,22 +186,15 @@ TEST(ResidualCheck, FindsAnUnbiasedOutputOffAtTheChiSquaresRate)
 TEST(ResidualCheck, IsTheSameForAnyThreadCountAndReadsTheOutputWithinTwiceItsRadius)
 {
     const StatisticsPlanes s = noisy_means(step, 3);
-    std::vector<float> blurred(s.mean.size());
+    const std::vector<float> blurred = blended_with_shift(s.mean, 0.5f, 2);
     const std::size_t n = std::size_t(kW) * kH;
-    for (std::size_t i = 0; i < blurred.size(); ++i)
-        blurred[i] = 0.5f * s.mean[i] + 0.5f * s.mean[(i / n) * n + (i % n + 2) % n];
     std::vector<float> one = blurred, two = blurred;
     EXPECT_GT(keep_window_residual(s.view(), planes_of(one), kCheck, 1), 0u);
     keep_window_residual(s.view(), planes_of(two), kCheck, 2);
     EXPECT_EQ(one, two);
     // Change the output at every pixel further than 2R from (30, 20), by the edge: that
     // pixel's result stays the same bits.
-    std::vector<float> far = blurred;
-    for (int c = 0; c < kChannels; ++c)
-        for (int y = 0; y < kH; ++y)
-            for (int x = 0; x < kW; ++x)
-                if (std::max(std::abs(x - 30), std::abs(y - 20)) > 2 * kCheck.radius)
-                    far[c * n + std::size_t(y) * kW + x] *= 3.f;
+    std::vector<float> far = changed_beyond(blurred, 30, 20, 2 * kCheck.radius);
     keep_window_residual(s.view(), planes_of(far), kCheck, 2);
     for (int c = 0; c < kChannels; ++c) {
         const std::size_t i = c * n + 20 * kW + 30;
@@ -212,20 +205,10 @@ TEST(ResidualCheck, IsTheSameForAnyThreadCountAndReadsTheOutputWithinTwiceItsRad
 
 TEST(ResidualCheck, BadOptionsAndMissingPlanesAreErrors)
 {
-    const StatisticsPlanes s = noisy_means(flat, 4);
-    std::vector<float> out = s.mean;
-    EXPECT_THROW(keep_window_residual(s.view(), planes_of(out), {-1, 0.005}),
-                 std::invalid_argument);
-    EXPECT_THROW(keep_window_residual(s.view(), planes_of(out), {3, 0.0}), std::invalid_argument);
-    EXPECT_THROW(keep_window_residual(s.view(), planes_of(out), {3, 1.0}), std::invalid_argument);
-    EXPECT_THROW(keep_window_residual(s.view(), {planes_of(out)[0]}, kCheck),
-                 std::invalid_argument);
-    StatisticsPlanes no_variance = s;
-    no_variance.variance.clear();
-    EXPECT_THROW(keep_window_residual(no_variance.view(), planes_of(out), kCheck),
-                 std::invalid_argument);
-    EXPECT_EQ(keep_window_residual(no_variance.view(), planes_of(out), {0, 0.005}), 0u)
-        << "radius 0 is off and reads nothing";
+    expect_bad_options_and_missing_planes_are_errors(
+        [](const StatisticsView& view, const std::vector<Plane>& planes, int radius, double alpha) {
+            return keep_window_residual(view, planes, {radius, alpha});
+        });
 }
 
 }  // namespace

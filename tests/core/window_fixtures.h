@@ -2,10 +2,15 @@
 // known truth whose errors have exactly the variance the planes state.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <random>
+#include <stdexcept>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "statmc/core/plane.h"
 #include "statmc/core/statistics_image.h"
@@ -46,6 +51,48 @@ inline std::vector<Plane> planes_of(std::vector<float>& data, int w = kW, int h 
     for (int c = 0; c < kChannels; ++c)
         p.push_back(dense_plane(data.data() + std::size_t(c) * w * h, w));
     return p;
+}
+
+// `mean` (channel-major planes) blended with itself shifted `shift` pixels along the
+// flattened plane: a·x̄ + (1 − a)·x̄ shifted, an output that smears what the means hold.
+inline std::vector<float> blended_with_shift(const std::vector<float>& mean, float a, int shift)
+{
+    const std::size_t n = std::size_t(kW) * kH;
+    std::vector<float> out(mean.size());
+    for (std::size_t i = 0; i < out.size(); ++i)
+        out[i] = a * mean[i] + (1 - a) * mean[(i / n) * n + (i % n + shift) % n];
+    return out;
+}
+
+// `out` with every pixel further than `reach` from (cx, cy) (in the larger of the two axis
+// distances) tripled: what a check at (cx, cy) must not read.
+inline std::vector<float> changed_beyond(std::vector<float> out, int cx, int cy, int reach)
+{
+    const std::size_t n = std::size_t(kW) * kH;
+    for (int c = 0; c < kChannels; ++c)
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                if (std::max(std::abs(x - cx), std::abs(y - cy)) > reach)
+                    out[c * n + std::size_t(y) * kW + x] *= 3.f;
+    return out;
+}
+
+// A window check's bad options and missing planes are errors, and radius 0 reads nothing.
+// `check(view, planes, radius, alpha)` runs the check with those options.
+template <class Check>
+void expect_bad_options_and_missing_planes_are_errors(const Check& check)
+{
+    const StatisticsPlanes s = noisy_means(flat, 4);
+    std::vector<float> out = s.mean;
+    EXPECT_THROW(check(s.view(), planes_of(out), -1, 0.005), std::invalid_argument);
+    EXPECT_THROW(check(s.view(), planes_of(out), 3, 0.0), std::invalid_argument);
+    EXPECT_THROW(check(s.view(), planes_of(out), 3, 1.0), std::invalid_argument);
+    EXPECT_THROW(check(s.view(), {planes_of(out)[0]}, 3, 0.005), std::invalid_argument);
+    StatisticsPlanes no_variance = s;
+    no_variance.variance.clear();
+    EXPECT_THROW(check(no_variance.view(), planes_of(out), 3, 0.005), std::invalid_argument);
+    EXPECT_EQ(check(no_variance.view(), planes_of(out), 0, 0.005), 0u)
+        << "radius 0 is off and reads nothing";
 }
 
 }  // namespace statmc::window_fixtures
