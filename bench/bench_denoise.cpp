@@ -13,7 +13,9 @@
 
 #include "bench_frame.h"
 #include "bench_timing.h"
+#include "statmc/core/energy_check.h"
 #include "statmc/core/estimator_image.h"
+#include "statmc/core/residual_check.h"
 #include "statmc/denoise/denoise.h"
 #include "statmc/layers/exr_files.h"
 #include "statmc/layers/statistics_layers.h"
@@ -145,6 +147,32 @@ void BM_StageEstimators(benchmark::State& state)
         benchmark::DoNotOptimize(estimators_from_statistics(view, TestDomain::BoxCox));
 }
 
+// The default's two window checks (radius 3, as the method runs them) on an output that is
+// the noisy means dimmed by 10% in every tenth row, so that both find windows off. They
+// read the image's own interleaved planes here; the ladder hands them dense copies.
+void BM_StageWindowChecks(benchmark::State& state)
+{
+    const StatisticsView view = layers::read_statistics(image());
+    const int w = view.width, h = view.height;
+    std::vector<float> base(std::size_t(w) * h * view.channels), planes_data(base.size());
+    for (int c = 0; c < view.channels; ++c)
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                base[(std::size_t(c) * h + y) * w + x] =
+                    view.mean[c](x, y) * (y % 10 == 0 ? 0.9f : 1.0f);
+    std::vector<Plane> out;
+    for (int c = 0; c < view.channels; ++c)
+        out.push_back(dense_plane(planes_data.data() + std::size_t(c) * w * h, w));
+    for (auto _ : state) {
+        state.PauseTiming();
+        planes_data = base;
+        state.ResumeTiming();
+        keep_window_energy(view, out, {3, 0.005});
+        keep_window_residual(view, out, {3, 0.005});
+        benchmark::DoNotOptimize(planes_data.data());
+    }
+}
+
 void BM_StageCopy(benchmark::State& state)
 {
     const OIIO::ImageBuf& in = image();
@@ -178,6 +206,7 @@ BENCHMARK(BM_DenoiseTemporal)
     ->Apply(median_of_5);
 BENCHMARK(BM_StageValidate)->Apply(median_of_5);
 BENCHMARK(BM_StageEstimators)->Apply(median_of_5);
+BENCHMARK(BM_StageWindowChecks)->Apply(median_of_5);
 BENCHMARK(BM_StageCopy)->Apply(median_of_5);
 
 }  // namespace

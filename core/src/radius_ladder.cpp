@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "filter_layout.h"
+#include "window_sums.h"
 #include "statmc/core/thread_limit.h"
 #include "statmc/core/critical_values.h"
 
@@ -158,8 +159,16 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
     };
     detail::filter_rungs(est, guides, options, radii, rung_planes, diagnostics, nthreads,
                          SimdLevel::Auto, take_rung, walked);
-    keep_window_energy(stats, out, ladder.energy, nthreads);
-    keep_window_residual(stats, out, ladder.residual, nthreads);
+    // The checks read the statistics channel by channel: from dense copies, not from the
+    // image's interleaved records (the same values; a view that lacks them is theirs to
+    // refuse).
+    std::vector<float> storage;
+    StatisticsView inputs = stats;
+    if (checks_reach(ladder) > 0 && stats.count && stats.has_variance())
+        run_with_threads(nthreads,
+                         [&] { inputs = detail::dense_check_inputs(stats, storage); });
+    keep_window_energy(inputs, out, ladder.energy, nthreads);
+    keep_window_residual(inputs, out, ladder.residual, nthreads);
 }
 
 }  // namespace statmc

@@ -41,43 +41,88 @@ Windows windows_of(const StatisticsView& noisy, int radius, double alpha)
     return win;
 }
 
-bool usable_mean(const StatisticsView& noisy, int c, int x, int y)
+StatisticsView dense_check_inputs(const StatisticsView& noisy, std::vector<float>& storage)
 {
-    return noisy.count(x, y) >= 2 && std::isfinite(noisy.mean[c](x, y));
-}
-
-double variance_of_mean(const StatisticsView& noisy, int c, int x, int y)
-{
-    const double s2 = noisy.variance[c](x, y);
-    const double v = noisy.variance_of_mean ? s2 : s2 / noisy.count(x, y);
-    return std::isfinite(v) && v > 0 ? v : 0.0;
+    const int w = noisy.width, h = noisy.height, channels = noisy.channels;
+    const std::size_t pixels = std::size_t(w) * h;
+    storage.resize(pixels * (1 + 2 * std::size_t(channels)));
+    StatisticsView dense;
+    dense.width = w;
+    dense.height = h;
+    dense.channels = channels;
+    dense.variance_of_mean = noisy.variance_of_mean;
+    auto plane = [&](std::size_t k) { return dense_plane(storage.data() + k * pixels, w); };
+    dense.count = plane(0);
+    for (int c = 0; c < channels; ++c) {
+        dense.mean[c] = plane(1 + c);
+        dense.variance[c] = plane(1 + channels + c);
+    }
+    tbb::parallel_for(0, h, [&](int y) {
+        float* row = storage.data() + std::size_t(y) * w;
+        for (int x = 0; x < w; ++x) {
+            row[x] = noisy.count(x, y);
+            for (int c = 0; c < channels; ++c) {
+                row[(1 + c) * pixels + x] = noisy.mean[c](x, y);
+                row[(1 + channels + c) * pixels + x] = noisy.variance[c](x, y);
+            }
+        }
+    });
+    return dense;
 }
 
 void box_sums(const std::vector<double>& in, const Windows& win, std::vector<double>& column,
               std::vector<double>& out)
 {
     const int w = win.w, h = win.h, r = win.r;
+    // Each pass sums kBlock neighbouring pixels side by side, in registers, rather than
+    // each pixel as a chain of dependent adds; every pixel's terms keep their order.
+    constexpr int kBlock = 8;
+    // Down the columns.
     tbb::parallel_for(0, h, [&](int y) {
         const int y0 = std::max(0, y - r), y1 = std::min(h - 1, y + r);
         double* row = column.data() + std::size_t(y) * w;
-        for (int x = 0; x < w; ++x)
-            row[x] = 0;
-        for (int yy = y0; yy <= y1; ++yy) {
-            const double* src = in.data() + std::size_t(yy) * w;
-            for (int x = 0; x < w; ++x)
-                row[x] += src[x];
+        const double* top = in.data() + std::size_t(y0) * w;
+        int x = 0;
+        for (; x + kBlock <= w; x += kBlock) {
+            double s[kBlock] = {};
+            for (int yy = 0; yy <= y1 - y0; ++yy)
+                for (int j = 0; j < kBlock; ++j)
+                    s[j] += top[std::size_t(yy) * w + x + j];
+            for (int j = 0; j < kBlock; ++j)
+                row[x + j] = s[j];
+        }
+        for (; x < w; ++x) {
+            double s = 0;
+            for (int yy = 0; yy <= y1 - y0; ++yy)
+                s += top[std::size_t(yy) * w + x];
+            row[x] = s;
         }
     });
+    // Across the rows; pixels whose window the image clips, one at a time.
+    const int lo = std::min(r, w), hi = std::max(lo, w - r);  // [lo, hi): full windows
     tbb::parallel_for(0, h, [&](int y) {
         const double* row = column.data() + std::size_t(y) * w;
         double* dst = out.data() + std::size_t(y) * w;
-        for (int x = 0; x < w; ++x) {
+        auto clipped = [&](int x) {
             const int x0 = std::max(0, x - r), x1 = std::min(w - 1, x + r);
             double s = 0;
             for (int xx = x0; xx <= x1; ++xx)
                 s += row[xx];
             dst[x] = s;
+        };
+        for (int x = 0; x < lo; ++x)
+            clipped(x);
+        int x = lo;
+        for (; x + kBlock <= hi; x += kBlock) {
+            double s[kBlock] = {};
+            for (int k = -r; k <= r; ++k)
+                for (int j = 0; j < kBlock; ++j)
+                    s[j] += row[x + j + k];
+            for (int j = 0; j < kBlock; ++j)
+                dst[x + j] = s[j];
         }
+        for (; x < w; ++x)
+            clipped(x);
     });
 }
 

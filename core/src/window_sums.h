@@ -2,6 +2,7 @@
 // their sums over windows.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -53,12 +54,28 @@ std::size_t count_pixels(const Windows& win, F&& off)
         [](std::size_t a, std::size_t b) { return a + b; });
 }
 
-/// Whether the pixel's mean can be checked against: n ≥ 2 and a finite mean.
-bool usable_mean(const StatisticsView& noisy, int c, int x, int y);
+/// Whether the pixel's mean can be checked against: n ≥ 2 and a finite mean. (Inline:
+/// both checks call these once per pixel and channel.)
+inline bool usable_mean(const StatisticsView& noisy, int c, int x, int y)
+{
+    return noisy.count(x, y) >= 2 && std::isfinite(noisy.mean[c](x, y));
+}
 
 /// The variance of the pixel's mean, s²/n (or the stored one, with variance_of_mean);
 /// 0 where it is not finite and positive.
-double variance_of_mean(const StatisticsView& noisy, int c, int x, int y);
+inline double variance_of_mean(const StatisticsView& noisy, int c, int x, int y)
+{
+    const double s2 = noisy.variance[c](x, y);
+    const double v = noisy.variance_of_mean ? s2 : s2 / noisy.count(x, y);
+    return std::isfinite(v) && v > 0 ? v : 0.0;
+}
+
+/// The planes the checks read (count, and each channel's mean and variance) copied into
+/// `storage` as dense planes, and a view of them (no Box-Cox or higher moments): each
+/// check reads them channel by channel, and an image's own planes interleave all of its
+/// layers, so that every such pass would fetch each pixel's whole record. Same values,
+/// bit for bit. Call inside the caller's thread limit.
+StatisticsView dense_check_inputs(const StatisticsView& noisy, std::vector<float>& storage);
 
 /// Box sums of `in` (w × h, row-major) over the (2R + 1)² window around each pixel,
 /// clipped to the image: a column pass, then a row pass, each adding its 2R + 1 terms in

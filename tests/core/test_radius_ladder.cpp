@@ -268,6 +268,73 @@ TEST(RadiusLadder, AMaskedLadderGivesTheWantedPixelsTheFullLaddersBits)
                  std::invalid_argument);
 }
 
+// A view of `planes` whose planes interleave, pixel by pixel, in `storage`: the layout an
+// EXR's layers have in memory.
+StatisticsView interleaved(const StatisticsPlanes& planes, std::vector<float>& storage)
+{
+    StatisticsView view = planes.view();
+    std::vector<ConstPlane*> all = {&view.count};
+    for (int c = 0; c < view.channels; ++c)
+        for (ConstPlane* p : {&view.mean[c], &view.variance[c], &view.bc_mean[c],
+                              &view.bc_variance[c], &view.bc_moment3[c]})
+            if (*p)
+                all.push_back(p);
+    const std::ptrdiff_t k = std::ptrdiff_t(all.size()), w = view.width;
+    storage.assign(std::size_t(k) * w * view.height, 0.f);
+    for (std::ptrdiff_t j = 0; j < k; ++j) {
+        for (int y = 0; y < view.height; ++y)
+            for (int x = 0; x < view.width; ++x)
+                storage[std::size_t((y * w + x) * k + j)] = (*all[std::size_t(j)])(x, y);
+        *all[std::size_t(j)] = ConstPlane{storage.data() + j, k, k * w};
+    }
+    return view;
+}
+
+TEST(RadiusLadder, ItsChecksGiveWhatTheyGiveOnTheImagesOwnInterleavedPlanes)
+{
+    // The ladder hands its energy and residual checks dense copies of the planes they
+    // read. On statistics whose planes interleave, that must be the ladder without the
+    // checks followed by the checks on the interleaved planes, bit for bit; three channels
+    // of different levels, and a width that is no multiple of the box sums' blocks.
+    const int w = 45, h = 31;
+    std::mt19937_64 rng(17);
+    std::exponential_distribution<float> unit(1.f);
+    StatisticsImage<3> img(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int s = 0; s < 8; ++s) {
+                const float level = 2 * x + y < w ? 0.5f : 2.f;
+                const float v[3] = {level * unit(rng), 2 * level * unit(rng), unit(rng)};
+                img.add(x, y, v);
+            }
+    const StatisticsPlanes stats = img.planes();
+    std::vector<float> storage;
+    const StatisticsView view = interleaved(stats, storage);
+    const EstimatorImage est = estimators_from_statistics(view, TestDomain::BoxCox);
+    const DenoiseOptions options = method_settings(Method::Default).filter;
+    auto run = [&](const RadiusLadderOptions& ladder, std::vector<float>& out) {
+        out.assign(std::size_t(3) * w * h, 0.f);
+        std::vector<Plane> planes;
+        for (int c = 0; c < 3; ++c)
+            planes.push_back(dense_plane(out.data() + std::size_t(c) * w * h, w));
+        filter_with_radius_ladder(view, est, {}, options, planes, ladder);
+        return planes;
+    };
+    const RadiusLadderOptions with = the_defaults_ladder();
+    RadiusLadderOptions without = with;
+    without.energy.radius = without.residual.radius = 0;
+    std::vector<float> checked, expected;
+    run(with, checked);
+    const std::vector<Plane> planes = run(without, expected);
+    const std::vector<float> unchecked = expected;
+    const std::size_t off = keep_window_energy(view, planes, with.energy) +
+                            keep_window_residual(view, planes, with.residual);
+    ASSERT_GT(off, 0u);  // the checks acted
+    ASSERT_NE(expected, unchecked);
+    for (std::size_t i = 0; i < expected.size(); ++i)
+        ASSERT_EQ(checked[i], expected[i]) << "at " << i;
+}
+
 TEST(RadiusLadder, AMaskedLoneStopIsStillOverruledByTheNeighboursItDoesNotWant)
 {
     // Steady pixels (ALoneStopWhereEveryNeighbourGoesOnIsOverruled) on a grid, the mask
