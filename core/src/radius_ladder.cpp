@@ -26,41 +26,15 @@ std::vector<int> rungs(const RadiusLadderOptions& ladder, int radius)
     return r;
 }
 
-}  // namespace
-
-void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage& est,
-                               const Guides& guides, const DenoiseOptions& options,
-                               const std::vector<Plane>& out, const RadiusLadderOptions& ladder,
-                               int nthreads, const PixelMask& wanted)
+// Rung 0, then one walk of the largest disk, each rung adding its annulus and deciding
+// which pixels go on (docs/method.md §11). `walked`: empty, or the pixels each rung computes.
+void walk_rungs(const StatisticsView& stats, const EstimatorImage& est, const Guides& guides,
+                const DenoiseOptions& options, const std::vector<Plane>& out,
+                const RadiusLadderOptions& ladder, const std::vector<int>& radii,
+                const std::vector<PixelMask>& walked, int nthreads)
 {
-    if (!(ladder.alpha > 0 && ladder.alpha < 1))
-        throw std::invalid_argument("radius ladder: alpha must be in (0, 1)");
-    if (est.channels < 1 || est.channels > 4)
-        throw std::invalid_argument("radius ladder: takes 1 to 4 channels, as the filter does");
-    if (int(out.size()) < stats.channels)
-        throw std::invalid_argument("radius ladder: fewer output planes than channels");
-    if (stats.width != est.width || stats.height != est.height || stats.channels > est.channels)
-        throw std::invalid_argument("radius ladder: statistics and estimators differ in shape");
-    require_mask_fits(wanted, est.width, est.height);
     const int w = est.width, h = est.height, channels = stats.channels;
     const std::size_t pixels = est.pixels();
-    const std::vector<int> radii = rungs(ladder, options.radius);
-    // The checks read the ladder's output within their reach of a wanted pixel.
-    PixelMask checked;
-    if (!wanted.empty() && checks_reach(ladder) > 0)
-        run_with_threads(nthreads,
-                         [&] { checked = grown_mask(wanted, w, h, checks_reach(ladder)); });
-    const PixelMask& target = checked.empty() ? wanted : checked;
-    // A pixel's state after rung k depends on its own after rung k − 1 and on its
-    // 8-neighbours' rung-k values and states after rung k − 1 (the lone-stop rule). So of K
-    // rungs, rung k is walked for the pixels within K − k + 1 of a wanted one, and the
-    // first rung and the intervals cover those within K.
-    std::vector<PixelMask> walked(target.empty() ? 0 : radii.size());
-    if (!target.empty())
-        run_with_threads(nthreads, [&] {
-            for (std::size_t k = radii.size(); k-- > 0;)
-                walked[k] = grown_mask(k + 1 < radii.size() ? walked[k + 1] : target, w, h, 1);
-        });
     static const PixelMask kEvery;
     const PixelMask& near = walked.empty() ? kEvery : walked.front();
     const std::vector<float> variance = denoise_variances(
@@ -159,9 +133,46 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
     };
     detail::filter_rungs(est, guides, options, radii, rung_planes, diagnostics, nthreads,
                          SimdLevel::Auto, take_rung, walked);
+}
+
+}  // namespace
+
+void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage& est,
+                               const Guides& guides, const DenoiseOptions& options,
+                               const std::vector<Plane>& out, const RadiusLadderOptions& ladder,
+                               int nthreads, const PixelMask& wanted)
+{
+    if (!(ladder.alpha > 0 && ladder.alpha < 1))
+        throw std::invalid_argument("radius ladder: alpha must be in (0, 1)");
+    if (est.channels < 1 || est.channels > 4)
+        throw std::invalid_argument("radius ladder: takes 1 to 4 channels, as the filter does");
+    if (int(out.size()) < stats.channels)
+        throw std::invalid_argument("radius ladder: fewer output planes than channels");
+    if (stats.width != est.width || stats.height != est.height || stats.channels > est.channels)
+        throw std::invalid_argument("radius ladder: statistics and estimators differ in shape");
+    require_mask_fits(wanted, est.width, est.height);
+    const int w = est.width, h = est.height;
+    const std::vector<int> radii = rungs(ladder, options.radius);
+    // The checks read the ladder's output within their reach of a wanted pixel.
+    PixelMask checked;
+    if (!wanted.empty() && checks_reach(ladder) > 0)
+        run_with_threads(nthreads,
+                         [&] { checked = grown_mask(wanted, w, h, checks_reach(ladder)); });
+    const PixelMask& target = checked.empty() ? wanted : checked;
+    // A pixel's state after rung k depends on its own after rung k − 1 and on its
+    // 8-neighbours' rung-k values and states after rung k − 1 (the lone-stop rule). So of K
+    // rungs, rung k is walked for the pixels within K − k + 1 of a wanted one, and the
+    // first rung and the intervals cover those within K.
+    std::vector<PixelMask> walked(target.empty() ? 0 : radii.size());
+    if (!target.empty())
+        run_with_threads(nthreads, [&] {
+            for (std::size_t k = radii.size(); k-- > 0;)
+                walked[k] = grown_mask(k + 1 < radii.size() ? walked[k + 1] : target, w, h, 1);
+        });
+    walk_rungs(stats, est, guides, options, out, ladder, radii, walked, nthreads);
     // The checks read the statistics channel by channel: from dense copies, not from the
     // image's interleaved records (the same values; a view that lacks them is theirs to
-    // refuse).
+    // refuse). The walk's buffers are gone by now.
     std::vector<float> storage;
     StatisticsView inputs = stats;
     if (checks_reach(ladder) > 0 && stats.count && stats.has_variance())
