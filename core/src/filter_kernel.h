@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdlib>
+#include <limits>
 #include <type_traits>
 
 #include "filter_layout.h"
@@ -287,20 +288,51 @@ template <class V, int NC, bool kDiagnostics>
 void write_chunk(const FilterLayout& L, const std::vector<Plane>& out,
                  const FilterDiagnostics& diag, int y, int x0, const Partial<V, NC>& partial)
 {
+    using F = typename V::F;
     const std::ptrdiff_t centre = std::ptrdiff_t(y) * L.stride + x0;
+    F value[NC];
+    for (int c = 0; c < NC; ++c)
+        value[c] = V::add(V::load(L.value[c] + centre), V::div(partial.acc[c], partial.weight_sum));
+    const int n = std::min(V::kWidth, L.width - x0);
+    // Where no instantiation splits the channels (filter_rows), a context channel is
+    // averaged too, but never written: its caller gives it no plane.
+    const int written = std::min(NC, L.averaged);
+    // A whole chunk into dense planes (the ladder's rungs, most callers) is stored as
+    // vectors; the values are those of the lane-by-lane loop below.
+    auto dense = [](const Plane& p) { return !p || p.xstride == 1; };
+    bool vectors = n == V::kWidth;
+    for (int c = 0; c < written; ++c)
+        vectors = vectors && dense(out[c]);
+    if constexpr (kDiagnostics)
+        vectors = vectors && dense(diag.members) && dense(diag.weight_sum) &&
+                  dense(diag.effective_samples);
+    if (vectors) {
+        for (int c = 0; c < written; ++c)
+            V::store(&out[c](x0, y), value[c]);
+        if constexpr (kDiagnostics) {
+            if (diag.members)
+                V::store(&diag.members(x0, y), partial.member_count);
+            if (diag.weight_sum)
+                V::store(&diag.weight_sum(x0, y), partial.weight_sum);
+            if (diag.effective_samples) {
+                // inverse > 0 ⇔ inverse ≥ the least positive float; 0 + q is q (q ≥ +0).
+                const F w = partial.weight_sum, inverse = partial.inverse_sum;
+                const auto positive =
+                    V::le(V::set1(std::numeric_limits<float>::denorm_min()), inverse);
+                V::store(&diag.effective_samples(x0, y),
+                         V::masked_add(positive, V::zero(), V::div(V::mul(w, w), inverse)));
+            }
+        }
+        return;
+    }
     float lanes[NC][V::kWidth], wsum[V::kWidth], count[V::kWidth], inverse[V::kWidth];
     for (int c = 0; c < NC; ++c)
-        V::store(lanes[c],
-                 V::add(V::load(L.value[c] + centre), V::div(partial.acc[c], partial.weight_sum)));
+        V::store(lanes[c], value[c]);
     if constexpr (kDiagnostics) {
         V::store(wsum, partial.weight_sum);
         V::store(count, partial.member_count);
         V::store(inverse, partial.inverse_sum);
     }
-    const int n = std::min(V::kWidth, L.width - x0);
-    // Where no instantiation splits the channels (filter_rows), a context channel is
-    // averaged too, but never written: its caller gives it no plane.
-    const int written = std::min(NC, L.averaged);
     for (int k = 0; k < n; ++k) {
         for (int c = 0; c < written; ++c)
             out[c](x0 + k, y) = lanes[c][k];

@@ -254,6 +254,51 @@ TEST(Filter, FlatGuidesTakeTheExpsBits)
         }
 }
 
+TEST(Filter, DenseAndInterleavedOutputPlanesGetTheSameBits)
+{
+    // The kernel stores a whole chunk into dense planes as vectors and writes any other
+    // layout lane by lane; both must give the same bits, diagnostics included, also in the
+    // last, partial chunk of a row (a width that is no multiple of any SIMD width).
+    const int w = 53, h = 19, channels = 3;
+    EstimatorImage est = random_estimators(w, h, channels, 5);
+    for (std::size_t i = 7; i < est.pixels(); i += 97)
+        est.count[i] = 0;  // effective count 0, in full chunks and partial ones
+    for (bool guided : {false, true}) {
+        GuideImages g(w, h, guided, guided, 6, /*noise=*/guided);
+        DenoiseOptions opt;
+        opt.radius = 6;
+        for (SimdLevel level : supported_simd_levels()) {
+            SCOPED_TRACE(std::string(guided ? "guided, " : "unguided, ") + "level " +
+                         std::to_string(int(level)));
+            Output dense(w, h, channels);
+            filter(est, g.guides, opt, dense.planes(), dense.diagnostics(), 0, level);
+            // Interleaved: channels, members, weights and effective counts of a pixel side
+            // by side, as in an image buffer.
+            constexpr int kPlanes = channels + 3;
+            std::vector<float> mixed(std::size_t(w) * h * kPlanes, -1.f);
+            auto plane = [&](int k) {
+                return Plane{mixed.data() + k, kPlanes, std::ptrdiff_t(kPlanes) * w};
+            };
+            std::vector<Plane> values;
+            for (int c = 0; c < channels; ++c)
+                values.push_back(plane(c));
+            filter(est, g.guides, opt, values, {plane(channels), plane(channels + 1),
+                                                plane(channels + 2)}, 0, level);
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const std::size_t i = std::size_t(y) * w + x;
+                    for (int c = 0; c < channels; ++c)
+                        ASSERT_EQ(std::memcmp(&dense.values[c * w * h + i], &plane(c)(x, y), 4), 0)
+                            << "value " << c << " at " << x << "," << y;
+                    ASSERT_EQ(std::memcmp(&dense.members[i], &plane(channels)(x, y), 4), 0);
+                    ASSERT_EQ(std::memcmp(&dense.weights[i], &plane(channels + 1)(x, y), 4), 0);
+                    ASSERT_EQ(std::memcmp(&dense.effective[i], &plane(channels + 2)(x, y), 4), 0)
+                        << "effective count at " << x << "," << y;
+                }
+        }
+    }
+}
+
 TEST(Filter, VectorKernelsAgree)
 {
     // Without guides AVX2 and AVX-512 run the same operations per lane (masked forms
