@@ -7,9 +7,9 @@
 #include <tbb/parallel_for.h>
 
 #include "filter_layout.h"
-#include "window_sums.h"
-#include "statmc/core/thread_limit.h"
 #include "statmc/core/critical_values.h"
+#include "statmc/core/thread_limit.h"
+#include "window_sums.h"
 
 namespace statmc {
 
@@ -176,8 +176,7 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
     std::vector<float> storage;
     StatisticsView inputs = stats;
     if (checks_reach(ladder) > 0 && stats.count && stats.has_variance())
-        run_with_threads(nthreads,
-                         [&] { inputs = detail::dense_check_inputs(stats, storage); });
+        run_with_threads(nthreads, [&] { inputs = detail::dense_check_inputs(stats, storage); });
     keep_window_energy(inputs, out, ladder.energy, nthreads);
     keep_window_residual(inputs, out, ladder.residual, nthreads);
 }

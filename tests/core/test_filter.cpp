@@ -282,8 +282,8 @@ TEST(Filter, DenseAndInterleavedOutputPlanesGetTheSameBits)
             std::vector<Plane> values;
             for (int c = 0; c < channels; ++c)
                 values.push_back(plane(c));
-            filter(est, g.guides, opt, values, {plane(channels), plane(channels + 1),
-                                                plane(channels + 2)}, 0, level);
+            filter(est, g.guides, opt, values,
+                   {plane(channels), plane(channels + 1), plane(channels + 2)}, 0, level);
             for (int y = 0; y < h; ++y)
                 for (int x = 0; x < w; ++x) {
                     const std::size_t i = std::size_t(y) * w + x;
