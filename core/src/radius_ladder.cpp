@@ -171,11 +171,10 @@ void filter_with_radius_ladder(const StatisticsView& stats, const EstimatorImage
         });
     walk_rungs(stats, est, guides, options, out, ladder, radii, walked, nthreads);
     // The checks read the statistics channel by channel: from dense copies, not from the
-    // image's interleaved records (the same values; a view that lacks them is theirs to
-    // refuse). The walk's buffers are gone by now.
+    // image's interleaved records (the same values). The walk's buffers are gone by now.
     std::vector<float> storage;
     StatisticsView inputs = stats;
-    if (checks_reach(ladder) > 0 && stats.count && stats.has_variance())
+    if (checks_reach(ladder) > 0)
         run_with_threads(nthreads, [&] { inputs = detail::dense_check_inputs(stats, storage); });
     keep_window_energy(inputs, out, ladder.energy, nthreads);
     keep_window_residual(inputs, out, ladder.residual, nthreads);

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <tbb/parallel_for.h>
 
@@ -43,29 +44,31 @@ Windows windows_of(const StatisticsView& noisy, int radius, double alpha)
 
 StatisticsView dense_check_inputs(const StatisticsView& noisy, std::vector<float>& storage)
 {
-    const int w = noisy.width, h = noisy.height, channels = noisy.channels;
+    const int w = noisy.width, h = noisy.height;
     const std::size_t pixels = std::size_t(w) * h;
-    storage.resize(pixels * (1 + 2 * std::size_t(channels)));
     StatisticsView dense;
     dense.width = w;
     dense.height = h;
-    dense.channels = channels;
+    dense.channels = noisy.channels;
     dense.variance_of_mean = noisy.variance_of_mean;
-    auto plane = [&](std::size_t k) { return dense_plane(storage.data() + k * pixels, w); };
-    dense.count = plane(0);
-    for (int c = 0; c < channels; ++c) {
-        dense.mean[c] = plane(1 + c);
-        dense.variance[c] = plane(1 + channels + c);
+    // The planes the view has (a missing one stays missing, for the checks to refuse).
+    std::vector<std::pair<ConstPlane, ConstPlane*>> copies;
+    auto add = [&](const ConstPlane& from, ConstPlane& to) {
+        if (from)
+            copies.push_back({from, &to});
+    };
+    add(noisy.count, dense.count);
+    for (int c = 0; c < noisy.channels; ++c) {
+        add(noisy.mean[c], dense.mean[c]);
+        add(noisy.variance[c], dense.variance[c]);
     }
+    storage.resize(pixels * copies.size());
+    for (std::size_t k = 0; k < copies.size(); ++k)
+        *copies[k].second = dense_plane(storage.data() + k * pixels, w);
     tbb::parallel_for(0, h, [&](int y) {
-        float* row = storage.data() + std::size_t(y) * w;
-        for (int x = 0; x < w; ++x) {
-            row[x] = noisy.count(x, y);
-            for (int c = 0; c < channels; ++c) {
-                row[(1 + c) * pixels + x] = noisy.mean[c](x, y);
-                row[(1 + channels + c) * pixels + x] = noisy.variance[c](x, y);
-            }
-        }
+        for (int x = 0; x < w; ++x)
+            for (std::size_t k = 0; k < copies.size(); ++k)
+                storage[k * pixels + std::size_t(y) * w + x] = copies[k].first(x, y);
     });
     return dense;
 }

@@ -70,8 +70,9 @@ inline double variance_of_mean(const StatisticsView& noisy, int c, int x, int y)
     return std::isfinite(v) && v > 0 ? v : 0.0;
 }
 
-/// The planes the checks read (count, and each channel's mean and variance) copied into
-/// `storage` as dense planes, and a view of them (no Box-Cox or higher moments): each
+/// The planes the checks read (count, and each channel's mean and variance; those the view
+/// lacks stay missing) copied into `storage` as dense planes, and a view of them (no
+/// Box-Cox or higher moments): each
 /// check reads them channel by channel, and an image's own planes interleave all of its
 /// layers, so that every such pass would fetch each pixel's whole record. Same values,
 /// bit for bit. Call inside the caller's thread limit.

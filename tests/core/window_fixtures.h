@@ -77,6 +77,27 @@ inline std::vector<float> changed_beyond(std::vector<float> out, int cx, int cy,
     return out;
 }
 
+// A window check gives the same bits for one thread and two, and at (cx, cy), where it
+// must act on `out`, reads the output within `reach` alone: changing every pixel further
+// away leaves that pixel's bits. `check(view, planes, nthreads)` runs it.
+template <class Check>
+void expect_thread_count_free_and_local(const Check& check, const StatisticsPlanes& s,
+                                        const std::vector<float>& out, int cx, int cy, int reach)
+{
+    const std::size_t n = std::size_t(kW) * kH;
+    std::vector<float> one = out, two = out;
+    EXPECT_GT(check(s.view(), planes_of(one), 1), 0u);
+    check(s.view(), planes_of(two), 2);
+    EXPECT_EQ(one, two);
+    std::vector<float> far = changed_beyond(out, cx, cy, reach);
+    check(s.view(), planes_of(far), 2);
+    for (int c = 0; c < kChannels; ++c) {
+        const std::size_t i = c * n + std::size_t(cy) * kW + cx;
+        EXPECT_NE(one[i], out[i]) << "the check must act there, channel " << c;
+        EXPECT_EQ(far[i], one[i]) << "channel " << c;
+    }
+}
+
 // A window check's bad options and missing planes are errors, and radius 0 reads nothing.
 // `check(view, planes, radius, alpha)` runs the check with those options.
 template <class Check>
