@@ -114,19 +114,14 @@ TEST(EnergyCheck, IsTheSameForAnyThreadCountAndReadsTheOutputWithinTwiceItsRadiu
     // At (29, 20), the column that took light from across the edge.
     const StatisticsPlanes s =
         noisy_means([](int x, int, int c) { return x < 30 ? 1.f + c : 8.f; }, 3);
-    expect_thread_count_free_and_local(
-        [](const StatisticsView& view, const std::vector<Plane>& planes, int nthreads) {
-            return keep_window_energy(view, planes, kCheck, nthreads);
-        },
-        s, blended_with_shift(s.mean, 0.7f, 1), 29, 20, 2 * kCheck.radius);
+    expect_thread_count_free_and_local(keep_window_energy, kCheck, s,
+                                       blended_with_shift(s.mean, 0.7f, 1), 29, 20,
+                                       2 * kCheck.radius);
 }
 
 TEST(EnergyCheck, BadOptionsAndMissingPlanesAreErrors)
 {
-    expect_bad_options_and_missing_planes_are_errors(
-        [](const StatisticsView& view, const std::vector<Plane>& planes, int radius, double alpha) {
-            return keep_window_energy(view, planes, {radius, alpha});
-        });
+    expect_bad_options_and_missing_planes_are_errors<EnergyCheckOptions>(keep_window_energy);
 }
 
 }  // namespace

@@ -187,19 +187,14 @@ TEST(ResidualCheck, IsTheSameForAnyThreadCountAndReadsTheOutputWithinTwiceItsRad
 {
     // At (30, 20), by the smeared edge.
     const StatisticsPlanes s = noisy_means(step, 3);
-    expect_thread_count_free_and_local(
-        [](const StatisticsView& view, const std::vector<Plane>& planes, int nthreads) {
-            return keep_window_residual(view, planes, kCheck, nthreads);
-        },
-        s, blended_with_shift(s.mean, 0.5f, 2), 30, 20, 2 * kCheck.radius);
+    expect_thread_count_free_and_local(keep_window_residual, kCheck, s,
+                                       blended_with_shift(s.mean, 0.5f, 2), 30, 20,
+                                       2 * kCheck.radius);
 }
 
 TEST(ResidualCheck, BadOptionsAndMissingPlanesAreErrors)
 {
-    expect_bad_options_and_missing_planes_are_errors(
-        [](const StatisticsView& view, const std::vector<Plane>& planes, int radius, double alpha) {
-            return keep_window_residual(view, planes, {radius, alpha});
-        });
+    expect_bad_options_and_missing_planes_are_errors<ResidualCheckOptions>(keep_window_residual);
 }
 
 }  // namespace

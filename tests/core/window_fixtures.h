@@ -79,18 +79,19 @@ inline std::vector<float> changed_beyond(std::vector<float> out, int cx, int cy,
 
 // A window check gives the same bits for one thread and two, and at (cx, cy), where it
 // must act on `out`, reads the output within `reach` alone: changing every pixel further
-// away leaves that pixel's bits. `check(view, planes, nthreads)` runs it.
-template <class Check>
-void expect_thread_count_free_and_local(const Check& check, const StatisticsPlanes& s,
-                                        const std::vector<float>& out, int cx, int cy, int reach)
+// away leaves that pixel's bits. `check` is the check's function, run with `options`.
+template <class Check, class Options>
+void expect_thread_count_free_and_local(Check check, const Options& options,
+                                        const StatisticsPlanes& s, const std::vector<float>& out,
+                                        int cx, int cy, int reach)
 {
     const std::size_t n = std::size_t(kW) * kH;
     std::vector<float> one = out, two = out;
-    EXPECT_GT(check(s.view(), planes_of(one), 1), 0u);
-    check(s.view(), planes_of(two), 2);
+    EXPECT_GT(check(s.view(), planes_of(one), options, 1), 0u);
+    check(s.view(), planes_of(two), options, 2);
     EXPECT_EQ(one, two);
     std::vector<float> far = changed_beyond(out, cx, cy, reach);
-    check(s.view(), planes_of(far), 2);
+    check(s.view(), planes_of(far), options, 2);
     for (int c = 0; c < kChannels; ++c) {
         const std::size_t i = c * n + std::size_t(cy) * kW + cx;
         EXPECT_NE(one[i], out[i]) << "the check must act there, channel " << c;
@@ -99,20 +100,24 @@ void expect_thread_count_free_and_local(const Check& check, const StatisticsPlan
 }
 
 // A window check's bad options and missing planes are errors, and radius 0 reads nothing.
-// `check(view, planes, radius, alpha)` runs the check with those options.
-template <class Check>
-void expect_bad_options_and_missing_planes_are_errors(const Check& check)
+// `check` is the check's function; Options{radius, alpha} its options.
+template <class Options, class Check>
+void expect_bad_options_and_missing_planes_are_errors(Check check)
 {
     const StatisticsPlanes s = noisy_means(flat, 4);
     std::vector<float> out = s.mean;
-    EXPECT_THROW(check(s.view(), planes_of(out), -1, 0.005), std::invalid_argument);
-    EXPECT_THROW(check(s.view(), planes_of(out), 3, 0.0), std::invalid_argument);
-    EXPECT_THROW(check(s.view(), planes_of(out), 3, 1.0), std::invalid_argument);
-    EXPECT_THROW(check(s.view(), {planes_of(out)[0]}, 3, 0.005), std::invalid_argument);
+    auto run = [&](const StatisticsView& view, const std::vector<Plane>& planes, int radius,
+                   double alpha) {
+        return check(view, planes, Options{radius, alpha}, 0);
+    };
+    EXPECT_THROW(run(s.view(), planes_of(out), -1, 0.005), std::invalid_argument);
+    EXPECT_THROW(run(s.view(), planes_of(out), 3, 0.0), std::invalid_argument);
+    EXPECT_THROW(run(s.view(), planes_of(out), 3, 1.0), std::invalid_argument);
+    EXPECT_THROW(run(s.view(), {planes_of(out)[0]}, 3, 0.005), std::invalid_argument);
     StatisticsPlanes no_variance = s;
     no_variance.variance.clear();
-    EXPECT_THROW(check(no_variance.view(), planes_of(out), 3, 0.005), std::invalid_argument);
-    EXPECT_EQ(check(no_variance.view(), planes_of(out), 0, 0.005), 0u)
+    EXPECT_THROW(run(no_variance.view(), planes_of(out), 3, 0.005), std::invalid_argument);
+    EXPECT_EQ(run(no_variance.view(), planes_of(out), 0, 0.005), 0u)
         << "radius 0 is off and reads nothing";
 }
 
