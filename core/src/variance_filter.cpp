@@ -65,9 +65,8 @@ void fill_pixel_planes(const StatisticsView& view, const DomainPlanes& d, double
 {
     const std::size_t n = L.pixels;
     const bool test_means = moderate && L.prior_z2 > 0;
-    L.estimate.resize(n * view.channels);
-    L.s2.resize(n * view.channels);
-    L.usable.resize(n * view.channels);
+    L.lend_s2.resize(n * view.channels);
+    L.prior_s2.resize(n * view.channels);
     L.mean.resize(test_means ? n * view.channels : 0);
     L.mean_se2.resize(test_means ? n * view.channels : 0);
     tbb::parallel_for(0, view.height, [&](int y) {
@@ -76,9 +75,8 @@ void fill_pixel_planes(const StatisticsView& view, const DomainPlanes& d, double
                 const double count = view.count(x, y);
                 const double s2 = d.s2(c, x, y, count);
                 const std::size_t k = c * n + std::size_t(y) * view.width + x;
-                L.estimate[k] = has_estimate(count, s2 * (count - 1), z) ? 0.f : NAN;
-                L.s2[k] = s2;
-                L.usable[k] = moderate && count >= 2 && std::isfinite(s2);
+                L.lend_s2[k] = has_estimate(count, s2 * (count - 1), z) ? s2 : NAN;
+                L.prior_s2[k] = moderate && count >= 2 && std::isfinite(s2) ? s2 : NAN;
                 if (test_means) {
                     L.mean[k] = d.mean[c](x, y);
                     L.mean_se2[k] = float(s2 / count);
@@ -124,11 +122,11 @@ detail::VarianceSums own_terms(const detail::VarianceLayout& L, std::size_t p)
     detail::VarianceSums s;
     for (int c = 0; c < L.channels; ++c) {
         const std::size_t k = c * L.pixels + p;
-        const bool has_estimate = !std::isnan(L.estimate[k]);
-        s.sum[c] = has_estimate ? L.s2[k] : 0;
+        const bool has_estimate = !std::isnan(L.lend_s2[k]), usable = !std::isnan(L.prior_s2[k]);
+        s.sum[c] = has_estimate ? L.lend_s2[k] : 0;
         s.weight[c] = has_estimate ? 1 : 0;
-        s.prior_sum[c] = L.usable[k] ? L.s2[k] : 0;
-        s.prior_weight[c] = L.usable[k] ? 1 : 0;
+        s.prior_sum[c] = usable ? L.prior_s2[k] : 0;
+        s.prior_weight[c] = usable ? 1 : 0;
     }
     return s;
 }
@@ -139,15 +137,15 @@ bool in_prior(const detail::VarianceLayout& L, std::size_t i, std::size_t j)
 {
     if (L.prior_z2 <= 0)
         return true;
-    const double d = double(L.mean[i]) - L.mean[j];
-    return d * d <= L.prior_z2 * (double(L.mean_se2[i]) + L.mean_se2[j]);
+    const double d = L.mean[i] - L.mean[j];
+    return d * d <= L.prior_z2 * (L.mean_se2[i] + L.mean_se2[j]);
 }
 
 // Whether neighbour j's s² joins centre i's own sum: only for a borrower (no estimate of
 // its own), from a neighbour that has one.
 bool lends(const detail::VarianceLayout& L, std::size_t i, std::size_t j)
 {
-    return L.borrow && std::isnan(L.estimate[i]) && !std::isnan(L.estimate[j]);
+    return L.borrow && std::isnan(L.lend_s2[i]) && !std::isnan(L.lend_s2[j]);
 }
 
 // The scalar disk loop, and the reference the SIMD kernels match bit for bit: per channel
@@ -179,13 +177,12 @@ void add_disk_scalar(const detail::VarianceLayout& L, int x, int y, detail::Vari
         }
         for (int c = 0; c < L.channels; ++c) {
             const std::size_t i = c * n + p, j = c * n + q;
-            const double term = wij * L.s2[j];
             if (lends(L, i, j)) {
-                s.sum[c] += term;
+                s.sum[c] += wij * L.lend_s2[j];
                 s.weight[c] += wij;
             }
-            if (L.usable[j] && in_prior(L, i, j)) {
-                s.prior_sum[c] += term;
+            if (!std::isnan(L.prior_s2[j]) && in_prior(L, i, j)) {
+                s.prior_sum[c] += wij * L.prior_s2[j];
                 s.prior_weight[c] += wij;
             }
         }
@@ -264,7 +261,7 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
                 const double count = view.count(xx, y);
                 const detail::VarianceSums& s = row[xx];
                 for (int c = 0; c < L.channels; ++c) {
-                    const double own = L.s2[c * n + p];
+                    const double own = d.s2(c, xx, y, count);
                     const double own_or_borrowed = s.weight[c] > 0 ? s.sum[c] / s.weight[c] : own;
                     if (!moderate || s.prior_weight[c] <= 0) {
                         out[c * n + p] = float(own_or_borrowed);

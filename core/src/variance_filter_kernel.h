@@ -22,10 +22,8 @@ namespace {
 // widths are spelled out.
 typedef double Double4 __attribute__((vector_size(32)));
 typedef float Float4 __attribute__((vector_size(16)));
-typedef char Char4 __attribute__((vector_size(4)));
 typedef double Double8 __attribute__((vector_size(64)));
 typedef float Float8 __attribute__((vector_size(32)));
-typedef char Char8 __attribute__((vector_size(8)));
 
 template <int W>
 struct VectorTypes;
@@ -33,13 +31,11 @@ template <>
 struct VectorTypes<4> {
     using D = Double4;
     using Fl = Float4;
-    using Ch = Char4;
 };
 template <>
 struct VectorTypes<8> {
     using D = Double8;
     using Fl = Float8;
-    using Ch = Char8;
 };
 
 template <int W>
@@ -47,7 +43,6 @@ struct Lanes {
     using D = typename VectorTypes<W>::D;
     using Mask = decltype(D{} < D{});  // all ones where true
     using Fl = typename VectorTypes<W>::Fl;
-    using Ch = typename VectorTypes<W>::Ch;
 
     static D splat(double x)
     {
@@ -67,12 +62,6 @@ struct Lanes {
         Fl v;
         std::memcpy(&v, p, sizeof v);
         return __builtin_convertvector(v, D);
-    }
-    static Mask load_flags(const char* p)
-    {
-        Ch v;
-        std::memcpy(&v, p, sizeof v);
-        return __builtin_convertvector(v, Mask) != 0;
     }
     static bool any(Mask m)
     {
@@ -96,7 +85,7 @@ void add_variance_channel(const VarianceLayout& L, int c, std::size_t p0, const 
     using Mask = typename V::Mask;
     const std::size_t plane = std::size_t(c) * L.pixels;
     const D prior_z2 = V::splat(L.prior_z2);
-    const D centre = V::load(L.estimate.data() + plane + p0);
+    const D centre = V::load(L.lend_s2.data() + plane + p0);
     D mean{}, mean_se2{};
     if (TestMeans) {
         mean = V::load(L.mean.data() + plane + p0);
@@ -116,19 +105,19 @@ void add_variance_channel(const VarianceLayout& L, int c, std::size_t p0, const 
         const VarianceTap& tap = L.taps[t];
         const std::size_t q0 = plane + p0 + std::ptrdiff_t(tap.dy) * L.width + tap.dx;
         const D w = weights ? V::load(weights + t * W) : V::splat(tap.spatial);
-        const D term = w * V::load(L.s2.data() + q0);
         if (gathers) {
-            const D other = V::load(L.estimate.data() + q0);
-            const Mask member = borrows & (other == other);
-            sum = member ? sum + term : sum;
+            const D lend_s2 = V::load(L.lend_s2.data() + q0);
+            const Mask member = borrows & (lend_s2 == lend_s2);
+            sum = member ? sum + w * lend_s2 : sum;
             weight = member ? weight + w : weight;
         }
-        Mask usable = V::load_flags(L.usable.data() + q0);
+        const D prior_s2 = V::load(L.prior_s2.data() + q0);
+        Mask usable = prior_s2 == prior_s2;
         if (TestMeans) {
             const D d = mean - V::load(L.mean.data() + q0);
             usable = usable & (d * d <= prior_z2 * (mean_se2 + V::load(L.mean_se2.data() + q0)));
         }
-        prior_sum = usable ? prior_sum + term : prior_sum;
+        prior_sum = usable ? prior_sum + w * prior_s2 : prior_sum;
         prior_weight = usable ? prior_weight + w : prior_weight;
     }
     for (int k = 0; k < W; ++k) {

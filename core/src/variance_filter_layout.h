@@ -31,13 +31,16 @@ struct VarianceTap {
 struct VarianceLayout {
     int width = 0, height = 0, channels = 0, radius = 0;
     std::size_t pixels = 0;       ///< per channel; every plane below is channel-major
-    std::vector<float> estimate;  ///< 0 where the pixel's s² is an estimate, else NaN
-    std::vector<double> s2;       ///< the per-sample s² that is averaged
-    std::vector<char> usable;     ///< whether the moderation may use s2
+    /// The per-sample s² that is averaged, NaN where it may not be: lend_s2 where the s² is
+    /// an estimate (a borrower takes it), prior_s2 where the moderation may use it. The NaN
+    /// is the mark: a tap loads one plane, not a value and a flag.
+    std::vector<double> lend_s2;
+    std::vector<double> prior_s2;
     /// With a test on the means for the prior (prior_z2 > 0): each pixel's mean and the
-    /// squared standard error s²/n of that mean.
-    std::vector<float> mean;
-    std::vector<float> mean_se2;
+    /// squared standard error s²/n of that mean (rounded to float), in double so that the
+    /// tap loop converts nothing.
+    std::vector<double> mean;
+    std::vector<double> mean_se2;
     std::vector<VarianceTap> taps;  ///< raster order, the centre left out
     /// Dense copies of the guides present, three planes per group (albedo, then normal),
     /// and each group's 1/(2σ²).
