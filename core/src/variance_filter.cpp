@@ -98,21 +98,25 @@ void fill_taps_and_guides(const StatisticsView& view, const Guides& guides,
             if (d2 <= r * r && d2 != 0)
                 L.taps.push_back({dx, dy, std::exp(-double(d2) * falloff)});
         }
+    std::vector<ConstPlane> planes;
     auto add_group = [&](const std::array<ConstPlane, 3>& g, float sigma) {
-        L.guide_falloff[L.guide_groups()] = 1.0 / (2.0 * double(sigma) * sigma);
-        for (const ConstPlane& plane : g) {
-            std::vector<float> dense(L.pixels);
-            tbb::parallel_for(0, view.height, [&](int y) {
-                for (int x = 0; x < view.width; ++x)
-                    dense[std::size_t(y) * view.width + x] = plane(x, y);
-            });
-            L.guide.push_back(std::move(dense));
-        }
+        L.guide_falloff[planes.size() / 3] = 1.0 / (2.0 * double(sigma) * sigma);
+        planes.insert(planes.end(), g.begin(), g.end());
     };
     if (guides.has_albedo())
         add_group(guides.albedo, o.sigma_albedo);
     if (guides.has_normal())
         add_group(guides.normal, o.sigma_normal);
+    // Every plane in one pass over the rows: the guides share the image's pixel records.
+    L.guide.resize(planes.size());
+    for (std::vector<float>& dense : L.guide)
+        dense.resize(L.pixels);
+    tbb::parallel_for(0, view.height, [&](int y) {
+        const std::size_t row = std::size_t(y) * view.width;
+        for (std::size_t k = 0; k < planes.size(); ++k)
+            for (int x = 0; x < view.width; ++x)
+                L.guide[k][row + x] = planes[k](x, y);
+    });
 }
 
 // The centre's own terms: its s² with weight 1 where it is an estimate (or nothing), and
