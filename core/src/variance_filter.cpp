@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "dense_copies.h"
 #include "statmc/core/critical_values.h"
 #include "statmc/core/thread_limit.h"
 #include "variance_filter_layout.h"
@@ -107,16 +108,9 @@ void fill_taps_and_guides(const StatisticsView& view, const Guides& guides,
         add_group(guides.albedo, o.sigma_albedo);
     if (guides.has_normal())
         add_group(guides.normal, o.sigma_normal);
-    // Every plane in one pass over the rows: the guides share the image's pixel records.
-    L.guide.resize(planes.size());
-    for (std::vector<float>& dense : L.guide)
-        dense.resize(L.pixels);
-    tbb::parallel_for(0, view.height, [&](int y) {
-        const std::size_t row = std::size_t(y) * view.width;
-        for (std::size_t k = 0; k < planes.size(); ++k)
-            for (int x = 0; x < view.width; ++x)
-                L.guide[k][row + x] = planes[k](x, y);
-    });
+    for (const ConstPlane& copy :
+         detail::dense_copies(planes, view.width, view.height, L.guide_storage))
+        L.guide.push_back(copy.data);
 }
 
 // The centre's own terms: its s² with weight 1 where it is an estimate (or nothing), and
@@ -171,7 +165,7 @@ void add_disk_scalar(const detail::VarianceLayout& L, int x, int y, detail::Vari
             for (int group = 0; group < L.guide_groups(); ++group) {
                 double d2 = 0;
                 for (int k = 0; k < 3; ++k) {
-                    const std::vector<float>& g = L.guide[3 * group + k];
+                    const float* g = L.guide[3 * group + k];
                     const double d = double(g[p]) - g[q];
                     d2 = d2 + d * d;
                 }

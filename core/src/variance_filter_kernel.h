@@ -142,14 +142,14 @@ void add_variance_disk(const VarianceLayout& L, int x0, int y, VarianceSums* sum
         weights.resize(L.taps.size() * W);
         D guide[6];
         for (int g = 0; g < 3 * groups; ++g)
-            guide[g] = V::load(L.guide[g].data() + p0);
+            guide[g] = V::load(L.guide[g] + p0);
         for (std::size_t t = 0; t < L.taps.size(); ++t) {
             const std::size_t q0 = p0 + std::ptrdiff_t(L.taps[t].dy) * L.width + L.taps[t].dx;
             D exponent = V::splat(0.0);
             for (int group = 0; group < groups; ++group) {
                 D d2 = V::splat(0.0);
                 for (int k = 0; k < 3; ++k) {
-                    const D d = guide[3 * group + k] - V::load(L.guide[3 * group + k].data() + q0);
+                    const D d = guide[3 * group + k] - V::load(L.guide[3 * group + k] + q0);
                     d2 = d2 + d * d;
                 }
                 exponent = exponent + d2 * V::splat(L.guide_falloff[group]);

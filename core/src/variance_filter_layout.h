@@ -44,7 +44,8 @@ struct VarianceLayout {
     std::vector<VarianceTap> taps;  ///< raster order, the centre left out
     /// Dense copies of the guides present, three planes per group (albedo, then normal),
     /// and each group's 1/(2σ²).
-    std::vector<std::vector<float>> guide;
+    std::vector<const float*> guide;
+    std::vector<float> guide_storage;  ///< what `guide` points into
     double guide_falloff[2] = {0, 0};
     double prior_z2 = 0;  ///< the squared critical value of the prior's test on the means; 0 = none
     bool borrow = false;  ///< VarianceFilterOptions::borrow_without_interval

@@ -5,10 +5,10 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 #include <tbb/parallel_for.h>
 
+#include "dense_copies.h"
 #include "statmc/core/critical_values.h"
 
 namespace statmc::detail {
@@ -45,31 +45,28 @@ Windows windows_of(const StatisticsView& noisy, int radius, double alpha)
 StatisticsView dense_check_inputs(const StatisticsView& noisy, std::vector<float>& storage)
 {
     const int w = noisy.width, h = noisy.height;
-    const std::size_t pixels = std::size_t(w) * h;
     StatisticsView dense;
     dense.width = w;
     dense.height = h;
     dense.channels = noisy.channels;
     dense.variance_of_mean = noisy.variance_of_mean;
     // The planes the view has (a missing one stays missing, for the checks to refuse).
-    std::vector<std::pair<ConstPlane, ConstPlane*>> copies;
-    auto add = [&](const ConstPlane& from, ConstPlane& to) {
-        if (from)
-            copies.push_back({from, &to});
+    std::vector<ConstPlane> from;
+    std::vector<ConstPlane*> to;
+    auto add = [&](const ConstPlane& plane, ConstPlane& copy) {
+        if (plane) {
+            from.push_back(plane);
+            to.push_back(&copy);
+        }
     };
     add(noisy.count, dense.count);
     for (int c = 0; c < noisy.channels; ++c) {
         add(noisy.mean[c], dense.mean[c]);
         add(noisy.variance[c], dense.variance[c]);
     }
-    storage.resize(pixels * copies.size());
+    const std::vector<ConstPlane> copies = dense_copies(from, w, h, storage);
     for (std::size_t k = 0; k < copies.size(); ++k)
-        *copies[k].second = dense_plane(storage.data() + k * pixels, w);
-    tbb::parallel_for(0, h, [&](int y) {
-        for (int x = 0; x < w; ++x)
-            for (std::size_t k = 0; k < copies.size(); ++k)
-                storage[k * pixels + std::size_t(y) * w + x] = copies[k].first(x, y);
-    });
+        *to[k] = copies[k];
     return dense;
 }
 

@@ -71,11 +71,10 @@ inline double variance_of_mean(const StatisticsView& noisy, int c, int x, int y)
 }
 
 /// The planes the checks read (count, and each channel's mean and variance; those the view
-/// lacks stay missing) copied into `storage` as dense planes, and a view of them (no
-/// Box-Cox or higher moments): each
-/// check reads them channel by channel, and an image's own planes interleave all of its
-/// layers, so that every such pass would fetch each pixel's whole record. Same values,
-/// bit for bit. Call inside the caller's thread limit.
+/// lacks stay missing) copied into `storage` as dense planes (dense_copies.h), and a view
+/// of them, without Box-Cox or higher moments: each check reads them channel by channel,
+/// and an image's own planes interleave all of its layers. Same values, bit for bit. Call
+/// inside the caller's thread limit.
 StatisticsView dense_check_inputs(const StatisticsView& noisy, std::vector<float>& storage);
 
 /// Box sums of `in` (w × h, row-major) over the (2R + 1)² window around each pixel,
