@@ -10,6 +10,7 @@
 
 #include "dense_copies.h"
 #include "statmc/core/critical_values.h"
+#include "scatter_dof.h"
 #include "statmc/core/thread_limit.h"
 #include "variance_filter_layout.h"
 
@@ -229,6 +230,10 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
     run_with_threads(nthreads, [&] {
         fill_taps_and_guides(view, guides, options, L);
         fill_pixel_planes(view, d, z, moderate, L);
+        const std::vector<float> scatter =
+            moderate && options.own_dof_from_scatter
+                ? detail::log_variance_scatter(L, options.radius, options.sigma_spatial)
+                : std::vector<float>();
         tbb::parallel_for(0, L.height, [&](int y) {
             // Unwanted pixels (PixelMask) are skipped, chunks of the kernel's width whole.
             const std::uint8_t* want =
@@ -266,9 +271,13 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
                         continue;
                     }
                     // Empirical Bayes (Smyth 2004): the neighbourhood's variance as a prior
-                    // worth prior_dof degrees of freedom against the pixel's n − 1.
+                    // worth prior_dof degrees of freedom against the pixel's n − 1, or
+                    // fewer where its s² is below the prior and its neighbourhood's ln s²
+                    // scatters more than n − 1 allows.
                     const double prior = s.prior_sum[c] / s.prior_weight[c];
-                    const double dof = std::max(count - 1, 0.0);
+                    double dof = std::max(count - 1, 0.0);
+                    if (!scatter.empty() && own_or_borrowed < prior)
+                        dof = std::min(dof, detail::scatter_dof(scatter[c * n + p]));
                     out[c * n + p] =
                         dof > 0 && std::isfinite(own_or_borrowed)
                             ? float((options.prior_dof * prior + dof * own_or_borrowed) /

@@ -90,6 +90,9 @@ VarianceFilterOptions test_moderation()
 {
     VarianceFilterOptions v = method_settings(Method::Default).stages.ladder.variance;
     v.borrow_without_interval = false;
+    // The test's degrees of freedom are n − 1 + d₀ (candidate_test.h), so its variances
+    // weigh the pixel's own s² by n − 1 as well.
+    v.own_dof_from_scatter = false;
     return v;
 }
 

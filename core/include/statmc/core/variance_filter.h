@@ -35,6 +35,13 @@ struct VarianceFilterOptions {
     /// variance to nobody; one whose mean differs only by the noise its variance explains (a
     /// rare bright path) still does (docs/method.md §10). 0 = every usable neighbour.
     double prior_alpha = 0;
+    /// With the moderation: a pixel whose s² is below its prior counts it with
+    /// min(n − 1, d) degrees of freedom rather than n − 1, d the one whose ψ'(d/2) is the
+    /// variance of ln s² over the (2·radius + 1)² square around it (Gaussian sigma_spatial).
+    /// Heavy tails (rare bright paths, met by some pixels and not yet by others) make s²
+    /// far noisier than n − 1 allows, and mostly too small: such a pixel then leans on its
+    /// neighbourhood's variance (docs/method.md §10).
+    bool own_dof_from_scatter = false;
 };
 
 /// The moderated per-sample variances of `view` in `domain` (BoxCox: the Box-Cox set;
