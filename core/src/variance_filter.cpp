@@ -9,8 +9,8 @@
 #include <tbb/parallel_for.h>
 
 #include "dense_copies.h"
-#include "statmc/core/critical_values.h"
 #include "scatter_dof.h"
+#include "statmc/core/critical_values.h"
 #include "statmc/core/thread_limit.h"
 #include "variance_filter_layout.h"
 
