@@ -12,25 +12,40 @@ namespace statmc::detail {
 
 namespace {
 
-// ln ψ'(x) on a uniform grid of ln x from x = 1e-4 to 1e7 (one trigamma per point, so the
-// table costs well under a millisecond). ψ' falls monotonically, and ln ψ' against ln x
-// bends slowly (its slope goes from −2 to −1), so linear interpolation between grid points
-// is accurate to about 1e-5.
-struct TrigammaTable {
+// ln x against ln y = ln ψ'(x) on a uniform grid of ln y, for x from 1e-4 to 1e7, so that a
+// lookup is one logarithm, one interpolation and one exponential. Built once from a finer
+// forward table of ln ψ' on a uniform grid of ln x (one trigamma per point: well under a
+// millisecond). ψ' falls monotonically, and ln x against ln ψ' bends slowly (its slope goes
+// from −1/2 to −1), so linear interpolation is accurate to about 1e-5.
+struct InverseTrigammaTable {
     static constexpr int kSize = 4096;
-    double lo = std::log(1e-4), step = (std::log(1e7) - std::log(1e-4)) / (kSize - 1);
-    std::vector<double> log_y;  ///< decreasing
+    double lo, step;            ///< the ln y grid: lo, lo + step, …
+    std::vector<double> log_x;  ///< ln x at each point of it
 
-    TrigammaTable() : log_y(kSize)
+    InverseTrigammaTable() : log_x(kSize)
     {
-        for (int i = 0; i < kSize; ++i)
-            log_y[i] = std::log(boost::math::trigamma(std::exp(lo + i * step)));
+        constexpr int kForward = 8192;
+        const double x_lo = std::log(1e-4), x_step = (std::log(1e7) - x_lo) / (kForward - 1);
+        std::vector<double> log_y(kForward);  // decreasing
+        for (int i = 0; i < kForward; ++i)
+            log_y[i] = std::log(boost::math::trigamma(std::exp(x_lo + i * x_step)));
+        lo = log_y.back();
+        step = (log_y.front() - lo) / (kSize - 1);
+        for (int k = 0; k < kSize; ++k) {
+            const double ly = std::min(lo + k * step, log_y.front());
+            // The first forward point at or below ly, and the one before it.
+            const auto after = std::lower_bound(log_y.begin(), log_y.end(), ly, std::greater<>());
+            const int i = std::max(int(after - log_y.begin()) - 1, 0);
+            const int j = std::min(i + 1, kForward - 1);
+            const double f = log_y[i] == log_y[j] ? 0 : (log_y[i] - ly) / (log_y[i] - log_y[j]);
+            log_x[k] = x_lo + (i + f) * x_step;
+        }
     }
 };
 
-const TrigammaTable& table()
+const InverseTrigammaTable& table()
 {
-    static const TrigammaTable t;
+    static const InverseTrigammaTable t;
     return t;
 }
 
@@ -38,18 +53,42 @@ const TrigammaTable& table()
 
 double inverse_trigamma(double y)
 {
-    const TrigammaTable& t = table();
-    const double ly = std::log(y);
-    if (ly >= t.log_y.front())
-        return std::exp(t.lo);
-    if (ly <= t.log_y.back())
-        return std::exp(t.lo + (TrigammaTable::kSize - 1) * t.step);
-    // The first grid point whose ln ψ' is at or below ln y, and the one before it.
-    const auto after = std::lower_bound(t.log_y.begin(), t.log_y.end(), ly, std::greater<>());
-    const int i = int(after - t.log_y.begin()) - 1;
-    const double f = (t.log_y[i] - ly) / (t.log_y[i] - t.log_y[i + 1]);
-    return std::exp(t.lo + (i + f) * t.step);
+    const InverseTrigammaTable& t = table();
+    const double u = (std::log(y) - t.lo) / t.step;
+    if (!(u > 0))
+        return std::exp(t.log_x.front());
+    if (u >= InverseTrigammaTable::kSize - 1)
+        return std::exp(t.log_x.back());
+    const int i = int(u);
+    const double f = u - i;
+    return std::exp(t.log_x[i] + f * (t.log_x[i + 1] - t.log_x[i]));
 }
+
+namespace {
+
+// out[x] = Σ_d kernel[d + r]·in[x + d] over the taps inside the row, each pixel's taps
+// added from left to right (restrict: the compiler vectorises across x).
+void add_taps(const double* __restrict in, double* __restrict out, int w,
+              const std::vector<double>& kernel)
+{
+    const int r = int(kernel.size()) / 2;
+    std::fill(out, out + w, 0.0);
+    for (int d = -r; d <= r; ++d) {
+        const double k = kernel[d + r];
+        const int from = std::max(0, -d), to = std::min(w, w - d);
+        for (int x = from; x < to; ++x)
+            out[x] += k * in[x + d];
+    }
+}
+
+// out[x] += k·in[x].
+void add_scaled(const double* __restrict in, double* __restrict out, int w, double k)
+{
+    for (int x = 0; x < w; ++x)
+        out[x] += k * in[x];
+}
+
+}  // namespace
 
 std::vector<float> log_variance_scatter(const VarianceLayout& L, int radius, double sigma)
 {
@@ -77,22 +116,16 @@ std::vector<float> log_variance_scatter(const VarianceLayout& L, int radius, dou
             }
             // Tap by tap across the row (the compiler vectorises across x); each pixel
             // still adds its taps from left to right.
-            for (int k = 0; k < 3; ++k) {
-                double* out = rows.data() + k * n + row;
-                std::fill(out, out + w, 0.0);
-                for (int d = -r; d <= r; ++d)
-                    for (int x = std::max(0, -d); x < std::min(w, w - d); ++x)
-                        out[x] += kernel[d + r] * terms[k * w + x + d];
-            }
+            for (int k = 0; k < 3; ++k)
+                add_taps(terms.data() + std::size_t(k) * w, rows.data() + k * n + row, w,
+                         kernel);
         });
         tbb::parallel_for(0, h, [&](int y) {
             std::vector<double> s(3 * std::size_t(w), 0.0);
             for (int yy = std::max(y - r, 0); yy <= std::min(y + r, h - 1); ++yy)
-                for (int k = 0; k < 3; ++k) {
-                    const double* in = rows.data() + k * n + std::size_t(yy) * w;
-                    for (int x = 0; x < w; ++x)
-                        s[k * w + x] += kernel[yy - y + r] * in[x];
-                }
+                for (int k = 0; k < 3; ++k)
+                    add_scaled(rows.data() + k * n + std::size_t(yy) * w,
+                               s.data() + std::size_t(k) * w, w, kernel[yy - y + r]);
             for (int x = 0; x < w; ++x) {
                 if (!(s[x] > 0))
                     continue;
