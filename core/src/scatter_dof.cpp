@@ -117,8 +117,7 @@ std::vector<float> log_variance_scatter(const VarianceLayout& L, int radius, dou
             // Tap by tap across the row (the compiler vectorises across x); each pixel
             // still adds its taps from left to right.
             for (int k = 0; k < 3; ++k)
-                add_taps(terms.data() + std::size_t(k) * w, rows.data() + k * n + row, w,
-                         kernel);
+                add_taps(terms.data() + std::size_t(k) * w, rows.data() + k * n + row, w, kernel);
         });
         tbb::parallel_for(0, h, [&](int y) {
             std::vector<double> s(3 * std::size_t(w), 0.0);
