@@ -90,9 +90,21 @@ void add_scaled(const double* __restrict in, double* __restrict out, int w, doub
 
 }  // namespace
 
-std::vector<float> log_variance_scatter(const VarianceLayout& L, int radius, double sigma)
+std::vector<float> log_variance_scatter(const VarianceLayout& L, int radius, double sigma,
+                                       const PixelMask& wanted)
 {
     const int w = L.width, h = L.height, r = radius;
+    // The rows that hold a wanted pixel, and the rows their squares read.
+    std::vector<std::uint8_t> out_row(h, 1), in_row(h, 1);
+    if (!wanted.empty())
+        for (int y = 0; y < h; ++y) {
+            const auto* m = wanted.data() + std::size_t(y) * w;
+            out_row[y] = std::any_of(m, m + w, [](std::uint8_t v) { return v != 0; });
+        }
+    for (int y = 0; y < h; ++y)
+        in_row[y] = std::any_of(out_row.begin() + std::max(y - r, 0),
+                                out_row.begin() + std::min(y + r, h - 1) + 1,
+                                [](std::uint8_t v) { return v != 0; });
     const std::size_t n = L.pixels;
     std::vector<double> kernel(2 * r + 1);
     for (int d = -r; d <= r; ++d)
@@ -104,6 +116,8 @@ std::vector<float> log_variance_scatter(const VarianceLayout& L, int radius, dou
     for (int c = 0; c < L.channels; ++c) {
         const double* s2 = L.prior_s2.data() + c * n;
         tbb::parallel_for(0, h, [&](int y) {
+            if (!in_row[y])
+                return;
             const std::size_t row = std::size_t(y) * w;
             std::vector<double> terms(3 * std::size_t(w));
             for (int x = 0; x < w; ++x) {
@@ -120,6 +134,8 @@ std::vector<float> log_variance_scatter(const VarianceLayout& L, int radius, dou
                 add_taps(terms.data() + std::size_t(k) * w, rows.data() + k * n + row, w, kernel);
         });
         tbb::parallel_for(0, h, [&](int y) {
+            if (!out_row[y])
+                return;
             std::vector<double> s(3 * std::size_t(w), 0.0);
             for (int yy = std::max(y - r, 0); yy <= std::min(y + r, h - 1); ++yy)
                 for (int k = 0; k < 3; ++k)

@@ -10,6 +10,7 @@
 
 #include <vector>
 
+#include "statmc/core/filter.h"
 #include "variance_filter_layout.h"
 
 namespace statmc::detail {
@@ -18,8 +19,10 @@ namespace statmc::detail {
 /// the (2·radius + 1)² square around the pixel, weighted by a separable Gaussian of `sigma`
 /// pixels, among the pixels whose `L.prior_s2` is finite and positive; 0 where it is not
 /// positive (fewer than two such pixels, or all alike). True differences of σ² across the
-/// square (an edge) only make it larger. Deterministic for any thread count.
-std::vector<float> log_variance_scatter(const VarianceLayout& L, int radius, double sigma);
+/// square (an edge) only make it larger. Deterministic for any thread count. With `wanted`
+/// (PixelMask), only rows holding a wanted pixel are filled (0 elsewhere).
+std::vector<float> log_variance_scatter(const VarianceLayout& L, int radius, double sigma,
+                                       const PixelMask& wanted = {});
 
 /// The degrees of freedom d whose ψ'(d/2) is `scatter`: +∞ where it is 0.
 double scatter_dof(float scatter);

@@ -159,6 +159,18 @@ TEST(ScatterDof, TheOptionOnlyEverLiftsAVarianceBelowItsPriorAndKeepsTheBitsAcro
     // Pixels without a hit (P = 0.97^64 = 14%) have an s² far below their prior.
     EXPECT_GT(lifted, after.size() / 20);
     EXPECT_EQ(after, denoise_variances(view, TestDomain::Untransformed, {}, on, 1));
+    // Only some pixels wanted (a band of rows and a lone pixel): the same values there.
+    PixelMask wanted(std::size_t(view.width) * view.height, 0);
+    for (int x = 0; x < view.width; ++x)
+        wanted[std::size_t(12) * view.width + x] = wanted[std::size_t(13) * view.width + x] = 1;
+    wanted[std::size_t(25) * view.width + 7] = 1;
+    const std::vector<float> some =
+        denoise_variances(view, TestDomain::Untransformed, {}, on, 0, SimdLevel::Auto, wanted);
+    for (std::size_t i = 0; i < wanted.size(); ++i) {
+        if (wanted[i]) {
+            EXPECT_EQ(some[i], after[i]) << i;
+        }
+    }
     for (SimdLevel level : supported_simd_levels())
         EXPECT_EQ(after, denoise_variances(view, TestDomain::Untransformed, {}, on, 2, level));
 }
