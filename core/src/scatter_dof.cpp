@@ -91,7 +91,7 @@ void add_scaled(const double* __restrict in, double* __restrict out, int w, doub
 }  // namespace
 
 std::vector<float> log_variance_scatter(const VarianceLayout& L, int radius, double sigma,
-                                       const PixelMask& wanted)
+                                        const PixelMask& wanted)
 {
     const int w = L.width, h = L.height, r = radius;
     // The rows that hold a wanted pixel, and the rows their squares read.

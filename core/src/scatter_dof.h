@@ -22,7 +22,7 @@ namespace statmc::detail {
 /// square (an edge) only make it larger. Deterministic for any thread count. With `wanted`
 /// (PixelMask), only rows holding a wanted pixel are filled (0 elsewhere).
 std::vector<float> log_variance_scatter(const VarianceLayout& L, int radius, double sigma,
-                                       const PixelMask& wanted = {});
+                                        const PixelMask& wanted = {});
 
 /// The degrees of freedom d whose ψ'(d/2) is `scatter`: +∞ where it is 0.
 double scatter_dof(float scatter);

@@ -232,8 +232,7 @@ std::vector<float> denoise_variances(const StatisticsView& view, TestDomain doma
         fill_pixel_planes(view, d, z, moderate, L);
         const std::vector<float> scatter =
             moderate && options.own_dof_from_scatter
-                ? detail::log_variance_scatter(L, options.radius, options.sigma_spatial,
-                                               wanted)
+                ? detail::log_variance_scatter(L, options.radius, options.sigma_spatial, wanted)
                 : std::vector<float>();
         tbb::parallel_for(0, L.height, [&](int y) {
             // Unwanted pixels (PixelMask) are skipped, chunks of the kernel's width whole.
