@@ -12,6 +12,7 @@
 #include "bench_frame.h"
 #include "bench_timing.h"
 #include "statmc/core/filter.h"
+#include "statmc/core/method.h"
 #include "statmc/core/radius_ladder.h"
 #include "statmc/core/variance_filter.h"
 
@@ -119,10 +120,10 @@ void BM_FilterScalarKernel(benchmark::State& s) { run(s, false, SimdLevel::Scala
 void BM_FilterReference(benchmark::State& s) { run(s, false, SimdLevel::Scalar, true); }
 void BM_FilterReferenceGuides(benchmark::State& s) { run(s, true, SimdLevel::Scalar, true); }
 
-// The default's variance denoising (the radius ladder's ṽ: radius 3, no interval test,
-// moderation d₀ = 16 towards neighbours that pass the test on the means at α = 0.05, as the
-// denoise plugin's defaults set it) at one SIMD level; Args: guides (0/1), level (1 scalar,
-// 2 AVX2, 3 AVX-512). All threads.
+// The default's variance denoising (the radius ladder's ṽ as method_settings gives it:
+// radius 3, moderation d₀ = 16 towards neighbours that pass the test on the means at
+// α = 0.05, a pixel's own degrees of freedom from the scatter of ln s²) at one SIMD level;
+// Args: guides (0/1), level (1 scalar, 2 AVX2, 3 AVX-512). All threads.
 void BM_VarianceFilter(benchmark::State& state)
 {
     const SimdLevel level = SimdLevel(state.range(1));
@@ -133,9 +134,7 @@ void BM_VarianceFilter(benchmark::State& state)
     }
     static const bench::GuidePlanes guide_planes;
     const Guides guides = state.range(0) ? guide_planes.guides : Guides{};
-    VarianceFilterOptions options = RadiusLadderOptions{}.variance;
-    options.prior_dof = 16;
-    options.prior_alpha = 0.05;
+    const VarianceFilterOptions options = method_settings(Method::Default).stages.ladder.variance;
     for (auto _ : state)
         benchmark::DoNotOptimize(denoise_variances(bench::frame().view(), TestDomain::Untransformed,
                                                    guides, options, 0, level));

@@ -111,19 +111,28 @@ std::vector<float> log_variance_scatter(const VarianceLayout& L, int radius, dou
         kernel[d + r] = std::exp(-double(d) * d / (2 * sigma * sigma));
     std::vector<float> scatter(n * L.channels, 0.f);
     // Per pixel: its weight (1 where it counts), ln s² and (ln s²)², summed with the
-    // Gaussian across each row; then down the columns.
-    std::vector<double> rows(3 * n);
-    for (int c = 0; c < L.channels; ++c) {
+    // Gaussian across each row, then down the columns. A band of kChunk output rows at a
+    // time, its rows' sums (and the r rows on either side) in a buffer that stays in cache.
+    constexpr int kChunk = 32;
+    const int chunks = (h + kChunk - 1) / kChunk;
+    tbb::parallel_for(0, L.channels * chunks, [&](int task) {
+        const int c = task / chunks, y0 = (task % chunks) * kChunk, y1 = std::min(h, y0 + kChunk);
+        if (std::none_of(out_row.begin() + y0, out_row.begin() + y1,
+                         [](std::uint8_t v) { return v != 0; }))
+            return;
+        const int ya = std::max(y0 - r, 0), yb = std::min(y1 + r, h);
         const double* s2 = L.prior_s2.data() + c * n;
-        tbb::parallel_for(0, h, [&](int y) {
+        std::vector<double> terms(3 * std::size_t(w)), rows(3 * std::size_t(yb - ya) * w);
+        auto band_row = [&](int k, int y) {
+            return rows.data() + (std::size_t(k) * (yb - ya) + (y - ya)) * w;
+        };
+        for (int y = ya; y < yb; ++y) {
             if (!in_row[y])
-                return;
-            const std::size_t row = std::size_t(y) * w;
-            std::vector<double> terms(3 * std::size_t(w));
+                continue;
+            const double* v = s2 + std::size_t(y) * w;
             for (int x = 0; x < w; ++x) {
-                const double v = s2[row + x];
-                const bool counts = v > 0 && std::isfinite(v);
-                const double l = counts ? std::log(v) : 0;
+                const bool counts = v[x] > 0 && std::isfinite(v[x]);
+                const double l = counts ? std::log(v[x]) : 0;
                 terms[x] = counts ? 1 : 0;
                 terms[w + x] = l;
                 terms[2 * w + x] = l * l;
@@ -131,26 +140,27 @@ std::vector<float> log_variance_scatter(const VarianceLayout& L, int radius, dou
             // Tap by tap across the row (the compiler vectorises across x); each pixel
             // still adds its taps from left to right.
             for (int k = 0; k < 3; ++k)
-                add_taps(terms.data() + std::size_t(k) * w, rows.data() + k * n + row, w, kernel);
-        });
-        tbb::parallel_for(0, h, [&](int y) {
+                add_taps(terms.data() + std::size_t(k) * w, band_row(k, y), w, kernel);
+        }
+        std::vector<double> sums(3 * std::size_t(w));
+        for (int y = y0; y < y1; ++y) {
             if (!out_row[y])
-                return;
-            std::vector<double> s(3 * std::size_t(w), 0.0);
+                continue;
+            std::fill(sums.begin(), sums.end(), 0.0);
             for (int yy = std::max(y - r, 0); yy <= std::min(y + r, h - 1); ++yy)
                 for (int k = 0; k < 3; ++k)
-                    add_scaled(rows.data() + k * n + std::size_t(yy) * w,
-                               s.data() + std::size_t(k) * w, w, kernel[yy - y + r]);
+                    add_scaled(band_row(k, yy), sums.data() + std::size_t(k) * w, w,
+                               kernel[yy - y + r]);
             for (int x = 0; x < w; ++x) {
-                if (!(s[x] > 0))
+                if (!(sums[x] > 0))
                     continue;
-                const double mean = s[w + x] / s[x];
-                const double var = s[2 * w + x] / s[x] - mean * mean;
+                const double mean = sums[w + x] / sums[x];
+                const double var = sums[2 * w + x] / sums[x] - mean * mean;
                 if (var > 0)
                     scatter[c * n + std::size_t(y) * w + x] = float(var);
             }
-        });
-    }
+        }
+    });
     return scatter;
 }
 
