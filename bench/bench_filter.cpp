@@ -13,7 +13,6 @@
 #include "bench_timing.h"
 #include "statmc/core/filter.h"
 #include "statmc/core/method.h"
-#include "statmc/core/radius_ladder.h"
 #include "statmc/core/variance_filter.h"
 
 namespace {
