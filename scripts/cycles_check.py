@@ -26,6 +26,9 @@ from promise_check import (Reference, add_common_arguments, report, score_frame,
                            tools, write_rows)
 
 SCENES = ("glints", "caustic", "dof")
+# Kept aside from every choice of the default (docs/evaluation-notes.md): named with
+# --scenes, never run by default.
+KEPT_ASIDE = ("interior",)
 
 
 def blender(*command, log):
@@ -78,6 +81,7 @@ def main():
     parser.add_argument("--seed", type=int, default=1, help="the first pass's seed")
     parser.add_argument("--scenes", default=" ".join(SCENES))
     args = parser.parse_args()
+    args.out = os.path.abspath(args.out)  # Blender saves only to absolute paths
     if args.report:
         report(os.path.join(args.out, "results.csv"), args.against)
         return
@@ -87,6 +91,9 @@ def main():
     ks = [int(k) for k in args.passes.split()]
     rows = []
     for scene in args.scenes.split():
+        if scene not in SCENES + KEPT_ASIDE:
+            sys.exit(f"cycles_check: no scene {scene!r} (known: "
+                     f"{' '.join(SCENES + KEPT_ASIDE)})")
         d = os.path.join(args.out, scene)
         os.makedirs(d, exist_ok=True)
         blend = scene_file(args, scene, d)

@@ -10,6 +10,10 @@ suite"), built from nothing and saved as .blend files for blender/statmc_cycles_
             light beside them and a dim panel: caustics reached only by BSDF sampling.
 - dof:      textured objects at several depths through a f/1.4 lens focused on the middle
             one, small bright lamps far behind (defocused discs), a sun and a blue sky.
+- interior: kept aside from every choice of the default (docs/evaluation-notes.md): a room
+            lit by six small coloured lamps of different strengths, a glossy tiled floor
+            that mirrors them, a rough metal bowl, textured walls, and a ceiling reached
+            only by bounces.
 
 Each scene is built to break a denoiser in one way nobody here tuned for; none is shaped
 after the figures it gives.
@@ -24,14 +28,15 @@ import bpy
 
 def arguments():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--scene", required=True, choices=("glints", "caustic", "dof"))
+    parser.add_argument("--scene", required=True,
+                        choices=("glints", "caustic", "dof", "interior"))
     parser.add_argument("--resolution", default="320x180")
     parser.add_argument("--save", required=True)
     return parser.parse_args(sys.argv[sys.argv.index("--") + 1:])
 
 
 def principled(name, colour, roughness=0.5, metallic=0.0, transmission=0.0, emission=0.0,
-               texture=None):
+               texture=None, glow=(1.0, 0.9, 0.75)):
     m = bpy.data.materials.new(name)
     m.use_nodes = True
     nodes, links = m.node_tree.nodes, m.node_tree.links
@@ -43,7 +48,7 @@ def principled(name, colour, roughness=0.5, metallic=0.0, transmission=0.0, emis
     if transmission:
         bsdf.inputs["IOR"].default_value = 1.5
     if emission:
-        bsdf.inputs["Emission"].default_value = (1.0, 0.9, 0.75, 1.0)
+        bsdf.inputs["Emission"].default_value = (*glow, 1.0)
         bsdf.inputs["Emission Strength"].default_value = emission
     if texture:
         kind, scale, second = texture
@@ -168,6 +173,32 @@ def dof(scene):
     camera(scene, (0.3, -4.2, 0.9), (0.1, 0.2, 0.45), lens=50, fstop=1.4, focus=4.45)
 
 
+def interior(scene):
+    plane((0, 0, 0), (0, 0, 0), 8, principled(
+        "tiles", (0.3, 0.27, 0.24), roughness=0.12,
+        texture=("ShaderNodeTexChecker", 10.0, (0.06, 0.055, 0.05))))
+    plane((0, 2.0, 1.5), (math.pi / 2, 0, 0), 8, principled(
+        "plaster", (0.62, 0.58, 0.5), roughness=0.9,
+        texture=("ShaderNodeTexNoise", 8.0, (0.4, 0.36, 0.3))))
+    plane((-2.2, 0, 1.5), (0, math.pi / 2, 0), 8, principled("red", (0.5, 0.12, 0.08),
+                                                            roughness=0.8))
+    plane((0, 0, 2.6), (0, 0, 0), 8, principled("ceiling", (0.75, 0.75, 0.75), roughness=0.9))
+    shelf = principled("shelf", (0.25, 0.15, 0.08), roughness=0.5)
+    cube((0.0, 1.6, 0.8), 1.0, (0, 0, 0), shelf, scale=(1.9, 0.35, 0.04))
+    sphere((0.6, 0.2, 0.28), 0.28, principled("bowl", (0.9, 0.9, 0.88), roughness=0.2,
+                                              metallic=1.0))
+    lamps = [((-1.5, 1.6, 0.87), 0.035, 1500.0, (1.0, 0.55, 0.2)),
+             ((-0.8, 1.55, 0.88), 0.045, 700.0, (0.2, 0.5, 1.0)),
+             ((-0.1, 1.65, 0.86), 0.025, 3000.0, (1.0, 0.95, 0.85)),
+             ((0.7, 1.5, 0.89), 0.05, 500.0, (0.35, 1.0, 0.3)),
+             ((1.4, 1.6, 0.87), 0.03, 1200.0, (0.9, 0.2, 0.8)),
+             ((-1.2, 0.3, 2.2), 0.04, 900.0, (1.0, 0.85, 0.6))]
+    for i, (where, radius, strength, glow) in enumerate(lamps):
+        sphere(where, radius, principled(f"lamp{i}", (0, 0, 0), emission=strength, glow=glow))
+    world(scene, (0.3, 0.35, 0.45), 0.01)
+    camera(scene, (0.4, -3.4, 1.35), (0.0, 0.9, 0.75), lens=32)
+
+
 def main():
     args = arguments()
     bpy.ops.wm.read_factory_settings(use_empty=True)
@@ -187,7 +218,7 @@ def main():
     width, height = (int(v) for v in args.resolution.split("x"))
     scene.render.resolution_x, scene.render.resolution_y = width, height
     scene.render.resolution_percentage = 100
-    {"glints": glints, "caustic": caustic, "dof": dof}[args.scene](scene)
+    {"glints": glints, "caustic": caustic, "dof": dof, "interior": interior}[args.scene](scene)
     bpy.ops.wm.save_as_mainfile(filepath=args.save)
 
 
