@@ -29,6 +29,7 @@ SCENES = ("glints", "caustic", "dof")
 # Kept aside from every choice of the default (docs/evaluation-notes.md): named with
 # --scenes, never run by default.
 KEPT_ASIDE = ("interior",)
+KNOWN_SCENES = SCENES + KEPT_ASIDE
 
 
 def blender(*command, log):
@@ -91,9 +92,8 @@ def main():
     ks = [int(k) for k in args.passes.split()]
     rows = []
     for scene in args.scenes.split():
-        if scene not in SCENES + KEPT_ASIDE:
-            sys.exit(f"cycles_check: no scene {scene!r} (known: "
-                     f"{' '.join(SCENES + KEPT_ASIDE)})")
+        if scene not in KNOWN_SCENES:
+            sys.exit(f"cycles_check: no scene {scene!r} (known: {' '.join(KNOWN_SCENES)})")
         d = os.path.join(args.out, scene)
         os.makedirs(d, exist_ok=True)
         blend = scene_file(args, scene, d)

@@ -42,6 +42,7 @@ SCENES = {
 KEPT_ASIDE = {
     "lamp-shelf": "bench/evaluation/scenes/lamp-shelf/scene.pbrt",
 }
+KNOWN_SCENES = {**SCENES, **KEPT_ASIDE}
 
 
 def run(cmd):
@@ -50,9 +51,8 @@ def run(cmd):
 
 def render(args, scene, spp, seed, path):
     if not os.path.exists(path):
-        scene_file = {**SCENES, **KEPT_ASIDE}[scene]
-        run([args.render, os.path.join(ROOT, scene_file), "-o", path + ".part.exr", "--spp",
-             str(spp), "--resolution", args.resolution, "--seed", str(seed), "-q"])
+        run([args.render, os.path.join(ROOT, KNOWN_SCENES[scene]), "-o", path + ".part.exr",
+             "--spp", str(spp), "--resolution", args.resolution, "--seed", str(seed), "-q"])
         os.replace(path + ".part.exr", path)
     return path
 
@@ -287,9 +287,8 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     rows = []
     for scene in args.scenes.split():
-        if scene not in SCENES and scene not in KEPT_ASIDE:
-            sys.exit(f"promise_check: no scene {scene!r} (known: "
-                     f"{' '.join([*SCENES, *KEPT_ASIDE])})")
+        if scene not in KNOWN_SCENES:
+            sys.exit(f"promise_check: no scene {scene!r} (known: {' '.join(KNOWN_SCENES)})")
         d = os.path.join(args.out, scene)
         os.makedirs(d, exist_ok=True)
         reference = Reference(statmc, render(
