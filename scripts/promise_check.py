@@ -1,8 +1,9 @@
-"""The promise, checked on frames the evaluation does not tune on (docs/evaluation-notes.md,
-"The promise check"): the evaluation's scenes at another resolution and other seeds, every
-sample count from 4 to 256, against long references whose own noise is subtracted. For
-each method and cell it reports MSE, relMSE and DSSIM, and the energy kept in windows
-around emitters and highlights, beside the noisy input's.
+"""The promise, checked on frames the evaluation does not tune on (docs/evaluation-notes.md:
+"Verified OIDN on the promise check", "Scenes kept aside", "The frame's light"): the
+evaluation's scenes at another resolution and other seeds, every sample count from 4 to
+256, against long references whose own noise is subtracted. For each method and cell it reports MSE, relMSE and
+DSSIM, the energy kept in windows around emitters and highlights, and the light kept by
+the frame as a whole, beside the noisy input's.
 
 Not part of CI: renders are cached in OUT and reused.
 
@@ -71,18 +72,21 @@ def highlight_windows(reference_rgb):
 
 
 def scores(x, ref, ref_share, window):
-    """MSE and relMSE less the reference's own share, and the energy ratio in `window`."""
+    """MSE and relMSE less the reference's own share, the energy ratio in `window`, and the
+    whole frame's (light removed or added anywhere, not only around highlights)."""
     d2 = (x - ref) ** 2
     mse = float(d2.mean()) - ref_share["mse"]
     rel = float((d2 / (ref ** 2 + EPS)).mean()) - ref_share["relmse"]
     energy = float(x[window].sum() / max(ref[window].sum(), 1e-12))
-    return mse, rel, energy
+    light = float(x.sum() / max(ref.sum(), 1e-12))
+    return mse, rel, energy, light
 
 
 def report(path, against=None):
     """results.csv as markdown: per scene and metric, a row per cell (sample count and seed,
     or passes), a column per method; a method's figure is starred where it is above the noisy
-    input's (energy: more than 5% further from 1). With `against`, report_against instead."""
+    input's (energy and light: more than 5% further from 1). With `against`, report_against
+    instead."""
     with open(path) as f:
         rows = list(csv.DictReader(f))
     if against:
@@ -93,7 +97,9 @@ def report(path, against=None):
     report_rejections(rows)
     for scene in dict.fromkeys(r["scene"] for r in rows):
         keys = sorted({(k[1], k[2]) for k in cells if k[0] == scene})
-        for metric in ("mse", "relmse", "dssim", "energy"):
+        for metric in ("mse", "relmse", "dssim", "energy", "light"):
+            if metric not in rows[0]:  # results written before the metric was
+                continue
             print(f"\n{scene}, {metric}\n")
             print("| spp | cell | " + " | ".join(methods) + " |")
             print("|---" * (len(methods) + 2) + "|")
@@ -106,7 +112,7 @@ def report(path, against=None):
                         out.append("")
                         continue
                     v = float(row[metric])
-                    worse = (abs(v - 1) > abs(noisy - 1) + 0.05 if metric == "energy"
+                    worse = (abs(v - 1) > abs(noisy - 1) + 0.05 if metric in ("energy", "light")
                              else v > noisy)
                     out.append(f"{v:.4g}" + ("*" if worse and m != "noisy" else ""))
                 print(f"| {spp} | {cell} | " + " | ".join(out) + " |")
@@ -248,14 +254,15 @@ def score_frame(statmc, methods, noisy_path, prefix, reference, cell, null_with=
     for name, path in outputs:
         image = statmc.read_statistics(path)
         x = image["beauty"][:, :, :3].astype(np.float64)
-        mse, rel, energy = scores(x, reference.rgb, reference.share, reference.window)
+        mse, rel, energy, light = scores(x, reference.rgb, reference.share, reference.window)
         dssim = statmc.compare(path, reference.path).metrics["DSSIM"]
         rows.append({**cell, "method": name, "mse": mse, "relmse": rel, "dssim": dssim,
-                     "energy": energy, "ref_mse_share": reference.share["mse"],
+                     "energy": energy, "light": light, "ref_mse_share": reference.share["mse"],
                      "ref_relmse_share": reference.share["relmse"],
                      "rejected": rejected_share(image)})
         print(f"{cell['scene']:15s} {cell['spp']:5d} {cell['cell']:14s} {name:11s} "
-              f"MSE {mse:.4g} relMSE {rel:.4g} DSSIM {dssim:.4f} energy {energy:.3f}",
+              f"MSE {mse:.4g} relMSE {rel:.4g} DSSIM {dssim:.4f} energy {energy:.3f} "
+              f"light {light:.3f}",
               flush=True)
     return rows
 
