@@ -1,9 +1,9 @@
 """The promise, checked on frames the evaluation does not tune on (docs/evaluation-notes.md:
 "Verified OIDN on the promise check", "Scenes kept aside", "The frame's light"): the
 evaluation's scenes at another resolution and other seeds, every sample count from 4 to
-256, against long references whose own noise is subtracted. For each method and cell it reports MSE, relMSE and
-DSSIM, the energy kept in windows around emitters and highlights, and the light kept by
-the frame as a whole, beside the noisy input's.
+256, against long references whose own noise is subtracted. For each method and cell it
+reports MSE, relMSE and DSSIM, the energy kept in windows around emitters and highlights,
+and the light kept by the frame as a whole, beside the noisy input's.
 
 Not part of CI: renders are cached in OUT and reused.
 
