@@ -22,8 +22,8 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from promise_check import (Reference, add_common_arguments, report, score_frame,  # noqa: E402
-                           tools, write_rows)
+from promise_check import (Reference, add_common_arguments, report, scene_names,  # noqa: E402
+                           score_frame, tools, write_rows)
 
 SCENES = ("glints", "caustic", "dof")
 # Kept aside from every choice of the default (docs/evaluation-notes.md): named with
@@ -91,9 +91,7 @@ def main():
     statmc, statmc_cli, methods = tools(args)
     ks = [int(k) for k in args.passes.split()]
     rows = []
-    for scene in args.scenes.split():
-        if scene not in KNOWN_SCENES:
-            sys.exit(f"cycles_check: no scene {scene!r} (known: {' '.join(KNOWN_SCENES)})")
+    for scene in scene_names(args.scenes, KNOWN_SCENES, "cycles_check"):
         d = os.path.join(args.out, scene)
         os.makedirs(d, exist_ok=True)
         blend = scene_file(args, scene, d)

@@ -46,6 +46,15 @@ KEPT_ASIDE = {
 KNOWN_SCENES = {**SCENES, **KEPT_ASIDE}
 
 
+def scene_names(names, known, tool):
+    """The scenes of `--scenes`, every one checked against `known` before any is rendered."""
+    scenes = names.split()
+    for scene in scenes:
+        if scene not in known:
+            sys.exit(f"{tool}: no scene {scene!r} (known: {' '.join(known)})")
+    return scenes
+
+
 def run(cmd):
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
 
@@ -293,9 +302,7 @@ def main():
     statmc, statmc_cli, methods = tools(args)
     os.makedirs(args.out, exist_ok=True)
     rows = []
-    for scene in args.scenes.split():
-        if scene not in KNOWN_SCENES:
-            sys.exit(f"promise_check: no scene {scene!r} (known: {' '.join(KNOWN_SCENES)})")
+    for scene in scene_names(args.scenes, KNOWN_SCENES, "promise_check"):
         d = os.path.join(args.out, scene)
         os.makedirs(d, exist_ok=True)
         reference = Reference(statmc, render(
